@@ -1,0 +1,234 @@
+//! Bodies (seed §4.2.1 rigid body, the seed's `GRigidBody`): particles,
+//! rigid bodies and static bodies.
+//!
+//! A body's position is its centre of mass (m), its angle (rad) turns its
+//! shape counter-clockwise, its velocity (m/s) and angular velocity (rad/s)
+//! are those of the centre of mass. A body with neither a shape nor an
+//! explicit inertia is a **particle**: it carries no rotational state and
+//! costs no rotational work. A **static** body never moves and is not
+//! integrated.
+
+use crate::error::{EngineError, Result, require_finite, require_positive};
+use crate::shape::Shape;
+use nalgebra::Vector2;
+
+/// Index of a body in its [`crate::World`].
+pub type BodyId = usize;
+
+/// How a body takes part in the simulation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum BodyKind {
+    /// Moves under forces; integrated.
+    #[default]
+    Dynamic,
+    /// Never moves; not integrated (an anchor, the ground).
+    Static,
+}
+
+/// The kinematic state of a body at one time.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct BodyState {
+    /// Position of the centre of mass (m).
+    pub position: Vector2<f64>,
+    /// Orientation (rad), counter-clockwise; 0 for a particle.
+    pub angle: f64,
+    /// Velocity of the centre of mass (m/s).
+    pub velocity: Vector2<f64>,
+    /// Angular velocity (rad/s); 0 for a particle.
+    pub angular_velocity: f64,
+}
+
+impl BodyState {
+    /// A world-frame vector from the centre of mass to a point given in
+    /// the body frame (m).
+    pub fn to_world_offset(&self, local: Vector2<f64>) -> Vector2<f64> {
+        let (s, c) = self.angle.sin_cos();
+        Vector2::new(c * local.x - s * local.y, s * local.x + c * local.y)
+    }
+}
+
+/// The description of a body, with defaults (Box2D's definition structs):
+/// build one, then [`crate::World::add_body`] validates it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyDef {
+    /// Name used in errors, traces and reports.
+    pub name: String,
+    /// Dynamic (default) or static.
+    pub kind: BodyKind,
+    /// Mass (kg). Required for a dynamic body unless `density` and a shape
+    /// give it.
+    pub mass: Option<f64>,
+    /// Density (kg/m²), used with the shape's area when `mass` is absent.
+    pub density: Option<f64>,
+    /// Moment of inertia about the centre of mass (kg·m²). Defaults to the
+    /// shape's; a body with neither is a particle.
+    pub inertia: Option<f64>,
+    /// Geometry, re-centred on its centroid. Optional.
+    pub shape: Option<Shape>,
+    /// Initial state. Default: at rest at the origin.
+    pub state: BodyState,
+}
+
+impl BodyDef {
+    /// A dynamic particle of `mass` kg at `position` (m).
+    pub fn particle(name: &str, mass: f64, position: Vector2<f64>) -> Self {
+        Self {
+            name: name.into(),
+            kind: BodyKind::Dynamic,
+            mass: Some(mass),
+            density: None,
+            inertia: None,
+            shape: None,
+            state: BodyState {
+                position,
+                ..BodyState::default()
+            },
+        }
+    }
+
+    /// A dynamic rigid body of `mass` kg with `shape`, at the origin, at rest.
+    pub fn rigid(name: &str, mass: f64, shape: Shape) -> Self {
+        Self {
+            shape: Some(shape),
+            ..Self::particle(name, mass, Vector2::zeros())
+        }
+    }
+
+    /// A static body at `position` (m), optionally with a shape.
+    pub fn fixed(name: &str, position: Vector2<f64>, shape: Option<Shape>) -> Self {
+        Self {
+            kind: BodyKind::Static,
+            mass: None,
+            shape,
+            ..Self::particle(name, 1.0, position)
+        }
+    }
+
+    /// Sets the initial velocity (m/s).
+    pub fn with_velocity(mut self, velocity: Vector2<f64>) -> Self {
+        self.state.velocity = velocity;
+        self
+    }
+
+    /// Sets the initial position (m).
+    pub fn with_position(mut self, position: Vector2<f64>) -> Self {
+        self.state.position = position;
+        self
+    }
+
+    /// Sets the initial angle (rad) and angular velocity (rad/s).
+    pub fn with_rotation(mut self, angle: f64, angular_velocity: f64) -> Self {
+        self.state.angle = angle;
+        self.state.angular_velocity = angular_velocity;
+        self
+    }
+}
+
+/// A validated body inside a world.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body {
+    /// Name, for errors and reports.
+    pub name: String,
+    /// Dynamic or static.
+    pub kind: BodyKind,
+    /// Mass (kg); infinite for a static body.
+    pub mass: f64,
+    /// Moment of inertia (kg·m²); `None` for a particle (no rotation),
+    /// infinite for a static body.
+    pub inertia: Option<f64>,
+    /// Geometry in the body frame, centred on the centre of mass.
+    pub shape: Option<Shape>,
+}
+
+impl Body {
+    /// Validates a definition: masses, densities and inertias finite and
+    /// > 0, the state finite. Returns the body and its initial state.
+    pub fn from_def(def: &BodyDef) -> Result<(Body, BodyState)> {
+        let name = &def.name;
+        let s = &def.state;
+        for (what, v) in [
+            ("x", s.position.x),
+            ("y", s.position.y),
+            ("angle", s.angle),
+            ("vx", s.velocity.x),
+            ("vy", s.velocity.y),
+            ("angular velocity", s.angular_velocity),
+        ] {
+            require_finite(format!("{what} of body '{name}'"), v)?;
+        }
+        let shape = def.shape.as_ref().map(Shape::centered);
+        if def.kind == BodyKind::Static {
+            let body = Body {
+                name: name.clone(),
+                kind: BodyKind::Static,
+                mass: f64::INFINITY,
+                inertia: Some(f64::INFINITY),
+                shape,
+            };
+            let state = BodyState {
+                velocity: Vector2::zeros(),
+                angular_velocity: 0.0,
+                ..*s
+            };
+            return Ok((body, state));
+        }
+        let mass = match (def.mass, def.density, &shape) {
+            (Some(m), _, _) => require_positive(format!("mass of body '{name}'"), m)?,
+            (None, Some(rho), Some(shape)) => {
+                require_positive(format!("density of body '{name}'"), rho)? * shape.area()
+            }
+            _ => {
+                return Err(EngineError::InvalidParameter {
+                    what: format!("mass of body '{name}'"),
+                    value: f64::NAN,
+                    reason: "a dynamic body needs a mass, or a density and a shape",
+                });
+            }
+        };
+        let inertia = match (def.inertia, &shape) {
+            (Some(i), _) => Some(require_positive(format!("inertia of body '{name}'"), i)?),
+            (None, Some(shape)) => Some(mass * shape.inertia_per_unit_mass()),
+            (None, None) => None,
+        };
+        let state = if inertia.is_none() {
+            BodyState {
+                angle: 0.0,
+                angular_velocity: 0.0,
+                ..*s
+            }
+        } else {
+            *s
+        };
+        Ok((
+            Body {
+                name: name.clone(),
+                kind: BodyKind::Dynamic,
+                mass,
+                inertia,
+                shape,
+            },
+            state,
+        ))
+    }
+
+    /// Whether the body is integrated.
+    pub fn is_dynamic(&self) -> bool {
+        self.kind == BodyKind::Dynamic
+    }
+
+    /// Whether the body carries rotational state (a dynamic rigid body).
+    pub fn rotates(&self) -> bool {
+        self.is_dynamic() && self.inertia.is_some()
+    }
+
+    /// Kinetic energy ½ m v² + ½ I ω² (J); 0 for a static body.
+    pub fn kinetic_energy(&self, state: &BodyState) -> f64 {
+        if !self.is_dynamic() {
+            return 0.0;
+        }
+        let rotational = self.inertia.map_or(0.0, |i| {
+            0.5 * i * state.angular_velocity * state.angular_velocity
+        });
+        0.5 * self.mass * state.velocity.norm_squared() + rotational
+    }
+}

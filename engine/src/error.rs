@@ -1,0 +1,129 @@
+//! Typed errors of the engine. Every error names what is wrong and carries
+//! the numbers needed to find it (the habit of `ode_solvers`:
+//! `StepSizeUnderflow { t }`).
+
+use thiserror::Error;
+
+/// Everything the engine can refuse or report instead of silently producing
+/// garbage.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum EngineError {
+    /// A user-supplied number is out of its domain (mass ≤ 0, dt ≤ 0, NaN, ...).
+    #[error("invalid {what}: {value} ({reason})")]
+    InvalidParameter {
+        /// Which parameter, e.g. `"mass of body 'box'"`.
+        what: String,
+        /// The offending value.
+        value: f64,
+        /// Why it is refused, e.g. `"must be finite and > 0"`.
+        reason: &'static str,
+    },
+    /// A polygon is not convex or not counter-clockwise, or is degenerate.
+    #[error("invalid polygon: {reason} at vertex {vertex}")]
+    InvalidPolygon {
+        /// Index of the first offending vertex.
+        vertex: usize,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// A force or event refers to a body that is not in the world.
+    #[error("unknown body index {index} (the world has {count} bodies)")]
+    UnknownBody {
+        /// The index that was asked for.
+        index: usize,
+        /// How many bodies the world holds.
+        count: usize,
+    },
+    /// A force was asked to act on a static body where that makes no sense
+    /// (e.g. a spring between two static bodies).
+    #[error("force '{force}' acts on no dynamic body")]
+    ForceOnStaticBodies {
+        /// Name of the force.
+        force: String,
+    },
+    /// The method needs the state in mechanical form `[q, v]` with `q' = v`
+    /// (semi-implicit Euler, velocity Verlet) and the system is first order.
+    #[error("{method} needs a second-order (position, velocity) system")]
+    MethodNeedsSecondOrder {
+        /// Name of the method.
+        method: &'static str,
+    },
+    /// The state stopped being finite: the integration blew up.
+    #[error("blow-up at t = {t} s (step {step}): {reason}")]
+    BlowUp {
+        /// Time at the start of the step that produced it, in s.
+        t: f64,
+        /// Index of that step (0-based).
+        step: u64,
+        /// What was detected, e.g. `"non-finite state"`.
+        reason: String,
+    },
+    /// The adaptive controller needed a step smaller than round-off allows.
+    #[error("step size underflow at t = {t} s (h = {h} s)")]
+    StepSizeUnderflow {
+        /// Time at which the step could not be taken, in s.
+        t: f64,
+        /// The rejected step, in s.
+        h: f64,
+    },
+    /// Newton's iterations of the implicit method did not converge.
+    #[error(
+        "implicit solver did not converge at t = {t} s after {iterations} iterations (residual {residual})"
+    )]
+    NewtonDiverged {
+        /// Time at the start of the step, in s.
+        t: f64,
+        /// Iterations spent.
+        iterations: usize,
+        /// Last residual norm.
+        residual: f64,
+    },
+    /// The Jacobian of the implicit step is singular.
+    #[error("singular Newton matrix at t = {t} s")]
+    SingularJacobian {
+        /// Time at the start of the step, in s.
+        t: f64,
+    },
+}
+
+/// Short alias used across the engine.
+pub type Result<T, E = EngineError> = std::result::Result<T, E>;
+
+/// Checks that `value` is finite and strictly positive.
+pub(crate) fn require_positive(what: impl Into<String>, value: f64) -> Result<f64> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(EngineError::InvalidParameter {
+            what: what.into(),
+            value,
+            reason: "must be finite and > 0",
+        })
+    }
+}
+
+/// Checks that `value` is finite and ≥ 0.
+pub(crate) fn require_non_negative(what: impl Into<String>, value: f64) -> Result<f64> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(EngineError::InvalidParameter {
+            what: what.into(),
+            value,
+            reason: "must be finite and >= 0",
+        })
+    }
+}
+
+/// Checks that `value` is finite.
+pub(crate) fn require_finite(what: impl Into<String>, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(EngineError::InvalidParameter {
+            what: what.into(),
+            value,
+            reason: "must be finite",
+        })
+    }
+}

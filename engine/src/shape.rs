@@ -1,0 +1,333 @@
+//! Shapes and their mass properties (seed §4.1.1 convex polygon, §4.2.5
+//! inertia).
+//!
+//! A polygon is stored counter-clockwise and checked convex on
+//! construction; mass properties (area, centroid, second moment) come from
+//! the geometry. When a shape is attached to a body, the body's position is
+//! its centre of mass: a polygon is re-centred on its centroid.
+
+use crate::error::{EngineError, Result, require_positive};
+use nalgebra::Vector2;
+
+/// 2D cross product `a × b = a.x b.y − a.y b.x` (a scalar in 2D).
+pub fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
+/// Relative tolerance under which three vertices count as collinear, scaled
+/// by the polygon's size squared (a cross product has units of m²).
+const COLLINEAR_TOLERANCE: f64 = 1e-12;
+
+/// A convex polygon, counter-clockwise, in its body's frame (m).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConvexPolygon {
+    vertices: Vec<Vector2<f64>>,
+}
+
+impl ConvexPolygon {
+    /// A polygon from vertices listed counter-clockwise. Refuses fewer than
+    /// three vertices, non-finite coordinates, repeated or collinear vertices,
+    /// a clockwise order and a non-convex outline, naming the first bad vertex.
+    pub fn new(vertices: Vec<Vector2<f64>>) -> Result<Self> {
+        let n = vertices.len();
+        if n < 3 {
+            return Err(EngineError::InvalidPolygon {
+                vertex: n,
+                reason: "a polygon needs at least 3 vertices",
+            });
+        }
+        if let Some(i) = vertices
+            .iter()
+            .position(|v| !(v.x.is_finite() && v.y.is_finite()))
+        {
+            return Err(EngineError::InvalidPolygon {
+                vertex: i,
+                reason: "non-finite coordinate",
+            });
+        }
+        let size = vertices
+            .iter()
+            .map(|v| (v - vertices[0]).norm())
+            .fold(0.0, f64::max);
+        let tolerance = COLLINEAR_TOLERANCE * size * size;
+        let signed_area: f64 = (0..n)
+            .map(|i| cross(vertices[i], vertices[(i + 1) % n]))
+            .sum();
+        for i in 0..n {
+            let prev = vertices[(i + n - 1) % n];
+            let next = vertices[(i + 1) % n];
+            let turn = cross(vertices[i] - prev, next - vertices[i]);
+            if (vertices[i] - prev).norm() <= tolerance.sqrt() {
+                return Err(EngineError::InvalidPolygon {
+                    vertex: i,
+                    reason: "repeated vertex",
+                });
+            }
+            if turn.abs() <= tolerance {
+                return Err(EngineError::InvalidPolygon {
+                    vertex: i,
+                    reason: "collinear vertex",
+                });
+            }
+            if turn < 0.0 {
+                return Err(EngineError::InvalidPolygon {
+                    vertex: i,
+                    reason: if signed_area < 0.0 {
+                        "vertices are clockwise (list them counter-clockwise)"
+                    } else {
+                        "polygon is not convex"
+                    },
+                });
+            }
+        }
+        // All turns left is not enough: a star winds twice. A convex CCW
+        // polygon's edge directions turn by exactly 2π in total.
+        let winding: f64 = (0..n)
+            .map(|i| {
+                let a = vertices[(i + 1) % n] - vertices[i];
+                let b = vertices[(i + 2) % n] - vertices[(i + 1) % n];
+                cross(a, b).atan2(a.dot(&b))
+            })
+            .sum();
+        if winding > 2.0 * std::f64::consts::PI + 1e-6 {
+            return Err(EngineError::InvalidPolygon {
+                vertex: 0,
+                reason: "polygon is not convex (self-intersecting)",
+            });
+        }
+        Ok(Self { vertices })
+    }
+
+    /// The axis-aligned rectangle `width × height` (m) centred on the origin.
+    pub fn rectangle(width: f64, height: f64) -> Result<Self> {
+        let hw = 0.5 * require_positive("box width", width)?;
+        let hh = 0.5 * require_positive("box height", height)?;
+        Self::new(vec![
+            Vector2::new(-hw, -hh),
+            Vector2::new(hw, -hh),
+            Vector2::new(hw, hh),
+            Vector2::new(-hw, hh),
+        ])
+    }
+
+    /// The convex hull of a point cloud (Andrew's monotone chain), CCW,
+    /// collinear points dropped.
+    pub fn convex_hull(points: &[Vector2<f64>]) -> Result<Self> {
+        let mut pts: Vec<Vector2<f64>> = points.to_vec();
+        if let Some(i) = pts
+            .iter()
+            .position(|v| !(v.x.is_finite() && v.y.is_finite()))
+        {
+            return Err(EngineError::InvalidPolygon {
+                vertex: i,
+                reason: "non-finite coordinate",
+            });
+        }
+        pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+        pts.dedup();
+        if pts.len() < 3 {
+            return Err(EngineError::InvalidPolygon {
+                vertex: pts.len(),
+                reason: "a hull needs at least 3 distinct points",
+            });
+        }
+        let mut hull: Vec<Vector2<f64>> = Vec::with_capacity(2 * pts.len());
+        for pass in 0..2 {
+            let start = hull.len();
+            let iter: Box<dyn Iterator<Item = &Vector2<f64>>> = if pass == 0 {
+                Box::new(pts.iter())
+            } else {
+                Box::new(pts.iter().rev())
+            };
+            for p in iter {
+                while hull.len() >= start + 2
+                    && cross(
+                        hull[hull.len() - 1] - hull[hull.len() - 2],
+                        p - hull[hull.len() - 2],
+                    ) <= 0.0
+                {
+                    hull.pop();
+                }
+                hull.push(*p);
+            }
+            hull.pop();
+        }
+        Self::new(hull)
+    }
+
+    /// The vertices, counter-clockwise, in the body frame (m).
+    pub fn vertices(&self) -> &[Vector2<f64>] {
+        &self.vertices
+    }
+
+    /// Area (m²).
+    pub fn area(&self) -> f64 {
+        let n = self.vertices.len();
+        0.5 * (0..n)
+            .map(|i| cross(self.vertices[i], self.vertices[(i + 1) % n]))
+            .sum::<f64>()
+    }
+
+    /// Centroid (m), in the polygon's frame.
+    pub fn centroid(&self) -> Vector2<f64> {
+        let n = self.vertices.len();
+        let mut c = Vector2::zeros();
+        let mut area2 = 0.0;
+        // Triangles fanned from vertex 0 keep the sums well conditioned.
+        let o = self.vertices[0];
+        for i in 1..n - 1 {
+            let (a, b) = (self.vertices[i] - o, self.vertices[i + 1] - o);
+            let w = cross(a, b);
+            area2 += w;
+            c += w * (a + b) / 3.0;
+        }
+        o + c / area2
+    }
+
+    /// Second moment of area about the centroid, `∫ |r − c|² dA` (m⁴).
+    /// Times the density it is the moment of inertia.
+    pub fn polar_moment_about_centroid(&self) -> f64 {
+        let n = self.vertices.len();
+        let c = self.centroid();
+        (0..n)
+            .map(|i| {
+                let (a, b) = (self.vertices[i] - c, self.vertices[(i + 1) % n] - c);
+                cross(a, b) * (a.dot(&a) + a.dot(&b) + b.dot(&b)) / 12.0
+            })
+            .sum()
+    }
+
+    /// The same polygon translated so that its centroid is the origin.
+    pub fn centered(&self) -> Self {
+        let c = self.centroid();
+        Self {
+            vertices: self.vertices.iter().map(|v| v - c).collect(),
+        }
+    }
+}
+
+/// A circle of given radius (m) centred on its body's origin.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Circle {
+    /// Radius (m), > 0.
+    pub radius: f64,
+}
+
+impl Circle {
+    /// A circle; the radius must be finite and > 0.
+    pub fn new(radius: f64) -> Result<Self> {
+        Ok(Self {
+            radius: require_positive("circle radius", radius)?,
+        })
+    }
+}
+
+/// The shapes a body can carry.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shape {
+    /// A convex polygon (a box is a polygon built by [`ConvexPolygon::rectangle`]).
+    Polygon(ConvexPolygon),
+    /// A circle.
+    Circle(Circle),
+}
+
+impl Shape {
+    /// An axis-aligned box `width × height` (m).
+    pub fn rectangle(width: f64, height: f64) -> Result<Self> {
+        Ok(Shape::Polygon(ConvexPolygon::rectangle(width, height)?))
+    }
+
+    /// Area (m²).
+    pub fn area(&self) -> f64 {
+        match self {
+            Shape::Polygon(p) => p.area(),
+            Shape::Circle(c) => std::f64::consts::PI * c.radius * c.radius,
+        }
+    }
+
+    /// Moment of inertia about the centroid per unit mass (m²): `I / m`.
+    /// A box b × h gives (b² + h²)/12.
+    pub fn inertia_per_unit_mass(&self) -> f64 {
+        match self {
+            Shape::Polygon(p) => p.polar_moment_about_centroid() / p.area(),
+            Shape::Circle(c) => 0.5 * c.radius * c.radius,
+        }
+    }
+
+    /// The shape re-centred on its centroid (what a body stores).
+    pub fn centered(&self) -> Self {
+        match self {
+            Shape::Polygon(p) => Shape::Polygon(p.centered()),
+            Shape::Circle(c) => Shape::Circle(*c),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn seed_box_has_the_inertia_of_cases_md() {
+        // 0.1 m × 0.1 m, 0.3 kg: I = m (b² + h²)/12 = 5e-4 kg·m² exactly in
+        // real numbers; the polygon formula sums four terms, so allow a few ulps.
+        let shape = Shape::rectangle(0.1, 0.1).unwrap();
+        let inertia = 0.3 * shape.inertia_per_unit_mass();
+        assert!((inertia - 5e-4).abs() < 1e-18, "{inertia}");
+    }
+
+    #[test]
+    fn clockwise_polygon_is_refused() {
+        let cw = vec![
+            Vector2::new(0.0, 0.0),
+            Vector2::new(0.0, 1.0),
+            Vector2::new(1.0, 0.0),
+        ];
+        let err = ConvexPolygon::new(cw).unwrap_err();
+        assert!(err.to_string().contains("clockwise"), "{err}");
+    }
+
+    #[test]
+    fn non_convex_polygon_names_the_vertex() {
+        let dart = vec![
+            Vector2::new(0.0, 0.0),
+            Vector2::new(2.0, 0.0),
+            Vector2::new(1.0, 0.5),
+            Vector2::new(2.0, 2.0),
+            Vector2::new(0.0, 2.0),
+        ];
+        match ConvexPolygon::new(dart).unwrap_err() {
+            EngineError::InvalidPolygon { vertex, .. } => assert_eq!(vertex, 2),
+            e => panic!("unexpected {e}"),
+        }
+    }
+
+    #[test]
+    fn hull_of_a_square_with_inner_points_is_the_square() {
+        let pts = [
+            Vector2::new(0.0, 0.0),
+            Vector2::new(1.0, 1.0),
+            Vector2::new(0.5, 0.5),
+            Vector2::new(1.0, 0.0),
+            Vector2::new(0.0, 1.0),
+            Vector2::new(0.5, 0.0),
+        ];
+        let hull = ConvexPolygon::convex_hull(&pts).unwrap();
+        assert_eq!(hull.vertices().len(), 4);
+        assert!((hull.area() - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn off_centre_triangle_centroid_and_inertia() {
+        // Right triangle legs 3 and 6: centroid (1, 2); I_c/A = (a² + b²)/18.
+        let t = ConvexPolygon::new(vec![
+            Vector2::new(0.0, 0.0),
+            Vector2::new(3.0, 0.0),
+            Vector2::new(0.0, 6.0),
+        ])
+        .unwrap();
+        assert!((t.centroid() - Vector2::new(1.0, 2.0)).norm() < 1e-14);
+        let per_area = t.polar_moment_about_centroid() / t.area();
+        assert!((per_area - 45.0 / 18.0).abs() < 1e-13, "{per_area}");
+    }
+}

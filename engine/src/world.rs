@@ -1,0 +1,424 @@
+//! The world (the seed's `GScene`, §3): bodies, force generators, events and
+//! an integrator, advanced by [`World::step`].
+//!
+//! One step, in order:
+//! 1. **split** the interval at every force-window edge inside it, so no
+//!    integrator stage straddles a switch-on or switch-off;
+//! 2. **integrate** each segment with the forces active at its midpoint
+//!    (the adaptive method takes as many controlled steps as it needs);
+//! 3. **locate events** inside every accepted step by root finding
+//!    ([`crate::events`]); a terminal event ends the run at its exact time;
+//! 4. **guard**: a non-finite state, or an energy past the optional bound,
+//!    is a typed [`EngineError::BlowUp`] naming the time and the step.
+
+use crate::body::{Body, BodyDef, BodyId, BodyState};
+use crate::error::{EngineError, Result, require_positive};
+use crate::events::{EventRecord, EventSpec};
+use crate::forces::{Force, ForceContext, TimeWindow, Wrench};
+use crate::integrators::{Integrator, Method, Stats};
+use crate::root_finding::illinois;
+use crate::trace::{Sample, Trace};
+use crate::world_ode::{ActiveForce, Layout, WorldOde};
+
+/// Most steps a single [`World::run`] may take; beyond it the request is
+/// refused up front rather than left to run for hours.
+pub const MAX_RUN_STEPS: f64 = 1e8;
+
+/// Relative width (of the step) to which event times are located: a few
+/// ulps of the time, far below any tolerance the harness applies.
+const EVENT_TIME_TOLERANCE: f64 = 1e-15;
+
+struct ForceEntry {
+    force: Box<dyn Force>,
+    window: TimeWindow,
+}
+
+impl std::fmt::Debug for ForceEntry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} during {:?}", self.force.name(), self.window)
+    }
+}
+
+/// A simulated world.
+#[derive(Debug)]
+pub struct World {
+    bodies: Vec<Body>,
+    states: Vec<BodyState>,
+    forces: Vec<ForceEntry>,
+    events: Vec<EventSpec>,
+    integrator: Integrator,
+    layout: Layout,
+    time: f64,
+    stopped: bool,
+    energy_limit: Option<f64>,
+    // Scratch buffers reused by every step.
+    y: Vec<f64>,
+    y_start: Vec<f64>,
+    y_probe: Vec<f64>,
+    scratch_states: Vec<BodyState>,
+    scratch_wrenches: Vec<Wrench>,
+}
+
+impl World {
+    /// An empty world at t = 0 integrated by `method`.
+    pub fn new(method: Method) -> Result<Self> {
+        Ok(Self {
+            bodies: Vec::new(),
+            states: Vec::new(),
+            forces: Vec::new(),
+            events: Vec::new(),
+            integrator: Integrator::new(method)?,
+            layout: Layout::default(),
+            time: 0.0,
+            stopped: false,
+            energy_limit: None,
+            y: Vec::new(),
+            y_start: Vec::new(),
+            y_probe: Vec::new(),
+            scratch_states: Vec::new(),
+            scratch_wrenches: Vec::new(),
+        })
+    }
+
+    /// Adds a body after validating it; returns its id.
+    pub fn add_body(&mut self, def: BodyDef) -> Result<BodyId> {
+        let (body, state) = Body::from_def(&def)?;
+        self.bodies.push(body);
+        self.states.push(state);
+        self.layout = Layout::new(&self.bodies);
+        Ok(self.bodies.len() - 1)
+    }
+
+    /// Adds a force active at all times.
+    pub fn add_force(&mut self, force: impl Force + 'static) -> Result<()> {
+        self.add_force_during(Box::new(force), TimeWindow::ALWAYS)
+    }
+
+    /// Adds a force active during `window` only. Refuses a force naming a
+    /// body that does not exist.
+    pub fn add_force_during(&mut self, force: Box<dyn Force>, window: TimeWindow) -> Result<()> {
+        force.validate()?;
+        for body in force.bodies() {
+            self.check_body(body)?;
+        }
+        let acts = force.bodies();
+        if !acts.is_empty() && acts.iter().all(|&b| !self.bodies[b].is_dynamic()) {
+            return Err(EngineError::ForceOnStaticBodies {
+                force: force.name().into(),
+            });
+        }
+        self.forces.push(ForceEntry { force, window });
+        Ok(())
+    }
+
+    /// Adds an event to locate.
+    pub fn add_event(&mut self, event: EventSpec) -> Result<()> {
+        self.check_body(event.body)?;
+        crate::error::require_finite(format!("level of event '{}'", event.name), event.level)?;
+        self.events.push(event);
+        Ok(())
+    }
+
+    /// Reports a blow-up when |total energy| exceeds `limit` (J). Off by
+    /// default.
+    pub fn set_energy_limit(&mut self, limit: Option<f64>) -> Result<()> {
+        if let Some(l) = limit {
+            require_positive("energy limit", l)?;
+        }
+        self.energy_limit = limit;
+        Ok(())
+    }
+
+    fn check_body(&self, body: BodyId) -> Result<()> {
+        if body < self.bodies.len() {
+            Ok(())
+        } else {
+            Err(EngineError::UnknownBody {
+                index: body,
+                count: self.bodies.len(),
+            })
+        }
+    }
+
+    /// Current time (s).
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// The bodies, indexed by id.
+    pub fn bodies(&self) -> &[Body] {
+        &self.bodies
+    }
+
+    /// Every body's current state, indexed by id.
+    pub fn states(&self) -> &[BodyState] {
+        &self.states
+    }
+
+    /// Whether a terminal event has stopped the world.
+    pub fn is_stopped(&self) -> bool {
+        self.stopped
+    }
+
+    /// Work done by the integrator so far.
+    pub fn stats(&self) -> Stats {
+        self.integrator.stats()
+    }
+
+    /// The integration method.
+    pub fn method(&self) -> Method {
+        self.integrator.method()
+    }
+
+    /// Total energy now: kinetic plus every active force's potential (J).
+    pub fn energy(&self) -> f64 {
+        self.energy_of(self.time, &self.states)
+    }
+
+    fn energy_of(&self, t: f64, states: &[BodyState]) -> f64 {
+        total_energy(&self.bodies, &self.forces, t, states)
+    }
+
+    /// Advances by `dt` (s). See [`World::step_to`].
+    pub fn step(&mut self, dt: f64) -> Result<Vec<EventRecord>> {
+        require_positive("dt", dt)?;
+        self.step_to(self.time + dt)
+    }
+
+    /// Advances to `t_end` (s), returning the events located on the way. A
+    /// terminal event stops the world at its exact time; later calls do
+    /// nothing.
+    pub fn step_to(&mut self, t_end: f64) -> Result<Vec<EventRecord>> {
+        if !(t_end.is_finite() && t_end > self.time) {
+            return Err(EngineError::InvalidParameter {
+                what: "step end time".into(),
+                value: t_end,
+                reason: "must be finite and after the current time",
+            });
+        }
+        let mut found = Vec::new();
+        if self.stopped {
+            return Ok(found);
+        }
+        let mut edges: Vec<f64> = self
+            .forces
+            .iter()
+            .flat_map(|f| f.window.edges())
+            .filter(|&e| e > self.time && e < t_end)
+            .collect();
+        edges.sort_by(f64::total_cmp);
+        edges.dedup();
+        edges.push(t_end);
+        let mut y = std::mem::take(&mut self.y);
+        self.layout.pack(&self.states, &mut y);
+        let result = self.integrate_segments(&edges, &mut y, &mut found);
+        self.y = y;
+        result.map(|()| found)
+    }
+
+    fn integrate_segments(
+        &mut self,
+        edges: &[f64],
+        y: &mut Vec<f64>,
+        found: &mut Vec<EventRecord>,
+    ) -> Result<()> {
+        let mut t = self.time;
+        for &segment_end in edges {
+            let middle = 0.5 * (t + segment_end);
+            let mut sys = WorldOde {
+                bodies: &self.bodies,
+                forces: self
+                    .forces
+                    .iter()
+                    .map(|f| ActiveForce {
+                        force: f.force.as_ref(),
+                        active: f.window.contains(middle),
+                    })
+                    .collect(),
+                layout: &self.layout,
+                states: &mut self.scratch_states,
+                wrenches: &mut self.scratch_wrenches,
+            };
+            sys.states.clone_from(&self.states);
+            while t < segment_end {
+                self.y_start.clone_from(y);
+                let h = self.integrator.advance(&mut sys, t, y, segment_end - t)?;
+                // A step that used all the room left lands exactly on the edge.
+                let t_next = if h == segment_end - t {
+                    segment_end
+                } else {
+                    t + h
+                };
+                if !self.events.is_empty() {
+                    let stop = locate_events(
+                        &self.events,
+                        &mut self.integrator,
+                        &mut sys,
+                        &self.states,
+                        (t, &self.y_start),
+                        (t_next, y),
+                        &mut self.y_probe,
+                        found,
+                    )?;
+                    if let Some(t_stop) = stop {
+                        y.clone_from(&self.y_probe);
+                        self.layout.unpack(y, &mut self.states);
+                        self.time = t_stop;
+                        self.stopped = true;
+                        return Ok(());
+                    }
+                }
+                t = t_next;
+                if let Some(limit) = self.energy_limit {
+                    self.layout.unpack(y, sys.states);
+                    let energy = total_energy(&self.bodies, &self.forces, t, sys.states);
+                    if !(energy.abs() <= limit) {
+                        return Err(EngineError::BlowUp {
+                            t,
+                            step: self.integrator.stats().steps,
+                            reason: format!("energy {energy:e} J beyond the bound {limit:e} J"),
+                        });
+                    }
+                }
+            }
+        }
+        self.layout.unpack(y, &mut self.states);
+        self.time = t;
+        Ok(())
+    }
+
+    /// Runs from the current time to `until` (s) in steps of `dt` (s), at
+    /// times `t0 + i·dt` (an integer count, not `t += dt`; the last step is
+    /// shortened if `dt` does not divide the span), sampling after every
+    /// step. Stops early at a terminal event.
+    pub fn run(&mut self, until: f64, dt: f64) -> Result<Trace> {
+        require_positive("dt", dt)?;
+        let t0 = self.time;
+        let span = until - t0;
+        require_positive("run duration", span)?;
+        let ratio = span / dt;
+        // Within a few ulps of an integer, the span is a whole number of steps.
+        let steps = if (ratio - ratio.round()).abs() <= 1e-9 * ratio {
+            ratio.round()
+        } else {
+            ratio.ceil()
+        };
+        if steps > MAX_RUN_STEPS {
+            return Err(EngineError::InvalidParameter {
+                what: "number of steps (duration / dt)".into(),
+                value: steps,
+                reason: "more than 1e8 steps: raise dt or shorten the run",
+            });
+        }
+        let steps = steps as u64;
+        let mut trace = Trace::default();
+        trace.samples.push(self.sample());
+        for i in 1..=steps {
+            let t_next = if i == steps {
+                until
+            } else {
+                t0 + i as f64 * dt
+            };
+            let events = self.step_to(t_next)?;
+            trace.events.extend(events);
+            trace.samples.push(self.sample());
+            if self.stopped {
+                break;
+            }
+        }
+        trace.stats = self.stats();
+        Ok(trace)
+    }
+
+    /// The current time, states and energy.
+    pub fn sample(&self) -> Sample {
+        Sample {
+            t: self.time,
+            states: self.states.clone(),
+            energy: self.energy(),
+        }
+    }
+}
+
+/// Kinetic energy plus the potentials of the forces active at `t` (J).
+fn total_energy(bodies: &[Body], forces: &[ForceEntry], t: f64, states: &[BodyState]) -> f64 {
+    let ctx = ForceContext { t, bodies, states };
+    let kinetic: f64 = bodies
+        .iter()
+        .zip(states)
+        .map(|(b, s)| b.kinetic_energy(s))
+        .sum();
+    let potential: f64 = forces
+        .iter()
+        .filter(|f| f.window.contains(t))
+        .filter_map(|f| f.force.potential_energy(&ctx))
+        .sum();
+    kinetic + potential
+}
+
+/// Looks for every event crossing inside the accepted step `start → end`,
+/// records them in time order, and returns the time of the first terminal
+/// one (its state left in `probe`), if any.
+#[allow(clippy::too_many_arguments)]
+fn locate_events(
+    specs: &[EventSpec],
+    integrator: &mut Integrator,
+    sys: &mut WorldOde<'_>,
+    template: &[BodyState],
+    (t_a, y_a): (f64, &[f64]),
+    (t_b, y_b): (f64, &[f64]),
+    probe: &mut Vec<f64>,
+    found: &mut Vec<EventRecord>,
+) -> Result<Option<f64>> {
+    let layout = sys.layout;
+    let mut states_a = template.to_vec();
+    let mut states_b = template.to_vec();
+    layout.unpack(y_a, &mut states_a);
+    layout.unpack(y_b, &mut states_b);
+    let h = t_b - t_a;
+    let mut hits: Vec<(f64, usize, Vec<BodyState>, Vec<f64>)> = Vec::new();
+    for (index, spec) in specs.iter().enumerate() {
+        let (ga, gb) = (spec.value(&states_a), spec.value(&states_b));
+        if !spec.crossing.detects(ga, gb) {
+            continue;
+        }
+        let mut states = template.to_vec();
+        let mut g_at = |s: f64, probe: &mut Vec<f64>| -> Result<f64> {
+            probe.resize(y_a.len(), 0.0);
+            integrator.single_step(sys, t_a, y_a, s, probe)?;
+            layout.unpack(probe, &mut states);
+            Ok(spec.value(&states))
+        };
+        let s = illinois(
+            |s| g_at(s, probe),
+            0.0,
+            ga,
+            h,
+            gb,
+            EVENT_TIME_TOLERANCE * h.max(t_b.abs()),
+        )?;
+        let y_event = if s == h {
+            y_b.to_vec()
+        } else {
+            g_at(s, probe)?;
+            probe.clone()
+        };
+        let mut event_states = template.to_vec();
+        layout.unpack(&y_event, &mut event_states);
+        let t_event = if s == h { t_b } else { t_a + s };
+        hits.push((t_event, index, event_states, y_event));
+    }
+    hits.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    for (t, index, states, y) in hits {
+        found.push(EventRecord {
+            name: specs[index].name.clone(),
+            t,
+            states,
+        });
+        if specs[index].terminal {
+            *probe = y;
+            return Ok(Some(t));
+        }
+    }
+    Ok(None)
+}

@@ -1,0 +1,145 @@
+//! The world seen as one ODE system in mechanical form `y = [q, v]`.
+//!
+//! Each dynamic body owns a slot: `x, y` (and `θ` when it rotates) in the
+//! position block, the matching velocities at the same offset in the
+//! velocity block. Particles carry no angle; static bodies are not in the
+//! state at all (DESIGN.md: "model no more than a scene needs").
+
+use crate::body::{Body, BodyState};
+use crate::forces::{Force, ForceContext, Wrench};
+use crate::ode::{OdeSystem, Structure};
+
+/// Where one dynamic body lives in the state vector.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Slot {
+    /// Offset of `x` in the position block.
+    pub offset: usize,
+    /// Whether `θ` follows `y`.
+    pub rotates: bool,
+}
+
+/// The map from bodies to state entries.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct Layout {
+    /// One entry per body; `None` for static bodies.
+    pub slots: Vec<Option<Slot>>,
+    /// Number of position coordinates (half the state).
+    pub positions: usize,
+}
+
+impl Layout {
+    pub(crate) fn new(bodies: &[Body]) -> Self {
+        let mut positions = 0;
+        let slots = bodies
+            .iter()
+            .map(|b| {
+                b.is_dynamic().then(|| {
+                    let slot = Slot {
+                        offset: positions,
+                        rotates: b.rotates(),
+                    };
+                    positions += if slot.rotates { 3 } else { 2 };
+                    slot
+                })
+            })
+            .collect();
+        Self { slots, positions }
+    }
+
+    /// Writes the dynamic bodies' states into `y` (length `2 × positions`).
+    pub(crate) fn pack(&self, states: &[BodyState], y: &mut Vec<f64>) {
+        let n = self.positions;
+        y.clear();
+        y.resize(2 * n, 0.0);
+        for (slot, s) in self.slots.iter().zip(states) {
+            let Some(slot) = slot else { continue };
+            let o = slot.offset;
+            y[o] = s.position.x;
+            y[o + 1] = s.position.y;
+            y[n + o] = s.velocity.x;
+            y[n + o + 1] = s.velocity.y;
+            if slot.rotates {
+                y[o + 2] = s.angle;
+                y[n + o + 2] = s.angular_velocity;
+            }
+        }
+    }
+
+    /// Reads the dynamic bodies' states back from `y`; static ones keep theirs.
+    pub(crate) fn unpack(&self, y: &[f64], states: &mut [BodyState]) {
+        let n = self.positions;
+        for (slot, s) in self.slots.iter().zip(states.iter_mut()) {
+            let Some(slot) = slot else { continue };
+            let o = slot.offset;
+            s.position.x = y[o];
+            s.position.y = y[o + 1];
+            s.velocity.x = y[n + o];
+            s.velocity.y = y[n + o + 1];
+            if slot.rotates {
+                s.angle = y[o + 2];
+                s.angular_velocity = y[n + o + 2];
+            }
+        }
+    }
+}
+
+/// A force with the flag saying whether it acts during the current segment.
+pub(crate) struct ActiveForce<'a> {
+    pub force: &'a dyn Force,
+    pub active: bool,
+}
+
+/// The world's right-hand side: Newton–Euler for every dynamic body,
+/// `ẍ = F/m`, `θ̈ = τ/I` (seed §4.2.3–4.2.4).
+pub(crate) struct WorldOde<'a> {
+    pub bodies: &'a [Body],
+    pub forces: Vec<ActiveForce<'a>>,
+    pub layout: &'a Layout,
+    /// Scratch: every body's state (static ones fixed).
+    pub states: &'a mut Vec<BodyState>,
+    /// Scratch: accumulated wrenches.
+    pub wrenches: &'a mut Vec<Wrench>,
+}
+
+impl OdeSystem for WorldOde<'_> {
+    fn dimension(&self) -> usize {
+        2 * self.layout.positions
+    }
+
+    fn structure(&self) -> Structure {
+        Structure::SecondOrder {
+            positions: self.layout.positions,
+        }
+    }
+
+    fn derivative(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        let n = self.layout.positions;
+        self.layout.unpack(y, self.states);
+        self.wrenches.clear();
+        self.wrenches.resize(self.bodies.len(), Wrench::default());
+        let ctx = ForceContext {
+            t,
+            bodies: self.bodies,
+            states: self.states,
+        };
+        for f in self.forces.iter().filter(|f| f.active) {
+            f.force.apply(&ctx, self.wrenches);
+        }
+        dydt[..n].copy_from_slice(&y[n..]);
+        for ((slot, body), w) in self
+            .layout
+            .slots
+            .iter()
+            .zip(self.bodies)
+            .zip(self.wrenches.iter())
+        {
+            let Some(slot) = slot else { continue };
+            let o = n + slot.offset;
+            dydt[o] = w.force.x / body.mass;
+            dydt[o + 1] = w.force.y / body.mass;
+            if let (true, Some(inertia)) = (slot.rotates, body.inertia) {
+                dydt[o + 2] = w.torque / inertia;
+            }
+        }
+    }
+}

@@ -1,0 +1,42 @@
+//! What the engine is judged against.
+//!
+//! This crate holds the reference solutions of the validation cases listed in
+//! `CASES.md` (the authoritative list, at the root of the shared project
+//! notes). Every item here is a pure function of its parameters: nothing in
+//! this crate calls the engine, so an engine bug cannot leak into the
+//! reference it is compared with.
+//!
+//! | case (`CASES.md`)          | seed report          | module                  |
+//! |----------------------------|----------------------|-------------------------|
+//! | I, `spring`                | §5, eq. 5.2–5.4      | [`spring`]              |
+//! | II, `projectile`           | §6, eq. 6.1–6.3, Table 6.1 | [`projectile`]    |
+//! | II, `torque`               | §6, eq. 6.16–6.20    | [`torque`]              |
+//! | II, `angular_drag`         | §6, eq. 6.21         | [`angular_drag`]        |
+//! | II, `projectile_drag`      | §6, eq. 6.4–6.15, Table 6.2 | [`drag_projectile`], [`drag_reference_values`] |
+//! | stiff test, `hoffman`      | §4.3                 | [`hoffman`]             |
+//!
+//! The first five are closed forms. The quadratic-drag projectile has none in
+//! 2D: [`drag_projectile`] solves it with DOP853 (crate `ode_solvers`) at a
+//! tolerance of 1e-14 and locates its events by root-finding, and
+//! [`drag_reference_values`] holds the 40-digit values `CASES.md` quotes, which
+//! the DOP853 solve is tested against.
+//!
+//! Units are SI throughout (m, s, kg, N, rad) and every quantity is `f64`.
+//! "Seed" means the 2006 report `seed/000_03ad6f8b5a3a5bfa.txt`; its numbers
+//! are used as `CASES.md` corrects them.
+#![warn(missing_docs)]
+
+pub mod angular_drag;
+pub mod drag_projectile;
+pub mod drag_reference_values;
+pub mod hoffman;
+pub mod projectile;
+pub mod spring;
+pub mod torque;
+
+pub use angular_drag::AngularDrag;
+pub use drag_projectile::{DragError, DragParams, DragReference, SolverSettings};
+pub use hoffman::Hoffman;
+pub use projectile::{Projectile, SEED_GRAVITY};
+pub use spring::SpringOscillator;
+pub use torque::TorquePulse;
