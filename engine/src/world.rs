@@ -28,6 +28,10 @@ pub const MAX_RUN_STEPS: f64 = 1e8;
 /// ulps of the time, far below any tolerance the harness applies.
 const EVENT_TIME_TOLERANCE: f64 = 1e-15;
 
+/// How many ulps of the current time separate a force-window edge from a
+/// step end before the step is split there.
+const EDGE_RESOLUTION_ULPS: f64 = 16.0;
+
 struct ForceEntry {
     force: Box<dyn Force>,
     window: TimeWindow,
@@ -200,11 +204,16 @@ impl World {
         if self.stopped {
             return Ok(found);
         }
+        // Edges within a few ulps of either end are taken as the end itself:
+        // a segment of 1e-16 s only loses the switch time to round-off, and
+        // would otherwise ask the integrator for a step below resolution.
+        let resolution =
+            EDGE_RESOLUTION_ULPS * f64::EPSILON * self.time.abs().max(t_end.abs()).max(1.0);
         let mut edges: Vec<f64> = self
             .forces
             .iter()
             .flat_map(|f| f.window.edges())
-            .filter(|&e| e > self.time && e < t_end)
+            .filter(|&e| e > self.time + resolution && e < t_end - resolution)
             .collect();
         edges.sort_by(f64::total_cmp);
         edges.dedup();
@@ -240,6 +249,8 @@ impl World {
                 wrenches: &mut self.scratch_wrenches,
             };
             sys.states.clone_from(&self.states);
+            // The right-hand side may differ from the last segment's.
+            self.integrator.invalidate_cache();
             while t < segment_end {
                 self.y_start.clone_from(y);
                 let h = self.integrator.advance(&mut sys, t, y, segment_end - t)?;
@@ -272,7 +283,7 @@ impl World {
                 if let Some(limit) = self.energy_limit {
                     self.layout.unpack(y, sys.states);
                     let energy = total_energy(&self.bodies, &self.forces, t, sys.states);
-                    if !(energy.abs() <= limit) {
+                    if energy.is_nan() || energy.abs() > limit {
                         return Err(EngineError::BlowUp {
                             t,
                             step: self.integrator.stats().steps,

@@ -1,1 +1,93 @@
-fn main() {}
+//! `cargo run --release -p harness`: runs every case and writes `reports/`.
+//! Exits non-zero when a row fails.
+
+use anyhow::{Result, bail};
+use clap::{Parser, Subcommand};
+use harness::cases::{CASES, CaseReport, find};
+use harness::report;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Validation harness of the 2D physics engine.
+#[derive(Debug, Parser)]
+#[command(version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+    /// Where to write the report.
+    #[arg(long, global = true, default_value = "reports")]
+    out: PathBuf,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Lists the cases.
+    List,
+    /// Runs the selected cases (all when none is named).
+    Run {
+        /// Case ids, as `list` prints them.
+        cases: Vec<String>,
+    },
+}
+
+fn main() -> std::process::ExitCode {
+    match real_main() {
+        Ok(true) => std::process::ExitCode::SUCCESS,
+        Ok(false) => std::process::ExitCode::from(1),
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            std::process::ExitCode::from(2)
+        }
+    }
+}
+
+fn real_main() -> Result<bool> {
+    let cli = Cli::parse();
+    let selected: Vec<String> = match cli.command {
+        Some(Command::List) => {
+            for c in CASES {
+                println!("{:<16} {}", c.id, c.title);
+            }
+            return Ok(true);
+        }
+        Some(Command::Run { cases }) if !cases.is_empty() => cases,
+        _ => CASES.iter().map(|c| c.id.to_string()).collect(),
+    };
+    let started = Instant::now();
+    let mut results: Vec<(&str, CaseReport)> = Vec::new();
+    for id in &selected {
+        let Some(case) = find(id) else {
+            bail!("unknown case '{id}' (see `harness list`)");
+        };
+        let report = (case.run)()?;
+        print!("{}", report::console_table(case.id, &report.rows));
+        results.push((case.id, report));
+    }
+    let provenance = format!(
+        "Build profile: {}. Commit: {}.",
+        if cfg!(debug_assertions) {
+            "debug"
+        } else {
+            "release"
+        },
+        option_env!("HARNESS_COMMIT").unwrap_or("see git log"),
+    );
+    report::write(&cli.out, &results, &provenance)?;
+    let rows: Vec<_> = results.iter().flat_map(|(_, r)| &r.rows).collect();
+    let failed: Vec<_> = rows.iter().filter(|r| !r.pass).collect();
+    println!(
+        "\n{} rows, {} passed, {} failed ({:.1} s). Report written to {}.",
+        rows.len(),
+        rows.len() - failed.len(),
+        failed.len(),
+        started.elapsed().as_secs_f64(),
+        cli.out.display()
+    );
+    for r in &failed {
+        println!(
+            "FAILED: {} {} {} dt={}: {} vs {}",
+            r.case, r.check, r.method, r.dt, r.value, r.expected
+        );
+    }
+    Ok(failed.is_empty())
+}

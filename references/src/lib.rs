@@ -30,6 +30,7 @@ pub mod angular_drag;
 pub mod drag_projectile;
 pub mod drag_reference_values;
 pub mod hoffman;
+pub mod linear_stability;
 pub mod projectile;
 pub mod spring;
 pub mod torque;

@@ -127,14 +127,14 @@ impl Force for Spring {
             require_finite("spring attachment x", p.x)?;
             require_finite("spring attachment y", p.y)?;
         }
-        if let Some(u) = self.axis {
-            if !((u.norm() - 1.0).abs() <= 1e-12) {
-                return Err(crate::error::EngineError::InvalidParameter {
-                    what: "spring axis length".into(),
-                    value: u.norm(),
-                    reason: "the axis must be a unit vector",
-                });
-            }
+        // A unit vector to round-off: |u| − 1 within a few ulps of 1.
+        let is_unit = |u: Vector2<f64>| (u.norm() - 1.0).abs() <= 1e-12;
+        if let Some(u) = self.axis.filter(|&u| !is_unit(u)) {
+            return Err(crate::error::EngineError::InvalidParameter {
+                what: "spring axis length".into(),
+                value: u.norm(),
+                reason: "the axis must be a finite unit vector",
+            });
         }
         Ok(())
     }

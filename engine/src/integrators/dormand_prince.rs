@@ -9,7 +9,7 @@
 //! Stability limits of the fifth-order solution: `hλ ≥ −3.30656789` on the
 //! real axis, `hω ≤ 0.99718901`... on the imaginary axis (CASES.md).
 
-use super::Workspace;
+use super::{Tolerance, Workspace};
 use crate::ode::OdeSystem;
 
 const C2: f64 = 1.0 / 5.0;
@@ -53,11 +53,11 @@ pub(crate) fn attempt<S: OdeSystem + ?Sized>(
     t: f64,
     y: &[f64],
     h: f64,
-    rtol: f64,
-    atol: f64,
+    tol: Tolerance,
     ws: &mut Workspace,
     out: &mut [f64],
 ) -> f64 {
+    let Tolerance { rtol, atol } = tol;
     let n = y.len();
     let [k1, k2, k3, k4, k5, k6, k7] = &mut ws.k[..] else {
         unreachable!("workspace holds seven stages")
@@ -104,10 +104,10 @@ pub(crate) fn initial_step<S: OdeSystem + ?Sized>(
     t: f64,
     y: &[f64],
     h_max: f64,
-    rtol: f64,
-    atol: f64,
+    tol: Tolerance,
     ws: &mut Workspace,
 ) -> f64 {
+    let Tolerance { rtol, atol } = tol;
     let n = y.len();
     let mut d0 = 0.0;
     let mut d1 = 0.0;

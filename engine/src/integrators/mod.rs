@@ -4,6 +4,12 @@
 //! [`Integrator`] that owns the stage buffers and the work counters, and the
 //! fixed-step driver [`integrate_fixed`] used for plain ODEs such as the
 //! Hoffman stiff test. A [`crate::World`] drives the same [`Integrator`].
+//!
+//! The methods are written as index loops over the stage vectors, the way
+//! their Butcher tableaux read; clippy's `needless_range_loop` is silenced
+//! for that reason.
+
+#![allow(clippy::needless_range_loop)]
 
 mod dormand_prince;
 mod explicit_euler;
@@ -203,6 +209,14 @@ impl Integrator {
         }
     }
 
+    /// Forgets the cached derivative of the last step (first same as last).
+    /// Call it whenever the right-hand side changes between steps (a force
+    /// switched on or off, a collision changed velocities), so no stage is
+    /// computed with the old one.
+    pub fn invalidate_cache(&mut self) {
+        self.fsal = None;
+    }
+
     /// Exactly one step of size `h` from `(t, y)` into `out`, without error
     /// control (for the adaptive method: one Dormand–Prince step). Used to
     /// locate events inside a step by root finding on `h`.
@@ -226,7 +240,7 @@ impl Integrator {
             Method::ImplicitEuler => implicit_euler::step(sys, t, y, h, ws, out)?,
             Method::DormandPrince(tol) => {
                 self.load_fsal(sys, t, y);
-                dormand_prince::attempt(sys, t, y, h, tol.rtol, tol.atol, &mut self.ws, out);
+                dormand_prince::attempt(sys, t, y, h, tol, &mut self.ws, out);
                 // The stages now describe (t + h, out), not a state we keep.
                 self.fsal = None;
             }
@@ -294,9 +308,7 @@ impl Integrator {
         self.load_fsal(sys, t, y);
         let mut h = match self.next_h {
             Some(h) => h,
-            None => {
-                dormand_prince::initial_step(sys, t, y, h_max, tol.rtol, tol.atol, &mut self.ws)
-            }
+            None => dormand_prince::initial_step(sys, t, y, h_max, tol, &mut self.ws),
         };
         loop {
             let clipped = h >= h_max;
@@ -304,8 +316,7 @@ impl Integrator {
             if h_try <= 16.0 * f64::EPSILON * t.abs().max(h_max) {
                 return Err(EngineError::StepSizeUnderflow { t, h: h_try });
             }
-            let err =
-                dormand_prince::attempt(sys, t, y, h_try, tol.rtol, tol.atol, &mut self.ws, out);
+            let err = dormand_prince::attempt(sys, t, y, h_try, tol, &mut self.ws, out);
             let (accepted, h_next) = self.controller.judge(h_try, err);
             if accepted {
                 // A step clipped to reach an output time says nothing about

@@ -1,0 +1,110 @@
+//! The stiff test (seed §4.3, after Hoffman): y' = −1000(y − (t + 2)) + 1,
+//! y(0) = 1, exact y = t + 2 − e^(−1000t), over t ∈ [0, 1] at the steps of
+//! CASES.md. The error e = y − (t + 2) obeys e_{n+1} = R(hλ) e_n exactly
+//! for every Runge–Kutta method (the forcing is linear in t), so the
+//! engine's error must equal −R(hλ)^n: stable where |R| ≤ 1, blown up
+//! where theory says so.
+
+use super::{CaseReport, MethodTrace, all_methods, dp_global_bound, dp_reason};
+use crate::row::RowSink;
+use crate::tolerance::ROUND_OFF_RELATIVE;
+use anyhow::Result;
+use engine::{FnSystem, integrate_fixed};
+use references::Hoffman;
+use references::linear_stability::stability_function;
+
+/// The steps of CASES.md (s): explicit Euler stable at 0.0019 and blown up at
+/// 0.0021 and 0.003; RK4 stable at 0.0027 and unstable at 0.0029; implicit
+/// Euler stable at 0.01 and 0.1. Every method runs at every step.
+pub const STEPS: [f64; 7] = [0.0019, 0.0021, 0.003, 0.0027, 0.0029, 0.01, 0.1];
+
+/// End of the run (s): the last whole step at or before it.
+pub const T_END: f64 = 1.0;
+
+/// A blow-up, as CASES.md counts one: |error| past 1e19 near t = 1.
+const BLOW_UP: f64 = 1e19;
+
+/// Runs the case.
+pub fn run() -> Result<CaseReport> {
+    let exact = Hoffman::seed();
+    let mut report = CaseReport::default();
+    for method in all_methods() {
+        if method.needs_second_order() {
+            report.notes.push(format!(
+                "{} does not apply to hoffman: it needs a (position, velocity) system and y' = f(t, y) is first order.",
+                method.id()
+            ));
+            continue;
+        }
+        for h in STEPS {
+            let n = (T_END / h + 1e-9).floor() as usize;
+            let mut system =
+                FnSystem::new(1, |t, y: &[f64], dy: &mut [f64]| dy[0] = exact.rhs(t, y[0]));
+            let solution = integrate_fixed(&mut system, method, 0.0, &[exact.y0], h, n)?;
+            let t_last = solution.t[n];
+            let error = solution.y[n][0] - exact.exact(t_last);
+            let mut sink = RowSink {
+                case: "hoffman",
+                method: method.id(),
+                dt: h,
+                rows: &mut report.rows,
+            };
+            match stability_function(method, h * exact.lambda) {
+                Some(r) => {
+                    // y_n − (t_n + 2) = (y0 − 2) R^n and y(t) − (t + 2) =
+                    // (y0 − 2) e^(λt), so the error is (y0 − 2)(R^n − e^(λt)).
+                    let predicted =
+                        (exact.y0 - 2.0) * (r.powi(n as i32) - (exact.lambda * t_last).exp());
+                    let scale = predicted.abs().max(1.0);
+                    sink.within(
+                        "error_end",
+                        error,
+                        predicted,
+                        ROUND_OFF_RELATIVE * scale,
+                        "linear stability theory: e_n = R(h lambda)^n e_0 exactly; 1e-9 x max(1, |e|) round-off",
+                    );
+                    let theory_stable = r.abs() <= 1.0;
+                    let stable = error.abs() <= 1.0;
+                    sink.within(
+                        "stable",
+                        f64::from(u8::from(stable)),
+                        f64::from(u8::from(theory_stable)),
+                        0.0,
+                        format!("1 when |error| <= 1 at t = {t_last:.4}; expected |R(h lambda)| = {:.6} <= 1", r.abs()),
+                    );
+                    if !theory_stable && error.abs() > 1.0 && predicted.abs() > BLOW_UP {
+                        sink.at_least(
+                            "blown_up",
+                            error.abs(),
+                            BLOW_UP,
+                            0.0,
+                            "CASES.md: a blow-up is |error| > 1e19 near t = 1",
+                        );
+                    }
+                }
+                None => {
+                    let bound = dp_global_bound(solution.stats.steps, 3.0);
+                    sink.within(
+                        "error_end",
+                        error,
+                        0.0,
+                        bound,
+                        dp_reason(solution.stats.steps),
+                    );
+                }
+            }
+            report.traces.push(MethodTrace {
+                method: method.id().into(),
+                dt: h,
+                columns: vec!["t", "y", "error"],
+                samples: solution
+                    .t
+                    .iter()
+                    .zip(&solution.y)
+                    .map(|(&t, y)| vec![t, y[0], y[0] - exact.exact(t)])
+                    .collect(),
+            });
+        }
+    }
+    Ok(report)
+}

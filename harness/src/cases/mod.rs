@@ -1,0 +1,136 @@
+//! The validation cases. Each runs every method at the seed's step, compares
+//! with its reference, and returns rows and sampled traces.
+
+mod angular_drag;
+mod hoffman;
+mod projectile;
+mod projectile_drag;
+mod spring;
+mod torque;
+
+use crate::row::Row;
+use anyhow::Result;
+use engine::{Method, Tolerance};
+
+/// Tolerance given to Dormand–Prince in every case: tight, so it serves as
+/// the engine's own high-accuracy solution.
+pub const DP_TOLERANCE: f64 = 1e-12;
+
+/// Every method, fixed-step ones first, then Dormand–Prince at [`DP_TOLERANCE`].
+pub fn all_methods() -> Vec<Method> {
+    Method::FIXED_STEP
+        .into_iter()
+        .chain([Method::DormandPrince(Tolerance::uniform(DP_TOLERANCE))])
+        .collect()
+}
+
+/// A global error bound for Dormand–Prince: each accepted step keeps its
+/// local error within `tol × scale`, and at most `steps` of them add up.
+pub fn dp_global_bound(steps: u64, scale: f64) -> f64 {
+    steps.max(1) as f64 * DP_TOLERANCE * scale.max(1.0)
+}
+
+/// The reason that goes with [`dp_global_bound`].
+pub fn dp_reason(steps: u64) -> String {
+    format!(
+        "Dormand-Prince rtol = atol = {DP_TOLERANCE:e}: sum of {steps} local errors, each <= tol x max|y|"
+    )
+}
+
+/// A trace sampled for snapshots and plots: column names and rows of values
+/// (the first column is time, s).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MethodTrace {
+    /// Method id.
+    pub method: String,
+    /// Step (s).
+    pub dt: f64,
+    /// Column names, starting with `t`.
+    pub columns: Vec<&'static str>,
+    /// One row per sample.
+    pub samples: Vec<Vec<f64>>,
+}
+
+/// What a case produces.
+#[derive(Debug, Clone, Default)]
+pub struct CaseReport {
+    /// Validation rows.
+    pub rows: Vec<Row>,
+    /// One trace per method at the seed step.
+    pub traces: Vec<MethodTrace>,
+    /// Remarks for the report (methods not applicable, ...).
+    pub notes: Vec<String>,
+}
+
+/// A validation case.
+#[derive(Debug, Clone, Copy)]
+pub struct Case {
+    /// Stable id (CASES.md).
+    pub id: &'static str,
+    /// One-line description.
+    pub title: &'static str,
+    /// Runs it.
+    pub run: fn() -> Result<CaseReport>,
+}
+
+/// Every case, in the order of CASES.md.
+pub const CASES: [Case; 6] = [
+    Case {
+        id: "spring",
+        title: "Case I: mass-spring, RK4 at h = 0.2 s over 57.2 s (seed §5)",
+        run: spring::run,
+    },
+    Case {
+        id: "projectile",
+        title: "Case II: projectile in vacuum, h = 0.01 s (seed §6)",
+        run: projectile::run,
+    },
+    Case {
+        id: "torque",
+        title: "Case II: a 0.7 s torque pulse on the box (seed eq. 6.16-6.20)",
+        run: torque::run,
+    },
+    Case {
+        id: "projectile_drag",
+        title: "Case II: projectile with quadratic drag (seed Table 6.2)",
+        run: projectile_drag::run,
+    },
+    Case {
+        id: "angular_drag",
+        title: "Case II: torque pulse with angular drag -D w|w|",
+        run: angular_drag::run,
+    },
+    Case {
+        id: "hoffman",
+        title: "Stiff test y' = -1000(y - (t + 2)) + 1 (seed §4.3, after Hoffman)",
+        run: hoffman::run,
+    },
+];
+
+/// The case with this id.
+pub fn find(id: &str) -> Option<&'static Case> {
+    CASES.iter().find(|c| c.id == id)
+}
+
+/// Keeps about `count` evenly spaced samples of a trace (always the last).
+pub fn thin<T: Clone>(samples: &[T], count: usize) -> Vec<T> {
+    if samples.len() <= count {
+        return samples.to_vec();
+    }
+    let stride = samples.len().div_ceil(count);
+    let mut out: Vec<T> = samples.iter().step_by(stride).cloned().collect();
+    if !(samples.len() - 1).is_multiple_of(stride) {
+        out.push(samples[samples.len() - 1].clone());
+    }
+    out
+}
+
+/// The sample of a trace taken at time `t` (s), within round-off of the
+/// integer step count that produced it.
+pub fn sample_at(trace: &engine::Trace, t: f64) -> Result<&engine::Sample> {
+    trace
+        .samples
+        .iter()
+        .find(|s| (s.t - t).abs() <= 1e-9 * t.abs().max(1.0))
+        .ok_or_else(|| anyhow::anyhow!("no sample at t = {t} s"))
+}
