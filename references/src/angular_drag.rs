@@ -7,7 +7,8 @@
 //! linear drag's D = 0.003 (seed Table 6.2), on top of the couple τ0 that acts
 //! for t ∈ [0, t1):
 //!
-//! I·ω' = τ0·[t < t1] − D·ω|ω|,   θ' = ω,   ω(0) = θ(0) = 0.
+//! I·ω' = τ(t) − D·ω|ω|,   θ' = ω,   ω(0) = θ(0) = 0,   τ(t) = τ0 for
+//! t < t1, 0 after.
 //!
 //! For τ0 > 0 (ω ≥ 0 throughout):
 //!

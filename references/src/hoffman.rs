@@ -1,6 +1,6 @@
 //! Stiff test (`hoffman`): Hoffman's scalar stiff ODE, in closed form.
 //!
-//! Seed §4.3 (after Hoffman, seed ref. [14]):
+//! Seed §4.3 (after Hoffman, seed ref. \[14\]):
 //!
 //! y' = λ·(y − (t + 2)) + 1,   y(0) = y0,   λ = −1000 s⁻¹, y0 = 1,
 //!
