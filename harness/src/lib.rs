@@ -6,5 +6,6 @@
 pub mod cases;
 pub mod report;
 pub mod row;
+pub mod snapshot;
 pub mod tolerance;
 pub mod worlds;

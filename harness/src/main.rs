@@ -14,9 +14,11 @@ use std::time::Instant;
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
-    /// Where to write the report.
-    #[arg(long, global = true, default_value = "reports")]
-    out: PathBuf,
+    /// Where to write the report. A full run writes `reports/` by default; a
+    /// run of selected cases writes nothing unless this is given, so it never
+    /// replaces the full report with a partial one.
+    #[arg(long, global = true)]
+    out: Option<PathBuf>,
 }
 
 #[derive(Debug, Subcommand)]
@@ -72,16 +74,25 @@ fn real_main() -> Result<bool> {
         },
         option_env!("HARNESS_COMMIT").unwrap_or("see git log"),
     );
-    report::write(&cli.out, &results, &provenance)?;
+    let full = results.len() == CASES.len();
+    let out = cli.out.or_else(|| full.then(|| PathBuf::from("reports")));
+    if let Some(dir) = &out {
+        report::write(dir, &results, &provenance)?;
+    }
+    // The README's headline table is printed by the harness too (only on a
+    // full run, so that a partial run never drops rows from it).
+    if full {
+        report::update_readme(std::path::Path::new("README.md"), &results)?;
+    }
     let rows: Vec<_> = results.iter().flat_map(|(_, r)| &r.rows).collect();
     let failed: Vec<_> = rows.iter().filter(|r| !r.pass).collect();
     println!(
-        "\n{} rows, {} passed, {} failed ({:.1} s). Report written to {}.",
+        "\n{} rows, {} passed, {} failed ({:.1} s).{}",
         rows.len(),
         rows.len() - failed.len(),
         failed.len(),
         started.elapsed().as_secs_f64(),
-        cli.out.display()
+        out.map_or(String::new(), |d| format!(" Report written to {}.", d.display()))
     );
     for r in &failed {
         println!(

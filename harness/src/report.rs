@@ -108,3 +108,66 @@ pub fn write(dir: &Path, results: &[(&str, CaseReport)], provenance: &str) -> Re
     std::fs::write(dir.join("README.md"), md).context("writing README.md")?;
     Ok(())
 }
+
+/// The rows shown in the top-level README's headline table, as
+/// (case, check, method, dt).
+const HEADLINE: [(&str, &str, &str, f64); 12] = [
+    ("spring", "x_end_seed", "rk4", 0.2),
+    ("spring", "max_error", "rk4", 0.2),
+    ("spring", "amplitude_growth", "explicit_euler", 0.2),
+    ("projectile", "landing_time", "rk4", 0.01),
+    ("projectile", "range", "rk4", 0.01),
+    ("projectile_drag", "landing_time", "dormand_prince", 0.01),
+    ("projectile_drag", "range", "dormand_prince", 0.01),
+    ("projectile_drag", "position_error_t5", "rk4", 0.2),
+    ("torque", "theta_8.7", "rk4", 0.01),
+    ("angular_drag", "theta_8.7", "rk4", 0.01),
+    ("hoffman", "error_end", "explicit_euler", 0.0021),
+    ("hoffman", "error_end", "rk4", 0.0029),
+];
+
+/// Marker lines between which the harness writes the README's headline table.
+pub const README_MARKERS: (&str, &str) = ("<!-- headline:start -->", "<!-- headline:end -->");
+
+/// Rewrites the headline table between [`README_MARKERS`] in `readme`, when
+/// the file exists and has them. Returns whether it did.
+pub fn update_readme(readme: &Path, results: &[(&str, CaseReport)]) -> Result<bool> {
+    let Ok(text) = std::fs::read_to_string(readme) else {
+        return Ok(false);
+    };
+    let (start, end) = README_MARKERS;
+    let (Some(a), Some(b)) = (text.find(start), text.find(end)) else {
+        return Ok(false);
+    };
+    let rows: Vec<Row> = HEADLINE
+        .iter()
+        .filter_map(|(case, check, method, dt)| {
+            results
+                .iter()
+                .flat_map(|(_, r)| &r.rows)
+                .find(|r| r.case == *case && r.check == *check && r.method == *method && r.dt == *dt)
+                .cloned()
+        })
+        .collect();
+    let mut table = String::from("| case | check | method | dt (s) | value | expected | tolerance | pass |\n|---|---|---|---|---|---|---|---|\n");
+    for r in &rows {
+        let _ = writeln!(
+            table,
+            "| {} | {} | {} | {} | {} | {} | {} {} | {} |",
+            r.case,
+            r.check,
+            r.method,
+            r.dt,
+            fmt_num(r.value),
+            fmt_num(r.expected),
+            symbol(r.comparison),
+            fmt_num(r.tolerance),
+            if r.pass { "yes" } else { "**NO**" }
+        );
+    }
+    let new = format!("{}{start}\n{table}{}", &text[..a], &text[b..]);
+    if new != text {
+        std::fs::write(readme, new).with_context(|| format!("writing {}", readme.display()))?;
+    }
+    Ok(true)
+}
