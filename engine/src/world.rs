@@ -279,18 +279,22 @@ impl World {
                         return Ok(());
                     }
                 }
-                t = t_next;
                 if let Some(limit) = self.energy_limit {
                     self.layout.unpack(y, sys.states);
-                    let energy = total_energy(&self.bodies, &self.forces, t, sys.states);
+                    let energy = total_energy(&self.bodies, &self.forces, t_next, sys.states);
                     if energy.is_nan() || energy.abs() > limit {
+                        // Name the step that produced it, as the non-finite
+                        // check does: its start time and 0-based index.
                         return Err(EngineError::BlowUp {
                             t,
-                            step: self.integrator.stats().steps,
-                            reason: format!("energy {energy:e} J beyond the bound {limit:e} J"),
+                            step: self.integrator.stats().steps - 1,
+                            reason: format!(
+                                "energy {energy:e} J at t = {t_next} s beyond the bound {limit:e} J"
+                            ),
                         });
                     }
                 }
+                t = t_next;
             }
         }
         self.layout.unpack(y, &mut self.states);

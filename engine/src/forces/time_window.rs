@@ -23,7 +23,14 @@ impl TimeWindow {
 
     /// Active for `start ≤ t < end`; refuses NaN and `end ≤ start`.
     pub fn new(start: f64, end: f64) -> Result<Self> {
-        if start.is_nan() || end.is_nan() || end <= start {
+        if start.is_nan() {
+            return Err(EngineError::InvalidParameter {
+                what: "force time window start".into(),
+                value: start,
+                reason: "must be a number",
+            });
+        }
+        if end.is_nan() || end <= start {
             return Err(EngineError::InvalidParameter {
                 what: "force time window end".into(),
                 value: end,

@@ -32,6 +32,10 @@ pub(crate) fn step<S: OdeSystem + ?Sized>(
     out: &mut [f64],
 ) -> Result<()> {
     let n = y.len();
+    if n == 0 {
+        // Nothing to solve (a world of static bodies only).
+        return Ok(());
+    }
     let t1 = t + h;
     // Start from the current state: safe for stiff problems, where an
     // explicit predictor would land far outside the basin of convergence.
