@@ -32,6 +32,7 @@
 #![warn(missing_docs)]
 
 pub mod body;
+pub mod collision;
 pub mod error;
 pub mod events;
 pub mod forces;

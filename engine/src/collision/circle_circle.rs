@@ -1,0 +1,117 @@
+//! Circle against circle: exact, in closed form.
+//!
+//! With centres c_a, c_b (m) and radii r_a, r_b (m), the signed distance is
+//! `|c_b − c_a| − r_a − r_b` and the normal is `(c_b − c_a)/|c_b − c_a|`.
+//! Concentric circles have no preferred direction; the normal is then +x.
+//! A circle's orientation does not matter: its centre is its body's
+//! position.
+
+use super::manifold::{Manifold, ManifoldPoint, Proximity};
+use crate::shape::Circle;
+use nalgebra::{Isometry2, Vector2};
+
+/// Exact signed distance between two circles (m), with witness points.
+pub fn distance_circle_circle(
+    a: &Circle,
+    pose_a: &Isometry2<f64>,
+    b: &Circle,
+    pose_b: &Isometry2<f64>,
+) -> Proximity {
+    let (ca, cb) = (pose_a.translation.vector, pose_b.translation.vector);
+    let d = cb - ca;
+    let len = d.norm();
+    let normal = if len > 0.0 { d / len } else { Vector2::x() };
+    Proximity {
+        distance: len - a.radius - b.radius,
+        normal,
+        point_a: ca + a.radius * normal,
+        point_b: cb - b.radius * normal,
+    }
+}
+
+/// The contact manifold of two circles if their signed distance is ≤
+/// `margin` (m): one point midway between the surfaces, depth = −distance.
+pub fn collide_circle_circle_with_margin(
+    a: &Circle,
+    pose_a: &Isometry2<f64>,
+    b: &Circle,
+    pose_b: &Isometry2<f64>,
+    margin: f64,
+) -> Option<Manifold> {
+    let p = distance_circle_circle(a, pose_a, b, pose_b);
+    (p.distance <= margin).then(|| {
+        Manifold::one(
+            p.normal,
+            ManifoldPoint {
+                point: 0.5 * (p.point_a + p.point_b),
+                depth: -p.distance,
+            },
+        )
+    })
+}
+
+/// The contact manifold of two touching or overlapping circles, `None` if
+/// they are apart.
+pub fn collide_circle_circle(
+    a: &Circle,
+    pose_a: &Isometry2<f64>,
+    b: &Circle,
+    pose_b: &Isometry2<f64>,
+) -> Option<Manifold> {
+    collide_circle_circle_with_margin(a, pose_a, b, pose_b, 0.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn at(x: f64, y: f64) -> Isometry2<f64> {
+        Isometry2::new(Vector2::new(x, y), 0.7)
+    }
+
+    #[test]
+    fn overlapping_circles_3_4_5() {
+        // Centres 5 m apart along (3, 4)/5, radii 2 and 4: depth 1.
+        let (a, b) = (Circle::new(2.0).unwrap(), Circle::new(4.0).unwrap());
+        let m = collide_circle_circle(&a, &at(1.0, 1.0), &b, &at(4.0, 5.0)).unwrap();
+        assert!((m.normal - Vector2::new(0.6, 0.8)).norm() < 1e-15);
+        let p = m.points()[0];
+        assert!((p.depth - 1.0).abs() < 1e-14);
+        // Surface of A at (1,1) + 2n = (2.2, 2.6); of B at (4,5) − 4n =
+        // (1.6, 1.8); midpoint (1.9, 2.2).
+        assert!((p.point - Vector2::new(1.9, 2.2)).norm() < 1e-14);
+    }
+
+    #[test]
+    fn apart_circles_give_no_contact_but_a_distance() {
+        let (a, b) = (Circle::new(1.0).unwrap(), Circle::new(0.5).unwrap());
+        assert!(collide_circle_circle(&a, &at(0.0, 0.0), &b, &at(0.0, 2.0)).is_none());
+        let p = distance_circle_circle(&a, &at(0.0, 0.0), &b, &at(0.0, 2.0));
+        assert!((p.distance - 0.5).abs() < 1e-15);
+        assert!((p.point_b - p.point_a - p.distance * p.normal).norm() < 1e-15);
+        // Within a 0.6 m margin, the gap is reported as a negative depth.
+        let m = collide_circle_circle_with_margin(&a, &at(0.0, 0.0), &b, &at(0.0, 2.0), 0.6);
+        assert!((m.unwrap().points()[0].depth + 0.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn touching_circles_touch_and_concentric_circles_push_along_x() {
+        let (a, b) = (Circle::new(1.0).unwrap(), Circle::new(1.0).unwrap());
+        let m = collide_circle_circle(&a, &at(0.0, 0.0), &b, &at(2.0, 0.0)).unwrap();
+        assert_eq!(m.points()[0].depth, 0.0);
+        let c = collide_circle_circle(&a, &at(1.0, 1.0), &b, &at(1.0, 1.0)).unwrap();
+        assert_eq!(c.normal, Vector2::x());
+        assert_eq!(c.points()[0].depth, 2.0);
+    }
+
+    #[test]
+    fn swapping_the_circles_flips_the_normal_only() {
+        let (a, b) = (Circle::new(0.3).unwrap(), Circle::new(0.9).unwrap());
+        let (pa, pb) = (at(0.1, -0.2), at(0.8, 0.4));
+        let ab = collide_circle_circle(&a, &pa, &b, &pb).unwrap();
+        let ba = collide_circle_circle(&b, &pb, &a, &pa).unwrap();
+        assert!((ab.normal + ba.normal).norm() < 1e-15);
+        assert!((ab.points()[0].point - ba.points()[0].point).norm() < 1e-15);
+        assert!((ab.points()[0].depth - ba.points()[0].depth).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,68 @@
+//! Collision detection (seed §7.2, case III of `CASES.md`): which pairs of
+//! shapes touch, where, how deep, and when in a step they first meet.
+//!
+//! Everything here is a pure function of shapes and poses. A pose is an
+//! [`Isometry2`](nalgebra::Isometry2): the body's position (m, its centre of
+//! mass, the origin of its shape's frame) and orientation (rad). Units are SI
+//! throughout; lengths are in m, times in s.
+//!
+//! The pipeline, in the order a world runs it:
+//!
+//! 1. **Broad phase** ([`broad_phase`], seed §7.2 and Fig. 7.1): the
+//!    candidate pairs, those whose axis-aligned bounding boxes ([`aabb`])
+//!    overlap, by a sort-and-sweep over x-intervals in O(n log n) (the modern
+//!    form of the Fortune-style sweep the seed cites). The brute-force O(n²)
+//!    test is kept as its oracle.
+//! 2. **Narrow phase** ([`narrow_phase`], seed §7.2, Fig. 7.2–7.6): for each
+//!    candidate, the separating axis theorem over the edge normals of both
+//!    polygons ([`polygon_polygon`]), with the seed's OBB test as a fast path
+//!    for boxes ([`obb`]), and exact tests for circles ([`polygon_circle`],
+//!    [`circle_circle`]). A touching pair gives a contact [`Manifold`]: one
+//!    normal and up to two points with their depths ([`manifold`]).
+//! 3. **Time of impact** ([`time_of_impact`], seed §7.2, Fig. 7.7–7.8): when
+//!    a pair interpenetrates at the end of a step, the first time in the step
+//!    at which its separation is within a tolerance ε, by the seed's
+//!    bisection of the step, or by conservative advancement.
+//!
+//! The response (impulses with restitution, seed eq. 7.1–7.16, friction,
+//! resting contact) consumes the manifolds; it lives with the world.
+//!
+//! Conventions, shared by every function of this module:
+//! - a normal is a unit vector pointing from shape A (the first argument)
+//!   towards shape B;
+//! - a depth is > 0 when the shapes interpenetrate, < 0 for a gap (only
+//!   reported within a caller's margin);
+//! - a signed distance (or separation) is the opposite: > 0 for a gap,
+//!   −depth when they overlap, 0 when they touch.
+
+pub mod aabb;
+pub mod broad_phase;
+pub mod circle_circle;
+pub mod manifold;
+pub mod narrow_phase;
+pub mod obb;
+pub mod polygon_circle;
+pub mod polygon_polygon;
+pub mod time_of_impact;
+
+#[cfg(test)]
+pub(crate) mod test_rng;
+
+pub use aabb::Aabb;
+pub use broad_phase::{SweepAndPrune, brute_force_pairs};
+pub use circle_circle::{
+    collide_circle_circle, collide_circle_circle_with_margin, distance_circle_circle,
+};
+pub use manifold::{Contact, Manifold, ManifoldPoint, Proximity};
+pub use narrow_phase::{collide, proximity};
+pub use obb::{Obb, obb_overlap, obb_separation};
+pub use polygon_circle::{
+    collide_polygon_circle, collide_polygon_circle_with_margin, distance_polygon_circle,
+};
+pub use polygon_polygon::{
+    SeparatingAxis, collide_polygon_polygon, collide_polygon_polygon_with_margin,
+    distance_polygon_polygon, separation_polygon_polygon,
+};
+pub use time_of_impact::{
+    Impact, Motion, ToiError, ToiOptions, toi_bisection, toi_conservative_advancement,
+};

@@ -1,0 +1,111 @@
+//! Narrow phase: the exact test of a candidate pair, dispatched on the pair
+//! of shapes (seed §7.2: once the broad phase has named the candidates, "the
+//! second phase decides whether each pair interpenetrates").
+//!
+//! One function per pair of shape kinds does the work
+//! ([`collide_polygon_polygon`](super::collide_polygon_polygon),
+//! [`collide_polygon_circle`](super::collide_polygon_circle),
+//! [`collide_circle_circle`](super::collide_circle_circle)); a circle against
+//! a polygon is the polygon against the circle with the result flipped.
+
+use super::circle_circle::{collide_circle_circle_with_margin, distance_circle_circle};
+use super::manifold::{Manifold, Proximity};
+use super::polygon_circle::{collide_polygon_circle_with_margin, distance_polygon_circle};
+use super::polygon_polygon::{collide_polygon_polygon_with_margin, distance_polygon_polygon};
+use crate::shape::Shape;
+use nalgebra::Isometry2;
+
+/// The contact manifold of shapes `a` at `pose_a` and `b` at `pose_b` when
+/// they touch, overlap, or are closer than `margin` (m; 0 for touching
+/// only, > 0 for speculative contacts whose depth is then negative).
+/// The normal points from A to B.
+pub fn collide(
+    a: &Shape,
+    pose_a: &Isometry2<f64>,
+    b: &Shape,
+    pose_b: &Isometry2<f64>,
+    margin: f64,
+) -> Option<Manifold> {
+    match (a, b) {
+        (Shape::Polygon(pa), Shape::Polygon(pb)) => {
+            collide_polygon_polygon_with_margin(pa, pose_a, pb, pose_b, margin)
+        }
+        (Shape::Polygon(p), Shape::Circle(c)) => {
+            collide_polygon_circle_with_margin(p, pose_a, c, pose_b, margin)
+        }
+        (Shape::Circle(c), Shape::Polygon(p)) => {
+            collide_polygon_circle_with_margin(p, pose_b, c, pose_a, margin).map(|m| m.flipped())
+        }
+        (Shape::Circle(ca), Shape::Circle(cb)) => {
+            collide_circle_circle_with_margin(ca, pose_a, cb, pose_b, margin)
+        }
+    }
+}
+
+/// The exact signed distance of two shapes (m): the gap when apart, 0 when
+/// touching, −(penetration depth) when overlapping, with its normal from A
+/// to B and witness points.
+pub fn proximity(
+    a: &Shape,
+    pose_a: &Isometry2<f64>,
+    b: &Shape,
+    pose_b: &Isometry2<f64>,
+) -> Proximity {
+    match (a, b) {
+        (Shape::Polygon(pa), Shape::Polygon(pb)) => {
+            distance_polygon_polygon(pa, pose_a, pb, pose_b)
+        }
+        (Shape::Polygon(p), Shape::Circle(c)) => distance_polygon_circle(p, pose_a, c, pose_b),
+        (Shape::Circle(c), Shape::Polygon(p)) => {
+            distance_polygon_circle(p, pose_b, c, pose_a).flipped()
+        }
+        (Shape::Circle(ca), Shape::Circle(cb)) => distance_circle_circle(ca, pose_a, cb, pose_b),
+    }
+}
+
+/// The largest distance (m) from the body origin (the centre of rotation)
+/// to a point of the shape whose position changes when the body turns: the
+/// farthest vertex of a polygon, 0 for a circle (centred on the origin, a
+/// rotation leaves it in place). Bounds the speed of a boundary point:
+/// `|ω| · rotation_radius`.
+pub fn rotation_radius(shape: &Shape) -> f64 {
+    match shape {
+        Shape::Polygon(p) => p.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max),
+        Shape::Circle(_) => 0.0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shape::Circle;
+    use nalgebra::Vector2;
+
+    #[test]
+    fn circle_against_polygon_is_the_flipped_polygon_against_circle() {
+        let square = Shape::rectangle(1.0, 1.0).unwrap();
+        let ball = Shape::Circle(Circle::new(0.5).unwrap());
+        let (pb, pc) = (
+            Isometry2::new(Vector2::zeros(), 0.3),
+            Isometry2::translation(0.9, 0.2),
+        );
+        let pc_m = collide(&square, &pb, &ball, &pc, 0.0).unwrap();
+        let cp_m = collide(&ball, &pc, &square, &pb, 0.0).unwrap();
+        assert_eq!(cp_m.normal, -pc_m.normal);
+        assert_eq!(cp_m.points(), pc_m.points());
+        let d1 = proximity(&square, &pb, &ball, &pc);
+        let d2 = proximity(&ball, &pc, &square, &pb);
+        assert_eq!(d1.distance, d2.distance);
+        assert_eq!(d1.point_a, d2.point_b);
+    }
+
+    #[test]
+    fn rotation_radius_of_a_unit_box_is_its_half_diagonal() {
+        let square = Shape::rectangle(1.0, 1.0).unwrap();
+        assert!((rotation_radius(&square) - 0.5f64.hypot(0.5)).abs() < 1e-16);
+        assert_eq!(
+            rotation_radius(&Shape::Circle(Circle::new(2.0).unwrap())),
+            0.0
+        );
+    }
+}
