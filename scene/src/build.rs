@@ -1,0 +1,596 @@
+//! Validation of a parsed [`SceneFile`] and its conversion into engine
+//! values ([`Plan`]), then into an [`engine::World`].
+//!
+//! Validation runs once, when the scene is loaded, and checks everything
+//! the engine would refuse and more, so that [`crate::Scene::build_world`]
+//! cannot fail on a loaded scene except for a bad method override:
+//!
+//! 1. `[simulation]`: a known method id, dt > 0, duration > 0, at most
+//!    [`engine::MAX_RUN_STEPS`] steps, tolerance > 0;
+//! 2. `[[bodies]]`: unique names, mass xor density (> 0), inertia > 0,
+//!    shapes (boxes and circles > 0, polygons convex and counter-clockwise,
+//!    checked by [`ConvexPolygon::new`]), static bodies without mass or
+//!    velocity, particles without rotation, colours `#rrggbb`;
+//! 3. `[[forces]]` and `[[events]]`: every body name defined, parameters in
+//!    their domain, windows with `end > start`, no force on static bodies
+//!    only, no torque on a particle (in [`crate::forces`]);
+//! 4. `[contact]` and `[linear_test]`: in their domain.
+//!
+//! Every number is checked finite first: TOML allows `nan` and `inf`.
+
+use crate::colour::Colour;
+use crate::error::{ErrorKind, FieldPath, Problem};
+use crate::format::{
+    BodyKindSpec, BodySpec, ContactSpec, DEFAULT_TOLERANCE, LinearTestSpec, SceneFile, ShapeSpec,
+    Window, Xy,
+};
+use crate::linear_test::LinearTest;
+use engine::forces::{AngularDrag, Gravity, PointForce, QuadraticDrag, Spring, TimeWindow, Torque};
+use engine::{
+    BodyDef, BodyKind, BodyState, Circle, ConvexPolygon, EngineError, EventSpec, Force,
+    MAX_RUN_STEPS, Method, Shape, Tolerance, World,
+};
+use nalgebra::Vector2;
+
+pub(crate) type Checked<T> = Result<T, Problem>;
+
+/// A validated scene, in engine values.
+#[derive(Debug, Clone)]
+pub(crate) struct Plan {
+    pub(crate) method: Method,
+    pub(crate) tolerance: Tolerance,
+    pub(crate) dt: f64,
+    pub(crate) duration: f64,
+    pub(crate) steps: u64,
+    pub(crate) content: Content,
+}
+
+/// What the scene simulates.
+#[derive(Debug, Clone)]
+pub(crate) enum Content {
+    World(WorldPlan),
+    LinearTest(LinearTest),
+}
+
+/// A world's bodies, forces and events, ready to add.
+#[derive(Debug, Clone)]
+pub(crate) struct WorldPlan {
+    pub(crate) bodies: Vec<BodyDef>,
+    pub(crate) colours: Vec<Colour>,
+    pub(crate) forces: Vec<PlannedForce>,
+    pub(crate) events: Vec<EventSpec>,
+    pub(crate) contact: Option<ContactSpec>,
+}
+
+/// One force with its window and where the file defines it.
+#[derive(Debug, Clone)]
+pub(crate) struct PlannedForce {
+    pub(crate) force: EngineForce,
+    pub(crate) window: TimeWindow,
+    pub(crate) path: FieldPath,
+}
+
+/// The engine's force types are `Copy`; a world takes them boxed, so the
+/// plan keeps them unboxed and boxes a fresh copy per world built.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum EngineForce {
+    Gravity(Gravity),
+    Spring(Spring),
+    Drag(QuadraticDrag),
+    AngularDrag(AngularDrag),
+    PointForce(PointForce),
+    Torque(Torque),
+}
+
+impl EngineForce {
+    fn boxed(self) -> Box<dyn Force> {
+        match self {
+            EngineForce::Gravity(f) => Box::new(f),
+            EngineForce::Spring(f) => Box::new(f),
+            EngineForce::Drag(f) => Box::new(f),
+            EngineForce::AngularDrag(f) => Box::new(f),
+            EngineForce::PointForce(f) => Box::new(f),
+            EngineForce::Torque(f) => Box::new(f),
+        }
+    }
+}
+
+/// The number of steps [`engine::World::run`] takes over `duration` with
+/// `dt`: exact when `dt` divides `duration` to within round-off, else one
+/// more (the last step shortened). Refuses more than 1e8.
+pub(crate) fn step_count(duration: f64, dt: f64) -> Result<u64, &'static str> {
+    if !(dt.is_finite() && dt > 0.0 && duration.is_finite() && duration > 0.0) {
+        return Err("dt and duration must be finite and > 0");
+    }
+    let ratio = duration / dt;
+    let steps = if (ratio - ratio.round()).abs() <= 1e-9 * ratio {
+        ratio.round()
+    } else {
+        ratio.ceil()
+    };
+    if steps > MAX_RUN_STEPS {
+        return Err("more than 1e8 steps: raise dt or shorten the run");
+    }
+    Ok((steps as u64).max(1))
+}
+
+/// Validates `file` and converts it.
+pub(crate) fn plan(file: &SceneFile) -> Checked<Plan> {
+    let sim = FieldPath::root().key("simulation");
+    let sim_spec = &file.simulation;
+    let tolerance = match sim_spec.tolerance {
+        Some(t) => positive(&sim.key("tolerance"), t, "tolerance", "")?,
+        None => DEFAULT_TOLERANCE,
+    };
+    let tolerance = Tolerance::uniform(tolerance);
+    let method = Method::from_id(&sim_spec.method, tolerance).ok_or_else(|| {
+        let known: Vec<&str> = Method::FIXED_STEP
+            .iter()
+            .map(Method::id)
+            .chain(["dormand_prince"])
+            .collect();
+        Problem::new(
+            &sim.key("method"),
+            ErrorKind::InvalidType,
+            format!(
+                "unknown method \"{}\"; expected one of {}",
+                sim_spec.method,
+                known.join(", ")
+            ),
+        )
+    })?;
+    let dt = positive(&sim.key("dt"), sim_spec.dt, "dt", "s")?;
+    let duration = positive(&sim.key("duration"), sim_spec.duration, "duration", "s")?;
+    let steps = step_count(duration, dt).map_err(|_| {
+        Problem::new(
+            &sim.key("dt"),
+            ErrorKind::TooManySteps,
+            format!(
+                "duration / dt = {:.3e} steps, more than the {MAX_RUN_STEPS:.0e} allowed: raise dt or shorten the run",
+                duration / dt
+            ),
+        )
+    })?;
+    let content = match &file.linear_test {
+        Some(spec) => {
+            refuse_world_tables(file)?;
+            if method.needs_second_order() {
+                return Err(Problem::new(
+                    &sim.key("method"),
+                    ErrorKind::InvalidValue,
+                    format!(
+                        "{} needs a (position, velocity) system; a [linear_test] is first order",
+                        method.id()
+                    ),
+                ));
+            }
+            Content::LinearTest(linear_test(spec)?)
+        }
+        None => Content::World(world(file)?),
+    };
+    Ok(Plan {
+        method,
+        tolerance,
+        dt,
+        duration,
+        steps,
+        content,
+    })
+}
+
+fn refuse_world_tables(file: &SceneFile) -> Checked<()> {
+    let root = FieldPath::root();
+    let present = [
+        ("bodies", !file.bodies.is_empty()),
+        ("forces", !file.forces.is_empty()),
+        ("events", !file.events.is_empty()),
+        ("contact", file.contact.is_some()),
+    ];
+    match present.iter().find(|(_, here)| *here) {
+        Some((table, _)) => Err(Problem::new(
+            &root.key(table),
+            ErrorKind::InvalidValue,
+            format!("a [linear_test] scene has no {table}: remove them or the [linear_test]"),
+        )),
+        None => Ok(()),
+    }
+}
+
+fn linear_test(spec: &LinearTestSpec) -> Checked<LinearTest> {
+    let p = FieldPath::root().key("linear_test");
+    Ok(LinearTest {
+        lambda: finite(&p.key("lambda"), spec.lambda)?,
+        y0: finite(&p.key("y0"), spec.y0)?,
+        forcing_offset: finite(&p.key("forcing_offset"), spec.forcing_offset)?,
+        forcing_slope: finite(&p.key("forcing_slope"), spec.forcing_slope)?,
+    })
+}
+
+fn world(file: &SceneFile) -> Checked<WorldPlan> {
+    if file.bodies.is_empty() {
+        return Err(Problem::new(
+            &FieldPath::root().key("bodies"),
+            ErrorKind::MissingField,
+            "the scene defines no [[bodies]] (and no [linear_test]): nothing to simulate",
+        ));
+    }
+    let mut bodies = Vec::with_capacity(file.bodies.len());
+    let mut colours = Vec::with_capacity(file.bodies.len());
+    for (i, spec) in file.bodies.iter().enumerate() {
+        let path = FieldPath::root().key("bodies").index(i);
+        if let Some(j) = file.bodies[..i].iter().position(|b| b.name == spec.name) {
+            return Err(Problem::new(
+                &path.key("name"),
+                ErrorKind::DuplicateName,
+                format!("body name '{}' is already used by bodies[{j}]", spec.name),
+            ));
+        }
+        bodies.push(body(&path, spec)?);
+        colours.push(colour(&path, spec, i)?);
+    }
+    let names = crate::forces::Bodies {
+        specs: &file.bodies,
+        defs: &bodies,
+    };
+    let forces = file
+        .forces
+        .iter()
+        .enumerate()
+        .map(|(i, f)| crate::forces::force(&FieldPath::root().key("forces").index(i), f, &names))
+        .collect::<Checked<Vec<_>>>()?;
+    let events = file
+        .events
+        .iter()
+        .enumerate()
+        .map(|(i, e)| crate::forces::event(&FieldPath::root().key("events").index(i), e, &names))
+        .collect::<Checked<Vec<_>>>()?;
+    let contact = file.contact.map(|c| contact(&c)).transpose()?;
+    Ok(WorldPlan {
+        bodies,
+        colours,
+        forces,
+        events,
+        contact,
+    })
+}
+
+// ---------------------------------------------------------------- numbers
+
+pub(crate) fn finite(path: &FieldPath, value: f64) -> Checked<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Problem::new(
+            path,
+            ErrorKind::NonFinite,
+            format!("{value} is not a finite number (TOML allows nan and inf; a scene does not)"),
+        ))
+    }
+}
+
+fn with_unit(value: f64, unit: &str) -> String {
+    if unit.is_empty() {
+        format!("{value}")
+    } else {
+        format!("{value} {unit}")
+    }
+}
+
+pub(crate) fn positive(path: &FieldPath, value: f64, what: &str, unit: &str) -> Checked<f64> {
+    if finite(path, value)? > 0.0 {
+        Ok(value)
+    } else {
+        Err(Problem::new(
+            path,
+            ErrorKind::InvalidValue,
+            format!("{what} must be > 0, got {}", with_unit(value, unit)),
+        ))
+    }
+}
+
+pub(crate) fn non_negative(path: &FieldPath, value: f64, what: &str, unit: &str) -> Checked<f64> {
+    if finite(path, value)? >= 0.0 {
+        Ok(value)
+    } else {
+        Err(Problem::new(
+            path,
+            ErrorKind::InvalidValue,
+            format!("{what} must be >= 0, got {}", with_unit(value, unit)),
+        ))
+    }
+}
+
+pub(crate) fn xy(path: &FieldPath, value: &Xy) -> Checked<Vector2<f64>> {
+    Ok(Vector2::new(
+        finite(&path.index(0), value.x)?,
+        finite(&path.index(1), value.y)?,
+    ))
+}
+
+pub(crate) fn window(path: &FieldPath, window: Option<&Window>) -> Checked<TimeWindow> {
+    let Some(w) = window else {
+        return Ok(TimeWindow::ALWAYS);
+    };
+    let start = finite(&path.index(0), w.start)?;
+    let end = finite(&path.index(1), w.end)?;
+    TimeWindow::new(start, end).map_err(|_| {
+        Problem::new(
+            path,
+            ErrorKind::InvalidValue,
+            format!("window [{start}, {end}] s must end after it starts"),
+        )
+    })
+}
+
+// ---------------------------------------------------------------- bodies
+
+fn body(path: &FieldPath, spec: &BodySpec) -> Checked<BodyDef> {
+    let name = &spec.name;
+    if name.trim().is_empty() {
+        return Err(Problem::new(
+            &path.key("name"),
+            ErrorKind::InvalidValue,
+            "a body name must not be empty",
+        ));
+    }
+    let shape = spec
+        .shape
+        .as_ref()
+        .map(|s| shape(&path.key("shape"), s, name))
+        .transpose()?;
+    let state = BodyState {
+        position: xy(&path.key("position"), &spec.position)?,
+        angle: finite(&path.key("angle"), spec.angle)?,
+        velocity: xy(&path.key("velocity"), &spec.velocity)?,
+        angular_velocity: finite(&path.key("angular_velocity"), spec.angular_velocity)?,
+    };
+    let (kind, mass, density, inertia) = match spec.kind {
+        BodyKindSpec::Static => {
+            static_body_has_no_dynamics(path, spec)?;
+            (BodyKind::Static, None, None, None)
+        }
+        BodyKindSpec::Dynamic => {
+            let (mass, density) = mass_or_density(path, spec)?;
+            let inertia = spec
+                .inertia
+                .map(|i| {
+                    positive(
+                        &path.key("inertia"),
+                        i,
+                        &format!("inertia of body '{name}'"),
+                        "kg·m²",
+                    )
+                })
+                .transpose()?;
+            if shape.is_none() && inertia.is_none() {
+                for (field, value) in [
+                    ("angle", state.angle),
+                    ("angular_velocity", state.angular_velocity),
+                ] {
+                    if value != 0.0 {
+                        return Err(Problem::new(
+                            &path.key(field),
+                            ErrorKind::InvalidValue,
+                            format!(
+                                "body '{name}' is a particle (no shape, no inertia) and cannot rotate: remove `{field}` or give it a shape"
+                            ),
+                        ));
+                    }
+                }
+            }
+            (BodyKind::Dynamic, mass, density, inertia)
+        }
+    };
+    let def = BodyDef {
+        name: name.clone(),
+        kind,
+        mass,
+        density,
+        inertia,
+        shape,
+        state,
+    };
+    // The engine's own check, so that building the world cannot fail.
+    engine::Body::from_def(&def).map_err(|e| Problem::engine(path, e))?;
+    Ok(def)
+}
+
+fn static_body_has_no_dynamics(path: &FieldPath, spec: &BodySpec) -> Checked<()> {
+    let offending = [
+        ("mass", spec.mass.is_some()),
+        ("density", spec.density.is_some()),
+        ("inertia", spec.inertia.is_some()),
+        ("velocity", spec.velocity != Xy::default()),
+        ("angular_velocity", spec.angular_velocity != 0.0),
+    ];
+    match offending.iter().find(|(_, present)| *present) {
+        Some((field, _)) => Err(Problem::new(
+            &path.key(field),
+            ErrorKind::InvalidValue,
+            format!(
+                "body '{}' is static and never moves: remove `{field}`, or make it kind = \"dynamic\"",
+                spec.name
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
+fn mass_or_density(path: &FieldPath, spec: &BodySpec) -> Checked<(Option<f64>, Option<f64>)> {
+    let name = &spec.name;
+    match (spec.mass, spec.density) {
+        (Some(_), Some(_)) => Err(Problem::new(
+            &path.key("density"),
+            ErrorKind::InvalidValue,
+            format!("body '{name}' gives both mass and density: keep one"),
+        )),
+        (Some(m), None) => Ok((
+            Some(positive(
+                &path.key("mass"),
+                m,
+                &format!("mass of body '{name}'"),
+                "kg",
+            )?),
+            None,
+        )),
+        (None, Some(rho)) => {
+            let rho = positive(
+                &path.key("density"),
+                rho,
+                &format!("density of body '{name}'"),
+                "kg/m²",
+            )?;
+            if spec.shape.is_none() {
+                return Err(Problem::new(
+                    &path.key("density"),
+                    ErrorKind::InvalidValue,
+                    format!(
+                        "body '{name}' has a density but no shape to give it an area: add a shape or give a mass"
+                    ),
+                ));
+            }
+            Ok((None, Some(rho)))
+        }
+        (None, None) => Err(Problem::new(
+            &path.key("mass"),
+            ErrorKind::MissingField,
+            format!("dynamic body '{name}' needs a mass (kg), or a density (kg/m²) and a shape"),
+        )),
+    }
+}
+
+fn shape(path: &FieldPath, spec: &ShapeSpec, body: &str) -> Checked<Shape> {
+    match spec {
+        ShapeSpec::Box { width, height } => {
+            let w = positive(
+                &path.key("width"),
+                *width,
+                &format!("box width of body '{body}'"),
+                "m",
+            )?;
+            let h = positive(
+                &path.key("height"),
+                *height,
+                &format!("box height of body '{body}'"),
+                "m",
+            )?;
+            Shape::rectangle(w, h).map_err(|e| Problem::engine(path, e))
+        }
+        ShapeSpec::Circle { radius } => {
+            let r = positive(
+                &path.key("radius"),
+                *radius,
+                &format!("radius of body '{body}'"),
+                "m",
+            )?;
+            Ok(Shape::Circle(
+                Circle::new(r).map_err(|e| Problem::engine(path, e))?,
+            ))
+        }
+        ShapeSpec::Polygon { vertices } => {
+            let vpath = path.key("vertices");
+            let points = vertices
+                .iter()
+                .enumerate()
+                .map(|(i, v)| xy(&vpath.index(i), v))
+                .collect::<Checked<Vec<_>>>()?;
+            let n = points.len();
+            match ConvexPolygon::new(points) {
+                Ok(p) => Ok(Shape::Polygon(p)),
+                Err(EngineError::InvalidPolygon { vertex, reason }) if vertex < n => {
+                    let v = vertices[vertex];
+                    Err(Problem::new(
+                        &vpath.index(vertex),
+                        ErrorKind::InvalidPolygon,
+                        format!(
+                            "polygon of body '{body}': {reason} at vertex {vertex} [{}, {}]",
+                            v.x, v.y
+                        ),
+                    ))
+                }
+                Err(EngineError::InvalidPolygon { reason, .. }) => Err(Problem::new(
+                    &vpath,
+                    ErrorKind::InvalidPolygon,
+                    format!("polygon of body '{body}' has {n} vertices: {reason}"),
+                )),
+                Err(e) => Err(Problem::engine(&vpath, e)),
+            }
+        }
+    }
+}
+
+fn colour(path: &FieldPath, spec: &BodySpec, index: usize) -> Checked<Colour> {
+    match &spec.colour {
+        None => Ok(Colour::default_for(index)),
+        Some(text) => Colour::parse_hex(text).ok_or_else(|| {
+            Problem::new(
+                &path.key("colour"),
+                ErrorKind::InvalidValue,
+                format!("colour must be \"#rrggbb\" (hex), got \"{text}\""),
+            )
+        }),
+    }
+}
+
+// ---------------------------------------------------------------- contact
+
+fn contact(spec: &ContactSpec) -> Checked<ContactSpec> {
+    let path = FieldPath::root().key("contact");
+    let e = finite(&path.key("restitution"), spec.restitution)?;
+    if !(0.0..=1.0).contains(&e) {
+        return Err(Problem::new(
+            &path.key("restitution"),
+            ErrorKind::InvalidValue,
+            format!("restitution must be in [0, 1], got {e}"),
+        ));
+    }
+    let friction = non_negative(&path.key("friction"), spec.friction, "friction", "")?;
+    Ok(ContactSpec {
+        restitution: e,
+        friction,
+    })
+}
+
+// ---------------------------------------------------------------- world
+
+/// Builds the world of a validated plan with `method`. `method_path` is
+/// where the method came from (`simulation.method`, or none for an
+/// override).
+pub(crate) fn build_world(
+    plan: &WorldPlan,
+    method: Method,
+    method_path: &FieldPath,
+) -> Checked<World> {
+    let mut world = World::new(method).map_err(|e| Problem::engine(method_path, e))?;
+    for (i, def) in plan.bodies.iter().enumerate() {
+        world
+            .add_body(def.clone())
+            .map_err(|e| Problem::engine(&FieldPath::root().key("bodies").index(i), e))?;
+    }
+    for f in &plan.forces {
+        world
+            .add_force_during(f.force.boxed(), f.window)
+            .map_err(|e| Problem::engine(&f.path, e))?;
+    }
+    for (i, event) in plan.events.iter().enumerate() {
+        world
+            .add_event(event.clone())
+            .map_err(|e| Problem::engine(&FieldPath::root().key("events").index(i), e))?;
+    }
+    Ok(world)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn step_count_matches_world_run() {
+        assert_eq!(step_count(57.2, 0.2), Ok(286));
+        assert_eq!(step_count(8.7, 0.01), Ok(870));
+        assert_eq!(step_count(1.0, 0.0019), Ok(527));
+        assert_eq!(step_count(1e-3, 1.0), Ok(1));
+        assert!(step_count(1.0, 1e-9).is_err());
+        assert!(step_count(1.0, 0.0).is_err());
+    }
+}

@@ -1,0 +1,375 @@
+//! The scene file format: the serde structures a TOML scene deserializes
+//! into, one per table, every field with its unit and default.
+//!
+//! These structures hold what the file says, checked only for form (types,
+//! known keys, `[x, y]` of exactly two numbers). Values are checked by
+//! [`crate::Scene::parse_str`] / [`crate::Scene::load`], which refuse NaN and
+//! infinities, out-of-domain numbers, bad polygons and dangling body names
+//! with a line-numbered [`crate::SceneError`].
+//!
+//! Units are SI: m, s, kg, rad. A file describes either a world of bodies
+//! (`[[bodies]]`, `[[forces]]`, `[[events]]`, `[contact]`) or the scalar stiff
+//! test (`[linear_test]`), with `[simulation]` in both. A complete example is
+//! in the crate documentation.
+
+use serde::Deserialize;
+use serde::de::{self, Deserializer, IgnoredAny, SeqAccess, Visitor};
+use std::fmt;
+
+/// A whole scene file.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// `[simulation]`: method, step and duration. Required.
+    pub simulation: SimulationSpec,
+    /// `[[bodies]]`, in order: the body with index `i` here has
+    /// [`engine::BodyId`] `i` in the built world. Default: none.
+    #[serde(default)]
+    pub bodies: Vec<BodySpec>,
+    /// `[[forces]]`, applied in this order. Default: none.
+    #[serde(default)]
+    pub forces: Vec<ForceSpec>,
+    /// `[[events]]` to locate during the run. Default: none.
+    #[serde(default)]
+    pub events: Vec<EventEntry>,
+    /// `[contact]`: collision response settings. Optional.
+    pub contact: Option<ContactSpec>,
+    /// `[linear_test]`: the scalar stiff test instead of bodies. Optional;
+    /// excludes bodies, forces, events and contact.
+    pub linear_test: Option<LinearTestSpec>,
+}
+
+/// `[simulation]`: how the scene is integrated.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SimulationSpec {
+    /// Integration method, an [`engine::Method::id`]: `"explicit_euler"`,
+    /// `"semi_implicit_euler"`, `"rk2_midpoint"`, `"rk4"`,
+    /// `"velocity_verlet"`, `"implicit_euler"` or `"dormand_prince"`.
+    /// Default `"rk4"` (the seed's method, §4.3).
+    #[serde(default = "default_method")]
+    pub method: String,
+    /// Time step h (s), > 0. Required. For `dormand_prince` it is the output
+    /// interval, the largest step the controller may take.
+    pub dt: f64,
+    /// Length of the run (s), > 0. Required. The run takes
+    /// `ceil(duration / dt)` steps (an exact count when `dt` divides it to
+    /// within round-off), at most 1e8.
+    pub duration: f64,
+    /// Relative and absolute error tolerance of `dormand_prince`
+    /// (dimensionless / state units), > 0. Default 1e-9; ignored by the
+    /// fixed-step methods.
+    pub tolerance: Option<f64>,
+}
+
+fn default_method() -> String {
+    "rk4".into()
+}
+
+/// Default tolerance of `dormand_prince` when `[simulation]` gives none.
+pub const DEFAULT_TOLERANCE: f64 = 1e-9;
+
+/// Whether a body moves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BodyKindSpec {
+    /// Moves under forces (default).
+    #[default]
+    Dynamic,
+    /// Never moves (an anchor, the ground); takes no mass or velocity.
+    Static,
+}
+
+/// `[[bodies]]`: one body.
+///
+/// A dynamic body needs `mass`, or `density` with a `shape`. A body with
+/// neither `shape` nor `inertia` is a particle: no rotation, so `angle` and
+/// `angular_velocity` must stay 0 and no torque may act on it.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    /// Unique, non-empty name; forces and events refer to the body by it.
+    pub name: String,
+    /// `"dynamic"` (default) or `"static"`.
+    #[serde(default)]
+    pub kind: BodyKindSpec,
+    /// Mass (kg), > 0. Give this or `density`, not both.
+    pub mass: Option<f64>,
+    /// Areal density (kg/m²), > 0; mass = density × shape area. Needs a
+    /// `shape`.
+    pub density: Option<f64>,
+    /// Moment of inertia about the centre of mass (kg·m²), > 0. Default:
+    /// from the shape (a box b × h: m(b² + h²)/12); none for a particle.
+    pub inertia: Option<f64>,
+    /// Geometry. Default: none (a particle, unless `inertia` is given).
+    pub shape: Option<ShapeSpec>,
+    /// Initial position of the centre of mass (m). Default `[0, 0]`.
+    #[serde(default)]
+    pub position: Xy,
+    /// Initial orientation (rad), counter-clockwise. Default 0.
+    #[serde(default)]
+    pub angle: f64,
+    /// Initial velocity of the centre of mass (m/s). Default `[0, 0]`.
+    #[serde(default)]
+    pub velocity: Xy,
+    /// Initial angular velocity (rad/s), counter-clockwise. Default 0.
+    #[serde(default)]
+    pub angular_velocity: f64,
+    /// Colour for pictures, `"#rrggbb"` (also accepted as `color`).
+    /// Default: the next colour of the matplotlib "tab10" cycle
+    /// ([`crate::Colour::PALETTE`]) by body index. The engine ignores it.
+    #[serde(alias = "color")]
+    pub colour: Option<String>,
+}
+
+/// `shape = { type = ..., ... }`: a body's geometry, in the body frame (m).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ShapeSpec {
+    /// `{ type = "box", width, height }`: an axis-aligned rectangle
+    /// centred on the body's position; width and height (m) > 0.
+    Box {
+        /// Extent along the body's x axis (m), > 0.
+        width: f64,
+        /// Extent along the body's y axis (m), > 0.
+        height: f64,
+    },
+    /// `{ type = "polygon", vertices = [[x, y], ...] }`: a convex polygon,
+    /// at least 3 vertices, counter-clockwise (m). The engine re-centres it
+    /// on its centroid, so `position` is the centre of mass.
+    Polygon {
+        /// Vertices counter-clockwise (m).
+        vertices: Vec<Xy>,
+    },
+    /// `{ type = "circle", radius }`: a disc centred on the body (m), > 0.
+    Circle {
+        /// Radius (m), > 0.
+        radius: f64,
+    },
+}
+
+/// `[[forces]]`: a force generator, tagged by `type`. Every force takes an
+/// optional `window = [start, end]` (s): it acts for `start ≤ t < end`
+/// (finite, `end > start`), and the engine splits its steps at both edges.
+/// Default: always on. Bodies are named, never numbered.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ForceSpec {
+    /// `{ type = "gravity", g = [gx, gy] }`: uniform field on every dynamic
+    /// body, F = m g. The seed's cases use g = [0, −9.80655] m/s².
+    Gravity {
+        /// Acceleration (m/s²). Required.
+        g: Xy,
+        /// Active window (s). Default: always.
+        window: Option<Window>,
+    },
+    /// A linear spring, F = −k ψ (seed §5.2, eq. 5.2), from `body` to a
+    /// fixed `anchor` or to `other_body` (exactly one of the two).
+    Spring {
+        /// The body at one end.
+        body: String,
+        /// Attachment point on `body`, in its frame (m). Default `[0, 0]`,
+        /// the centre of mass.
+        point: Option<Xy>,
+        /// Fixed world point at the other end (m).
+        anchor: Option<Xy>,
+        /// Body at the other end, instead of an anchor.
+        other_body: Option<String>,
+        /// Attachment point on `other_body`, in its frame (m). Default
+        /// `[0, 0]`.
+        other_point: Option<Xy>,
+        /// Stiffness k (N/m), ≥ 0. Required.
+        stiffness: f64,
+        /// Rest length l0 (m), ≥ 0. Default 0.
+        #[serde(default)]
+        rest_length: f64,
+        /// Direction of a one-dimensional spring (normalised; not zero):
+        /// the extension is signed, ψ = (p_body − p_other)·u − l0, so the
+        /// spring may pass through its anchor (the seed's model). Default:
+        /// none, a distance spring ψ = |p_body − p_other| − l0.
+        axis: Option<Xy>,
+        /// Active window (s). Default: always.
+        window: Option<Window>,
+    },
+    /// Quadratic air drag at the centre of mass, F = −D |v| v (seed
+    /// Table 6.2).
+    Drag {
+        /// The body.
+        body: String,
+        /// D = ρ C A / 2 (kg/m), ≥ 0. Required.
+        coefficient: f64,
+        /// Active window (s). Default: always.
+        window: Option<Window>,
+    },
+    /// Angular drag, τ = −D ω |ω| (the seed's angular friction, §6.2), on a
+    /// rotating body.
+    AngularDrag {
+        /// The body (not a particle).
+        body: String,
+        /// D (N·m·s²), ≥ 0. Required.
+        coefficient: f64,
+        /// Active window (s). Default: always.
+        window: Option<Window>,
+    },
+    /// A constant world-frame force at a point fixed in the body: pushes
+    /// the centre of mass and turns the body by r × F.
+    PointForce {
+        /// The body.
+        body: String,
+        /// Force in the world frame (N). Required.
+        force: Xy,
+        /// Application point in the body frame (m), from the centre of mass.
+        /// Default `[0, 0]`; must be 0 on a particle.
+        point: Option<Xy>,
+        /// Active window (s). Default: always.
+        window: Option<Window>,
+    },
+    /// A pure couple (no net force), counter-clockwise positive, on a
+    /// rotating body: either `torque` (N·m), or `lever` (m) and `force` (N)
+    /// giving τ = lever × force (seed eq. 6.16–6.20).
+    Torque {
+        /// The body (not a particle).
+        body: String,
+        /// Torque (N·m).
+        torque: Option<f64>,
+        /// Lever arm R (m), with `force`.
+        lever: Option<Xy>,
+        /// Force F (N), with `lever`.
+        force: Option<Xy>,
+        /// Active window (s). Default: always.
+        window: Option<Window>,
+    },
+}
+
+/// `[[events]]`: an event located by root finding inside the step.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum EventEntry {
+    /// The body's centre comes down through `y = level`; ends the run.
+    Landing {
+        /// The body watched.
+        body: String,
+        /// Height (m). Default 0.
+        #[serde(default)]
+        level: f64,
+    },
+    /// The top of the trajectory, `vy` from > 0 to ≤ 0; the run goes on.
+    Apex {
+        /// The body watched.
+        body: String,
+    },
+}
+
+/// `[contact]`: collision response. Parsed and validated for the collision
+/// work of CASES.md case III; **the engine does not use these yet** (it has
+/// no collision code), so they change nothing in a run today.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// Coefficient of restitution e, in [0, 1] (seed eq. 7.1–7.16).
+    /// Default 1: perfectly elastic, no loss the scene did not ask for.
+    #[serde(default = "one")]
+    pub restitution: f64,
+    /// Coulomb friction coefficient μ, ≥ 0. Default 0.
+    #[serde(default)]
+    pub friction: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// `[linear_test]`: Hoffman's scalar stiff test (seed §4.3), generalised to a
+/// linear forcing g(t) = `forcing_offset` + `forcing_slope`·t:
+///
+/// y' = λ (y − g(t)) + g'(t),  y(0) = y0,
+///
+/// with exact solution y = g(t) + (y0 − g(0)) e^(λt). The defaults give the
+/// seed's y' = λ(y − (t + 2)) + 1. Time in s, y dimensionless.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LinearTestSpec {
+    /// λ (s⁻¹), finite; < 0 for a decaying (stiff) transient. Required.
+    pub lambda: f64,
+    /// y(0). Required.
+    pub y0: f64,
+    /// g(0), the forcing's value at t = 0. Default 2.
+    #[serde(default = "two")]
+    pub forcing_offset: f64,
+    /// g'(t), the forcing's slope (s⁻¹). Default 1.
+    #[serde(default = "one")]
+    pub forcing_slope: f64,
+}
+
+fn two() -> f64 {
+    2.0
+}
+
+/// A 2D vector written `[x, y]`: exactly two numbers (integers are
+/// accepted). Units are those of the field.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Xy {
+    /// First component.
+    pub x: f64,
+    /// Second component.
+    pub y: f64,
+}
+
+impl Xy {
+    /// As an nalgebra vector.
+    pub fn vector(&self) -> nalgebra::Vector2<f64> {
+        nalgebra::Vector2::new(self.x, self.y)
+    }
+}
+
+/// A force's active window `[start, end]` (s).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Window {
+    /// Start of activity (s).
+    pub start: f64,
+    /// End of activity (s), excluded.
+    pub end: f64,
+}
+
+/// Reads exactly two numbers: toml's deserializer lets `[f64; 2]` silently
+/// drop a third element, so `[1, 2, 3]` must be refused here.
+struct PairVisitor(&'static str);
+
+impl<'de> Visitor<'de> for PairVisitor {
+    type Value = (f64, f64);
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "an array of exactly two numbers {}", self.0)
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
+        let a = seq
+            .next_element::<f64>()?
+            .ok_or_else(|| de::Error::invalid_length(0, &self))?;
+        let b = seq
+            .next_element::<f64>()?
+            .ok_or_else(|| de::Error::invalid_length(1, &self))?;
+        let mut len = 2;
+        while seq.next_element::<IgnoredAny>()?.is_some() {
+            len += 1;
+        }
+        if len != 2 {
+            return Err(de::Error::invalid_length(len, &self));
+        }
+        Ok((a, b))
+    }
+}
+
+impl<'de> Deserialize<'de> for Xy {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let (x, y) = deserializer.deserialize_seq(PairVisitor("[x, y]"))?;
+        Ok(Self { x, y })
+    }
+}
+
+impl<'de> Deserialize<'de> for Window {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let (start, end) = deserializer.deserialize_seq(PairVisitor("[start, end]"))?;
+        Ok(Self { start, end })
+    }
+}

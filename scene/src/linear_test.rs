@@ -1,0 +1,144 @@
+//! The scalar stiff test of a `[linear_test]` scene (seed §4.3, after
+//! Hoffman; CASES.md "Stiff test"), as an [`engine::OdeSystem`].
+//!
+//! Representation: a small `Copy` struct rather than an
+//! [`engine::FnSystem`] closure, so that it can be stored in a
+//! [`crate::Scene`], compared, printed, and carry its exact solution next to
+//! its right-hand side:
+//!
+//! y' = λ (y − g(t)) + g'(t),  g(t) = g0 + g1·t,  y(0) = y0,
+//! y(t) = g(t) + (y0 − g(0)) e^(λt).
+//!
+//! The seed's problem is λ = −1000 s⁻¹, y0 = 1, g(t) = t + 2:
+//! y' = −1000(y − (t + 2)) + 1, y = t + 2 − e^(−1000t).
+
+use engine::{EngineError, Integrator, Method, OdeSystem, Solution};
+
+/// y' = λ (y − g(t)) + g'(t) with g(t) = `forcing_offset` + `forcing_slope`·t.
+/// A first-order system of dimension 1 (time in s, y dimensionless).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinearTest {
+    /// λ (s⁻¹).
+    pub lambda: f64,
+    /// y(0).
+    pub y0: f64,
+    /// g(0).
+    pub forcing_offset: f64,
+    /// g' (s⁻¹).
+    pub forcing_slope: f64,
+}
+
+impl LinearTest {
+    /// The seed's problem: λ = −1000 s⁻¹, y0 = 1, g(t) = t + 2.
+    pub const fn hoffman() -> Self {
+        Self {
+            lambda: -1000.0,
+            y0: 1.0,
+            forcing_offset: 2.0,
+            forcing_slope: 1.0,
+        }
+    }
+
+    /// The forcing g(t) = g0 + g1·t, the slow solution the transient decays
+    /// to when λ < 0.
+    pub fn forcing(&self, t: f64) -> f64 {
+        self.forcing_offset + self.forcing_slope * t
+    }
+
+    /// The right-hand side f(t, y) = λ (y − g(t)) + g'(t).
+    pub fn rhs(&self, t: f64, y: f64) -> f64 {
+        self.lambda * (y - self.forcing(t)) + self.forcing_slope
+    }
+
+    /// The exact solution y(t) = g(t) + (y0 − g(0)) e^(λt).
+    pub fn exact(&self, t: f64) -> f64 {
+        self.forcing(t) + (self.y0 - self.forcing_offset) * (self.lambda * t).exp()
+    }
+
+    /// Integrates from t = 0 to `duration` (s) in steps of `dt` (s) with
+    /// `method`, with the step semantics of [`engine::World::run`]: times
+    /// `i·dt` from an integer count, the last step shortened to end exactly
+    /// at `duration` when `dt` does not divide it. With `dormand_prince`,
+    /// `dt` is the output interval. Records every step.
+    ///
+    /// A blow-up (non-finite y) is an [`EngineError::BlowUp`]; a finite but
+    /// huge y (explicit Euler just past its limit) is returned for the
+    /// caller to judge. Refuses `semi_implicit_euler` and `velocity_verlet`
+    /// ([`EngineError::MethodNeedsSecondOrder`]): this system is first order.
+    pub fn solve(&self, method: Method, dt: f64, duration: f64) -> engine::Result<Solution> {
+        let steps = crate::build::step_count(duration, dt).map_err(|reason| {
+            EngineError::InvalidParameter {
+                what: "number of steps (duration / dt)".into(),
+                value: duration / dt,
+                reason,
+            }
+        })?;
+        let mut integrator = Integrator::new(method)?;
+        let mut sys = *self;
+        let mut y = vec![self.y0];
+        let mut solution = Solution {
+            t: vec![0.0],
+            y: vec![y.clone()],
+            ..Solution::default()
+        };
+        let mut t = 0.0;
+        for i in 1..=steps {
+            let t_end = if i == steps { duration } else { i as f64 * dt };
+            while t < t_end {
+                let taken = integrator.advance(&mut sys, t, &mut y, t_end - t)?;
+                // A step that used all the room left lands exactly on t_end.
+                t = if taken == t_end - t { t_end } else { t + taken };
+            }
+            solution.t.push(t_end);
+            solution.y.push(y.clone());
+        }
+        solution.stats = integrator.stats();
+        Ok(solution)
+    }
+}
+
+impl OdeSystem for LinearTest {
+    fn dimension(&self) -> usize {
+        1
+    }
+
+    fn derivative(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        dydt[0] = self.rhs(t, y[0]);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exact_solution_solves_the_ode() {
+        let p = LinearTest::hoffman();
+        assert_eq!(p.exact(0.0), 1.0);
+        for t in [0.0005, 0.003, 0.5] {
+            let h = 1e-7;
+            let slope = (p.exact(t + h) - p.exact(t - h)) / (2.0 * h);
+            let rel = (slope - p.rhs(t, p.exact(t))).abs() / slope.abs().max(1.0);
+            assert!(rel < 1e-6, "t = {t}: {rel}");
+        }
+    }
+
+    #[test]
+    fn rk4_inside_its_limit_tracks_the_exact_solution() {
+        let p = LinearTest::hoffman();
+        let s = p.solve(Method::Rk4, 0.001, 1.0).unwrap();
+        assert_eq!(s.t.len(), 1001);
+        assert_eq!(*s.t.last().unwrap(), 1.0);
+        let y = s.y.last().unwrap()[0];
+        assert!((y - p.exact(1.0)).abs() < 1e-9, "{y}");
+    }
+
+    #[test]
+    fn last_step_is_shortened_to_end_at_the_duration() {
+        let s = LinearTest::hoffman()
+            .solve(Method::ImplicitEuler, 0.0019, 1.0)
+            .unwrap();
+        assert_eq!(s.t.len(), 528);
+        assert_eq!(*s.t.last().unwrap(), 1.0);
+    }
+}

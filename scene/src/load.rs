@@ -1,0 +1,240 @@
+//! [`Scene`]: a scene file read, parsed, validated, and ready to build
+//! worlds from.
+//!
+//! Loading goes in three passes, each with its own errors:
+//! 1. **syntax**: the text parses as TOML ([`toml::de::DeTable`], which keeps
+//!    the span of every key and value);
+//! 2. **form**: it deserializes into [`SceneFile`] (known keys only, values
+//!    of the right types); serde reports a byte offset, turned into the
+//!    field path and line through the spanned tree;
+//! 3. **values**: [`crate::build`] checks every number and reference and
+//!    converts to engine values, reporting a field path, turned into a line.
+
+use crate::build::{self, Content, Plan};
+use crate::colour::Colour;
+use crate::error::{ErrorKind, FieldPath, Problem, SceneError, Segment};
+use crate::format::{ContactSpec, SceneFile};
+use crate::linear_test::LinearTest;
+use crate::location::{line_column, path_at, position_of};
+use engine::{BodyDef, BodyId, Method, Tolerance, World};
+use std::path::Path;
+
+/// A validated scene: its settings, its bodies by name, and what it needs to
+/// build an [`engine::World`] (or, for a `[linear_test]`, the ODE).
+#[derive(Debug, Clone)]
+pub struct Scene {
+    origin: String,
+    source: String,
+    file: SceneFile,
+    plan: Plan,
+}
+
+impl Scene {
+    /// Reads, parses and validates the scene file at `path`. Errors name the
+    /// path as given.
+    pub fn load(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
+        let path = path.as_ref();
+        let origin = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            SceneError::new(
+                &origin,
+                ErrorKind::Io,
+                format!("cannot read the scene file: {e}"),
+            )
+            .with_source(e)
+        })?;
+        Self::parse_str(&origin, &text)
+    }
+
+    /// Parses and validates scene text; `origin` names it in errors (a file
+    /// name, or e.g. `"<inline>"`).
+    pub fn parse_str(origin: &str, text: &str) -> Result<Scene, SceneError> {
+        if let Err(e) = toml::de::DeTable::parse(text) {
+            let position = e.span().map(|s| line_column(text, s.start));
+            return Err(
+                SceneError::new(origin, ErrorKind::Syntax, e.message().trim()).at(position),
+            );
+        }
+        let file: SceneFile = toml::from_str(text).map_err(|e| form_error(origin, text, &e))?;
+        let plan = build::plan(&file).map_err(|p| locate(origin, text, p))?;
+        Ok(Scene {
+            origin: origin.to_owned(),
+            source: text.to_owned(),
+            file,
+            plan,
+        })
+    }
+
+    /// Builds a fresh world at t = 0: the bodies in file order (the body
+    /// `bodies[i]` has id `i`), then the forces and events. Integrated by
+    /// the file's method, or by `method_override` (for sweeps over methods;
+    /// an override of `dormand_prince` carries its own tolerance).
+    ///
+    /// Run it with `world.run(scene.duration(), scene.dt())`. Fails with
+    /// [`ErrorKind::WrongSceneKind`] on a `[linear_test]` scene.
+    pub fn build_world(&self, method_override: Option<Method>) -> Result<World, SceneError> {
+        let Content::World(plan) = &self.plan.content else {
+            return Err(SceneError::new(
+                &self.origin,
+                ErrorKind::WrongSceneKind,
+                "this is a [linear_test] scene, not a world: use Scene::linear_test()",
+            ));
+        };
+        let (method, path) = match method_override {
+            Some(m) => (m, FieldPath::root()),
+            None => (
+                self.plan.method,
+                FieldPath::root().key("simulation").key("method"),
+            ),
+        };
+        build::build_world(plan, method, &path).map_err(|p| self.locate(p))
+    }
+
+    fn locate(&self, problem: Problem) -> SceneError {
+        locate(&self.origin, &self.source, problem)
+    }
+
+    /// The file path or name the scene came from.
+    pub fn origin(&self) -> &str {
+        &self.origin
+    }
+
+    /// What the file says, as parsed (before conversion; defaults filled).
+    pub fn file(&self) -> &SceneFile {
+        &self.file
+    }
+
+    /// The integration method of `[simulation]` (with its tolerance for
+    /// `dormand_prince`).
+    pub fn method(&self) -> Method {
+        self.plan.method
+    }
+
+    /// The tolerance of `dormand_prince` (relative and absolute), given or
+    /// default, whatever the method; handy to build an override.
+    pub fn tolerance(&self) -> Tolerance {
+        self.plan.tolerance
+    }
+
+    /// Time step (s).
+    pub fn dt(&self) -> f64 {
+        self.plan.dt
+    }
+
+    /// Run length (s).
+    pub fn duration(&self) -> f64 {
+        self.plan.duration
+    }
+
+    /// Steps of a full run, as [`engine::World::run`] counts them:
+    /// `duration / dt` when it is a whole number to within round-off, else
+    /// rounded up (the last step shortened). At most 1e8.
+    pub fn steps(&self) -> u64 {
+        self.plan.steps
+    }
+
+    /// Whether this is a `[linear_test]` scene (no bodies).
+    pub fn is_linear_test(&self) -> bool {
+        matches!(self.plan.content, Content::LinearTest(_))
+    }
+
+    /// The stiff test of a `[linear_test]` scene; `None` for a world. Solve
+    /// it with [`LinearTest::solve`]`(method, scene.dt(), scene.duration())`.
+    pub fn linear_test(&self) -> Option<LinearTest> {
+        match &self.plan.content {
+            Content::LinearTest(t) => Some(*t),
+            Content::World(_) => None,
+        }
+    }
+
+    /// The bodies as engine definitions, in file order (index = id).
+    /// Empty for a `[linear_test]`.
+    pub fn bodies(&self) -> &[BodyDef] {
+        match &self.plan.content {
+            Content::World(w) => &w.bodies,
+            Content::LinearTest(_) => &[],
+        }
+    }
+
+    /// Body names, in file order (index = id).
+    pub fn body_names(&self) -> Vec<&str> {
+        self.bodies().iter().map(|b| b.name.as_str()).collect()
+    }
+
+    /// The id of the body named `name` in a world built from this scene.
+    pub fn body_id(&self, name: &str) -> Option<BodyId> {
+        self.bodies().iter().position(|b| b.name == name)
+    }
+
+    /// Body colours, in file order: the file's `colour`, or the
+    /// [`Colour::PALETTE`] entry for the body's index.
+    pub fn colours(&self) -> &[Colour] {
+        match &self.plan.content {
+            Content::World(w) => &w.colours,
+            Content::LinearTest(_) => &[],
+        }
+    }
+
+    /// The colour of the body named `name`.
+    pub fn colour_of(&self, name: &str) -> Option<Colour> {
+        self.body_id(name).map(|i| self.colours()[i])
+    }
+
+    /// The `[contact]` settings, validated. Not used by the engine yet.
+    pub fn contact(&self) -> Option<ContactSpec> {
+        match &self.plan.content {
+            Content::World(w) => w.contact,
+            Content::LinearTest(_) => None,
+        }
+    }
+}
+
+/// Places a validation problem in the file.
+fn locate(origin: &str, text: &str, problem: Problem) -> SceneError {
+    let field = (!problem.path.0.is_empty()).then(|| problem.path.to_string());
+    let error = SceneError::new(origin, problem.kind, problem.message)
+        .with_field(field)
+        .at(position_of(text, &problem.path));
+    match problem.source {
+        Some(source) => error.with_source(source),
+        None => error,
+    }
+}
+
+/// Turns a serde error (a message and a byte span) into a located error.
+///
+/// serde names an unknown or missing key in its message but toml places
+/// the span on the enclosing table when the table is buffered (internally
+/// tagged shapes, forces, events), so the key is taken from the message
+/// and appended to the path found from the span.
+fn form_error(origin: &str, text: &str, error: &toml::de::Error) -> SceneError {
+    let message = error.message();
+    let kind = if message.starts_with("unknown field") {
+        ErrorKind::UnknownField
+    } else if message.starts_with("missing field") {
+        ErrorKind::MissingField
+    } else {
+        ErrorKind::InvalidType
+    };
+    let Some(span) = error.span() else {
+        return SceneError::new(origin, kind, message);
+    };
+    let mut path = path_at(text, span.clone());
+    let mut position = Some(line_column(text, span.start));
+    let named_key = match kind {
+        ErrorKind::UnknownField | ErrorKind::MissingField => message.split('`').nth(1),
+        _ => None,
+    };
+    if let Some(key) = named_key {
+        if path.0.last() != Some(&Segment::Key(key.to_owned())) {
+            path = path.key(key);
+            if kind == ErrorKind::UnknownField {
+                position = position_of(text, &path).or(position);
+            }
+        }
+    }
+    let field = (!path.0.is_empty()).then(|| path.to_string());
+    SceneError::new(origin, kind, message)
+        .with_field(field)
+        .at(position)
+}
