@@ -40,6 +40,7 @@ pub mod integrators;
 pub mod ode;
 pub mod root_finding;
 pub mod shape;
+pub mod time_grid;
 pub mod trace;
 mod world;
 mod world_ode;
@@ -48,8 +49,11 @@ pub use body::{Body, BodyDef, BodyId, BodyKind, BodyState};
 pub use error::{EngineError, Result};
 pub use events::{Crossing, EventRecord, EventSpec, Quantity};
 pub use forces::{Force, ForceContext, TimeWindow, Wrench};
-pub use integrators::{Integrator, Method, Solution, Stats, Tolerance, integrate_fixed};
+pub use integrators::{
+    Integrator, Method, Solution, Stats, Tolerance, integrate_fixed, integrate_to,
+};
 pub use ode::{FnSystem, OdeSystem, Structure};
 pub use shape::{Circle, ConvexPolygon, Shape};
+pub use time_grid::{MAX_RUN_STEPS, step_count};
 pub use trace::{Sample, Trace};
-pub use world::{MAX_RUN_STEPS, World};
+pub use world::World;

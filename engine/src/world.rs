@@ -17,12 +17,9 @@ use crate::events::{EventRecord, EventSpec};
 use crate::forces::{Force, ForceContext, TimeWindow, Wrench};
 use crate::integrators::{Integrator, Method, Stats};
 use crate::root_finding::illinois;
+use crate::time_grid::{grid_time, step_count};
 use crate::trace::{Sample, Trace};
 use crate::world_ode::{ActiveForce, Layout, WorldOde};
-
-/// Most steps a single [`World::run`] may take; beyond it the request is
-/// refused up front rather than left to run for hours.
-pub const MAX_RUN_STEPS: f64 = 1e8;
 
 /// Relative width (of the step) to which event times are located: a few
 /// ulps of the time, far below any tolerance the harness applies.
@@ -307,34 +304,12 @@ impl World {
     /// shortened if `dt` does not divide the span), sampling after every
     /// step. Stops early at a terminal event.
     pub fn run(&mut self, until: f64, dt: f64) -> Result<Trace> {
-        require_positive("dt", dt)?;
         let t0 = self.time;
-        let span = until - t0;
-        require_positive("run duration", span)?;
-        let ratio = span / dt;
-        // Within a few ulps of an integer, the span is a whole number of steps.
-        let steps = if (ratio - ratio.round()).abs() <= 1e-9 * ratio {
-            ratio.round()
-        } else {
-            ratio.ceil()
-        };
-        if steps > MAX_RUN_STEPS {
-            return Err(EngineError::InvalidParameter {
-                what: "number of steps (duration / dt)".into(),
-                value: steps,
-                reason: "more than 1e8 steps: raise dt or shorten the run",
-            });
-        }
-        let steps = steps as u64;
+        let steps = step_count(until - t0, dt)?;
         let mut trace = Trace::default();
         trace.samples.push(self.sample());
         for i in 1..=steps {
-            let t_next = if i == steps {
-                until
-            } else {
-                t0 + i as f64 * dt
-            };
-            let events = self.step_to(t_next)?;
+            let events = self.step_to(grid_time(t0, until, dt, i, steps))?;
             trace.events.extend(events);
             trace.samples.push(self.sample());
             if self.stopped {

@@ -7,15 +7,17 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use engine::forces::{Gravity, QuadraticDrag};
 use engine::{BodyDef, Shape, World};
 use harness::cases::all_methods;
-use harness::worlds;
+use harness::scenes;
 use nalgebra::Vector2;
 use std::hint::black_box;
 
 fn spring_step(c: &mut Criterion) {
     let mut group = c.benchmark_group("spring_step");
     for method in all_methods() {
-        let mut world = worlds::spring(method).expect("spring world");
-        group.bench_function(method.id(), |b| b.iter(|| black_box(world.step(0.2).expect("step"))));
+        let mut world = scenes::world("spring", method).expect("spring world");
+        group.bench_function(method.id(), |b| {
+            b.iter(|| black_box(world.step(0.2).expect("step")))
+        });
     }
     group.finish();
 }
@@ -48,7 +50,9 @@ fn drag_step(c: &mut Criterion) {
     let mut group = c.benchmark_group("projectile_drag_step");
     for method in all_methods() {
         let mut world = drag_world(method);
-        group.bench_function(method.id(), |b| b.iter(|| black_box(world.step(0.01).expect("step"))));
+        group.bench_function(method.id(), |b| {
+            b.iter(|| black_box(world.step(0.01).expect("step")))
+        });
     }
     group.finish();
 }

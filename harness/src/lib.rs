@@ -6,6 +6,9 @@
 pub mod cases;
 pub mod report;
 pub mod row;
+pub mod scenes;
+pub mod simulate;
 pub mod snapshot;
+pub mod sweep;
+pub mod timing;
 pub mod tolerance;
-pub mod worlds;

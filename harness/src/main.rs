@@ -29,7 +29,12 @@ enum Command {
     Run {
         /// Case ids, as `list` prints them.
         cases: Vec<String>,
+        /// A reduced sweep (for CI and quick checks).
+        #[arg(long)]
+        quick: bool,
     },
+    /// Runs a scene file of your own.
+    Simulate(harness::simulate::SimulateArgs),
 }
 
 fn main() -> std::process::ExitCode {
@@ -47,12 +52,21 @@ fn real_main() -> Result<bool> {
     let cli = Cli::parse();
     let selected: Vec<String> = match cli.command {
         Some(Command::List) => {
+            println!("Cases:");
             for c in CASES {
-                println!("{:<16} {}", c.id, c.title);
+                println!("  {:<16} {}", c.id, c.title);
+            }
+            println!("Scene files ({}):", harness::scenes::scenes_dir().display());
+            for path in harness::scenes::list()? {
+                println!("  {}", path.display());
             }
             return Ok(true);
         }
-        Some(Command::Run { cases }) if !cases.is_empty() => cases,
+        Some(Command::Simulate(args)) => {
+            harness::simulate::run(&args)?;
+            return Ok(true);
+        }
+        Some(Command::Run { cases, .. }) if !cases.is_empty() => cases,
         _ => CASES.iter().map(|c| c.id.to_string()).collect(),
     };
     let started = Instant::now();
@@ -92,7 +106,10 @@ fn real_main() -> Result<bool> {
         rows.len() - failed.len(),
         failed.len(),
         started.elapsed().as_secs_f64(),
-        out.map_or(String::new(), |d| format!(" Report written to {}.", d.display()))
+        out.map_or(String::new(), |d| format!(
+            " Report written to {}.",
+            d.display()
+        ))
     );
     for r in &failed {
         println!(

@@ -145,11 +145,15 @@ pub fn update_readme(readme: &Path, results: &[(&str, CaseReport)]) -> Result<bo
             results
                 .iter()
                 .flat_map(|(_, r)| &r.rows)
-                .find(|r| r.case == *case && r.check == *check && r.method == *method && r.dt == *dt)
+                .find(|r| {
+                    r.case == *case && r.check == *check && r.method == *method && r.dt == *dt
+                })
                 .cloned()
         })
         .collect();
-    let mut table = String::from("| case | check | method | dt (s) | value | expected | tolerance | pass |\n|---|---|---|---|---|---|---|---|\n");
+    let mut table = String::from(
+        "| case | check | method | dt (s) | value | expected | tolerance | pass |\n|---|---|---|---|---|---|---|---|\n",
+    );
     for r in &rows {
         let _ = writeln!(
             table,

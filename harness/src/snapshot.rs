@@ -26,9 +26,7 @@ pub fn round_sig(v: f64) -> String {
     if v.abs() < ROUND_OFF_FLOOR {
         return "0".into();
     }
-    let s = format!("{:.*e}", SIGNIFICANT_DIGITS - 1, v);
-    // A value that rounds to zero at this precision prints as "-0.00000e0".
-    s.trim_start_matches('-').starts_with("0.").then(|| "0".to_string()).unwrap_or(s)
+    format!("{:.*e}", SIGNIFICANT_DIGITS - 1, v)
 }
 
 /// The snapshot text of one method's traces.

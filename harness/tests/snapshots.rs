@@ -16,14 +16,27 @@ fn check_case(id: &str) {
         .rows
         .iter()
         .filter(|r| !r.pass)
-        .map(|r| format!("{} {} dt={}: {} vs {} ± {}", r.check, r.method, r.dt, r.value, r.expected, r.tolerance))
+        .map(|r| {
+            format!(
+                "{} {} dt={}: {} vs {} ± {}",
+                r.check, r.method, r.dt, r.value, r.expected, r.tolerance
+            )
+        })
         .collect();
-    assert!(failed.is_empty(), "{id}: failing rows:\n{}", failed.join("\n"));
+    assert!(
+        failed.is_empty(),
+        "{id}: failing rows:\n{}",
+        failed.join("\n")
+    );
     assert!(!report.rows.is_empty(), "{id} produced no rows");
     let mut methods: Vec<&str> = report.traces.iter().map(|t| t.method.as_str()).collect();
     methods.dedup();
     for method in methods {
-        let traces: Vec<&MethodTrace> = report.traces.iter().filter(|t| t.method == method).collect();
+        let traces: Vec<&MethodTrace> = report
+            .traces
+            .iter()
+            .filter(|t| t.method == method)
+            .collect();
         insta::assert_snapshot!(format!("{id}__{method}"), render(&traces));
     }
 }

@@ -96,22 +96,12 @@ impl EngineForce {
 }
 
 /// The number of steps [`engine::World::run`] takes over `duration` with
-/// `dt`: exact when `dt` divides `duration` to within round-off, else one
-/// more (the last step shortened). Refuses more than 1e8.
+/// `dt` ([`engine::step_count`]), with its refusal as a plain reason.
 pub(crate) fn step_count(duration: f64, dt: f64) -> Result<u64, &'static str> {
-    if !(dt.is_finite() && dt > 0.0 && duration.is_finite() && duration > 0.0) {
-        return Err("dt and duration must be finite and > 0");
-    }
-    let ratio = duration / dt;
-    let steps = if (ratio - ratio.round()).abs() <= 1e-9 * ratio {
-        ratio.round()
-    } else {
-        ratio.ceil()
-    };
-    if steps > MAX_RUN_STEPS {
-        return Err("more than 1e8 steps: raise dt or shorten the run");
-    }
-    Ok((steps as u64).max(1))
+    engine::step_count(duration, dt).map_err(|e| match e {
+        engine::EngineError::InvalidParameter { reason, .. } => reason,
+        _ => "invalid step count",
+    })
 }
 
 /// Validates `file` and converts it.

@@ -12,7 +12,7 @@
 //! The seed's problem is λ = −1000 s⁻¹, y0 = 1, g(t) = t + 2:
 //! y' = −1000(y − (t + 2)) + 1, y = t + 2 − e^(−1000t).
 
-use engine::{EngineError, Integrator, Method, OdeSystem, Solution};
+use engine::{Method, OdeSystem, Solution};
 
 /// y' = λ (y − g(t)) + g'(t) with g(t) = `forcing_offset` + `forcing_slope`·t.
 /// A first-order system of dimension 1 (time in s, y dimensionless).
@@ -61,39 +61,13 @@ impl LinearTest {
     /// at `duration` when `dt` does not divide it. With `dormand_prince`,
     /// `dt` is the output interval. Records every step.
     ///
-    /// A blow-up (non-finite y) is an [`EngineError::BlowUp`]; a finite but
+    /// A blow-up (non-finite y) is an [`engine::EngineError::BlowUp`]; a finite but
     /// huge y (explicit Euler just past its limit) is returned for the
     /// caller to judge. Refuses `semi_implicit_euler` and `velocity_verlet`
-    /// ([`EngineError::MethodNeedsSecondOrder`]): this system is first order.
+    /// ([`engine::EngineError::MethodNeedsSecondOrder`]): this system is first order.
     pub fn solve(&self, method: Method, dt: f64, duration: f64) -> engine::Result<Solution> {
-        let steps = crate::build::step_count(duration, dt).map_err(|reason| {
-            EngineError::InvalidParameter {
-                what: "number of steps (duration / dt)".into(),
-                value: duration / dt,
-                reason,
-            }
-        })?;
-        let mut integrator = Integrator::new(method)?;
         let mut sys = *self;
-        let mut y = vec![self.y0];
-        let mut solution = Solution {
-            t: vec![0.0],
-            y: vec![y.clone()],
-            ..Solution::default()
-        };
-        let mut t = 0.0;
-        for i in 1..=steps {
-            let t_end = if i == steps { duration } else { i as f64 * dt };
-            while t < t_end {
-                let taken = integrator.advance(&mut sys, t, &mut y, t_end - t)?;
-                // A step that used all the room left lands exactly on t_end.
-                t = if taken == t_end - t { t_end } else { t + taken };
-            }
-            solution.t.push(t_end);
-            solution.y.push(y.clone());
-        }
-        solution.stats = integrator.stats();
-        Ok(solution)
+        engine::integrate_to(&mut sys, method, 0.0, &[self.y0], duration, dt)
     }
 }
 

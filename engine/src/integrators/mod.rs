@@ -358,6 +358,33 @@ pub fn integrate_fixed<S: OdeSystem + ?Sized>(
     steps: usize,
 ) -> Result<Solution> {
     crate::error::require_positive("step", h)?;
+    integrate_grid(sys, method, t0, y0, t0 + steps as f64 * h, h, steps as u64)
+}
+
+/// Integrates `sys` from `(t0, y0)` to `t_end` in steps of `dt` on the grid
+/// of [`crate::time_grid`] (the last step shortened when `dt` does not divide
+/// the span), recording every step.
+pub fn integrate_to<S: OdeSystem + ?Sized>(
+    sys: &mut S,
+    method: Method,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    dt: f64,
+) -> Result<Solution> {
+    let steps = crate::time_grid::step_count(t_end - t0, dt)?;
+    integrate_grid(sys, method, t0, y0, t_end, dt, steps)
+}
+
+fn integrate_grid<S: OdeSystem + ?Sized>(
+    sys: &mut S,
+    method: Method,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    h: f64,
+    steps: u64,
+) -> Result<Solution> {
     let mut integrator = Integrator::new(method)?;
     let mut y = y0.to_vec();
     let mut solution = Solution {
@@ -365,20 +392,19 @@ pub fn integrate_fixed<S: OdeSystem + ?Sized>(
         y: vec![y.clone()],
         stats: Stats::default(),
     };
-    for i in 0..steps {
-        let t = t0 + i as f64 * h;
-        let t_end = t0 + (i + 1) as f64 * h;
-        let mut tc = t;
-        while tc < t_end {
-            let taken = integrator.advance(sys, tc, &mut y, t_end - tc)?;
-            // A step that used all the room left lands exactly on t_end.
-            tc = if taken == t_end - tc {
-                t_end
+    let mut t = t0;
+    for i in 1..=steps {
+        let t_next = crate::time_grid::grid_time(t0, t_end, h, i, steps);
+        while t < t_next {
+            let taken = integrator.advance(sys, t, &mut y, t_next - t)?;
+            // A step that used all the room left lands exactly on t_next.
+            t = if taken == t_next - t {
+                t_next
             } else {
-                tc + taken
+                t + taken
             };
         }
-        solution.t.push(t_end);
+        solution.t.push(t_next);
         solution.y.push(y.clone());
     }
     solution.stats = integrator.stats();

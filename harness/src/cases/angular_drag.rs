@@ -6,7 +6,7 @@
 use super::torque::rotation_case;
 use super::{CaseReport, sample_at};
 use crate::row::RowSink;
-use crate::worlds;
+use crate::scenes;
 use anyhow::Result;
 use engine::Method;
 use references::AngularDrag;
@@ -20,8 +20,9 @@ pub const RK4_FINE_DT: f64 = 0.005;
 /// Runs the case.
 pub fn run() -> Result<CaseReport> {
     let exact = AngularDrag::seed();
-    let mut report = rotation_case("angular_drag", true, |t| exact.omega(t), |t| exact.theta(t))?;
-    let trace = worlds::torque(Method::Rk4, true)?.run(super::torque::DURATION, RK4_FINE_DT)?;
+    let mut report = rotation_case("angular_drag", |t| exact.omega(t), |t| exact.theta(t))?;
+    let trace = scenes::world("angular_drag", Method::Rk4)?
+        .run(scenes::load("angular_drag")?.duration(), RK4_FINE_DT)?;
     let s = sample_at(&trace, 8.7)?.states[0];
     RowSink {
         case: "angular_drag",

@@ -1,15 +1,17 @@
 //! The stiff test (seed §4.3, after Hoffman): y' = −1000(y − (t + 2)) + 1,
 //! y(0) = 1, exact y = t + 2 − e^(−1000t), over t ∈ [0, 1] at the steps of
-//! CASES.md. The error e = y − (t + 2) obeys e_{n+1} = R(hλ) e_n exactly
+//! CASES.md, over the scene's duration (the last whole step at or before it). The error e = y − (t + 2) obeys e_{n+1} = R(hλ) e_n exactly
 //! for every Runge–Kutta method (the forcing is linear in t), so the
 //! engine's error must equal −R(hλ)^n: stable where |R| ≤ 1, blown up
 //! where theory says so.
 
 use super::{CaseReport, MethodTrace, all_methods, dp_global_bound, dp_reason};
 use crate::row::RowSink;
+use crate::scenes;
 use crate::tolerance::ROUND_OFF_RELATIVE;
+use anyhow::Context;
 use anyhow::Result;
-use engine::{FnSystem, integrate_fixed};
+use engine::integrate_fixed;
 use references::Hoffman;
 use references::linear_stability::stability_function;
 
@@ -18,15 +20,16 @@ use references::linear_stability::stability_function;
 /// Euler stable at 0.01 and 0.1. Every method runs at every step.
 pub const STEPS: [f64; 7] = [0.0019, 0.0021, 0.003, 0.0027, 0.0029, 0.01, 0.1];
 
-/// End of the run (s): the last whole step at or before it.
-pub const T_END: f64 = 1.0;
-
 /// A blow-up, as CASES.md counts one: |error| past 1e19 near t = 1.
 const BLOW_UP: f64 = 1e19;
 
 /// Runs the case.
 pub fn run() -> Result<CaseReport> {
     let exact = Hoffman::seed();
+    let ode = scenes::load("hoffman")?
+        .linear_test()
+        .context("scenes/hoffman.toml must hold a [linear_test]")?;
+    let t_end = scenes::load("hoffman")?.duration();
     let mut report = CaseReport::default();
     for method in all_methods() {
         if method.needs_second_order() {
@@ -37,10 +40,9 @@ pub fn run() -> Result<CaseReport> {
             continue;
         }
         for h in STEPS {
-            let n = (T_END / h + 1e-9).floor() as usize;
-            let mut system =
-                FnSystem::new(1, |t, y: &[f64], dy: &mut [f64]| dy[0] = exact.rhs(t, y[0]));
-            let solution = integrate_fixed(&mut system, method, 0.0, &[exact.y0], h, n)?;
+            let n = (t_end / h + 1e-9).floor() as usize;
+            let mut system = ode;
+            let solution = integrate_fixed(&mut system, method, 0.0, &[ode.y0], h, n)?;
             let t_last = solution.t[n];
             let error = solution.y[n][0] - exact.exact(t_last);
             let mut sink = RowSink {

@@ -4,16 +4,12 @@
 
 use super::{CaseReport, MethodTrace, all_methods, dp_global_bound, dp_reason, sample_at};
 use crate::row::RowSink;
+use crate::scenes;
 use crate::tolerance::{ROUND_OFF_RELATIVE, from_order, from_order_reason};
-use crate::worlds;
 use anyhow::{Context, Result};
 use engine::{Method, Trace};
 use references::Projectile;
 
-/// The seed's step (s).
-pub const DT: f64 = 0.01;
-/// Run length (s); the landing event stops the run before it.
-pub const DURATION: f64 = 8.7;
 /// Time at which the first-order methods' y error is compared with theory (s).
 const T_CHECK: f64 = 8.0;
 
@@ -34,6 +30,8 @@ pub(crate) const EVENT_CHECKS: [&str; 4] = ["landing_time", "range", "apex_heigh
 
 /// Runs the case.
 pub fn run() -> Result<CaseReport> {
+    let scene = scenes::load("projectile")?;
+    let (dt, duration) = (scene.dt(), scene.duration());
     let exact = Projectile::seed();
     let g = exact.gravity;
     let expected = [
@@ -44,12 +42,12 @@ pub fn run() -> Result<CaseReport> {
     ];
     let mut report = CaseReport::default();
     for method in all_methods() {
-        let trace = worlds::projectile(method, false)?.run(DURATION, DT)?;
+        let trace = scenes::world("projectile", method)?.run(duration, dt)?;
         let found = events(&trace)?;
         let mut sink = RowSink {
             case: "projectile",
             method: method.id(),
-            dt: DT,
+            dt,
             rows: &mut report.rows,
         };
         if method.is_adaptive() {
@@ -58,7 +56,7 @@ pub fn run() -> Result<CaseReport> {
                 sink.within(check, value, want, bound, dp_reason(trace.stats.steps));
             }
         } else {
-            let half = events(&worlds::projectile(method, false)?.run(DURATION, DT / 2.0)?)?;
+            let half = events(&scenes::world("projectile", method)?.run(duration, dt / 2.0)?)?;
             for (((check, value), value_half), want) in
                 EVENT_CHECKS.iter().zip(found).zip(half).zip(expected)
             {
@@ -85,7 +83,7 @@ pub fn run() -> Result<CaseReport> {
                 } else {
                     -1.0
                 };
-                let predicted = sign * g * DT * s.t / 2.0;
+                let predicted = sign * g * dt * s.t / 2.0;
                 let error = s.states[0].position.y - exact.position(s.t)[1];
                 sink.within(
                     "y_error_t8",
@@ -108,7 +106,7 @@ pub fn run() -> Result<CaseReport> {
                 );
             }
         }
-        report.traces.push(ballistic_trace(method, DT, &trace, |t| {
+        report.traces.push(ballistic_trace(method, dt, &trace, |t| {
             let p = exact.position(t);
             Some([p[0], p[1]])
         }));

@@ -6,20 +6,17 @@
 use super::projectile::{EVENT_CHECKS, ballistic_trace, events};
 use super::{CaseReport, all_methods, dp_global_bound, dp_reason, sample_at};
 use crate::row::RowSink;
+use crate::scenes;
 use crate::tolerance::{from_order, from_order_reason, half_unit};
-use crate::worlds;
 use anyhow::Result;
 use engine::Method;
 use references::DragReference;
 use references::drag_reference_values as cases_md;
 
-/// The seed's step (s).
-pub const DT: f64 = 0.01;
-/// Run length (s); the landing event stops the run before it.
-pub const DURATION: f64 = 8.7;
-
 /// Runs the case.
 pub fn run() -> Result<CaseReport> {
+    let scene = scenes::load("projectile_drag")?;
+    let (dt, duration) = (scene.dt(), scene.duration());
     let reference = DragReference::compute()?;
     let expected = [
         cases_md::LANDING_TIME,
@@ -39,7 +36,7 @@ pub fn run() -> Result<CaseReport> {
     let state_checks = ["x_t5", "y_t5", "vx_t5", "vy_t5"];
     let mut report = CaseReport::default();
     for method in all_methods() {
-        let trace = worlds::projectile(method, true)?.run(DURATION, DT)?;
+        let trace = scenes::world("projectile_drag", method)?.run(duration, dt)?;
         let found = events(&trace)?;
         let at5 = sample_at(&trace, cases_md::STATE_TIME)?.states[0];
         let state = [
@@ -51,7 +48,7 @@ pub fn run() -> Result<CaseReport> {
         let mut sink = RowSink {
             case: "projectile_drag",
             method: method.id(),
-            dt: DT,
+            dt,
             rows: &mut report.rows,
         };
         let checks = EVENT_CHECKS.iter().chain(&state_checks);
@@ -73,7 +70,7 @@ pub fn run() -> Result<CaseReport> {
                 );
             }
         } else {
-            let half_trace = worlds::projectile(method, true)?.run(DURATION, DT / 2.0)?;
+            let half_trace = scenes::world("projectile_drag", method)?.run(duration, dt / 2.0)?;
             let half_events = events(&half_trace)?;
             let h5 = sample_at(&half_trace, cases_md::STATE_TIME)?.states[0];
             let half_state = [h5.position.x, h5.position.y, h5.velocity.x, h5.velocity.y];
@@ -95,7 +92,7 @@ pub fn run() -> Result<CaseReport> {
             }
         }
         if method == Method::Rk4 {
-            let coarse = worlds::projectile(method, true)?.run(DURATION, 0.2)?;
+            let coarse = scenes::world("projectile_drag", method)?.run(duration, 0.2)?;
             let s = sample_at(&coarse, cases_md::STATE_TIME)?.states[0];
             let error = (s.position.x - cases_md::STATE_X).hypot(s.position.y - cases_md::STATE_Y);
             let mut coarse_sink = RowSink {
@@ -112,7 +109,7 @@ pub fn run() -> Result<CaseReport> {
                 "CASES.md: RK4 at h = 0.2 errs by 4.5e-4 m at t = 5 s (two digits: +/- 5e-6)",
             );
         }
-        report.traces.push(ballistic_trace(method, DT, &trace, |t| {
+        report.traces.push(ballistic_trace(method, dt, &trace, |t| {
             reference.state_at(t).ok().map(|s| [s[0], s[1]])
         }));
     }

@@ -4,27 +4,24 @@
 
 use super::{CaseReport, MethodTrace, all_methods, dp_global_bound, dp_reason};
 use crate::row::RowSink;
+use crate::scenes;
 use crate::tolerance::{ROUND_OFF_RELATIVE, half_unit};
-use crate::worlds;
 use anyhow::Result;
 use engine::Method;
 use references::SpringOscillator;
 use references::linear_stability::{oscillator_after, oscillator_growth_per_step};
 
-/// The seed's step (s).
-pub const DT: f64 = 0.2;
-/// The seed's duration (s): 286 steps.
-pub const DURATION: f64 = 57.2;
-const STEPS: u32 = 286;
-
 /// Runs the case.
 pub fn run() -> Result<CaseReport> {
+    let scene = scenes::load("spring")?;
+    let (dt, duration) = (scene.dt(), scene.duration());
+    let steps = u32::try_from(scene.steps())?;
     let exact = SpringOscillator::seed();
     let amplitude = exact.x0 - exact.rest_length;
     let e0 = exact.energy();
     let mut report = CaseReport::default();
     for method in all_methods() {
-        let trace = worlds::spring(method)?.run(DURATION, DT)?;
+        let trace = scenes::world("spring", method)?.run(duration, dt)?;
         let x_of = |s: &engine::Sample| s.states[0].position.x;
         let last = trace.last().expect("a run has samples");
         let x_end = x_of(last);
@@ -40,14 +37,14 @@ pub fn run() -> Result<CaseReport> {
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &e| {
                 (lo.min(e), hi.max(e))
             });
-        let x_exact = exact.position(DURATION);
+        let x_exact = exact.position(duration);
         let mut sink = RowSink {
             case: "spring",
             method: method.id(),
-            dt: DT,
+            dt,
             rows: &mut report.rows,
         };
-        let theory = oscillator_after(method, DT, exact.omega(), STEPS, amplitude, exact.v0);
+        let theory = oscillator_after(method, dt, exact.omega(), steps, amplitude, exact.v0);
         match theory {
             Some((u_theory, v_theory)) => {
                 let x_theory = exact.rest_length + u_theory;
@@ -110,10 +107,10 @@ pub fn run() -> Result<CaseReport> {
             );
         }
         if method == Method::ExplicitEuler {
-            let growth = oscillator_growth_per_step(method, DT, exact.omega()).expect("fixed step");
+            let growth = oscillator_growth_per_step(method, dt, exact.omega()).expect("fixed step");
             let u = x_end - exact.rest_length;
             let measured = (u * u + (v_end / exact.omega()).powi(2)).sqrt() / amplitude;
-            let predicted = growth.powi(STEPS as i32);
+            let predicted = growth.powi(steps as i32);
             sink.within(
                 "amplitude_growth",
                 measured,
@@ -156,7 +153,7 @@ pub fn run() -> Result<CaseReport> {
         }
         report.traces.push(MethodTrace {
             method: method.id().into(),
-            dt: DT,
+            dt,
             columns: vec!["t", "x", "v", "energy_rel"],
             samples: trace
                 .samples

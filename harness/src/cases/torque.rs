@@ -5,15 +5,11 @@
 
 use super::{CaseReport, MethodTrace, all_methods, dp_global_bound, dp_reason, sample_at};
 use crate::row::RowSink;
+use crate::scenes;
 use crate::tolerance::{from_order, from_order_reason};
-use crate::worlds;
 use anyhow::Result;
 use references::TorquePulse;
 
-/// The seed's step (s).
-pub const DT: f64 = 0.01;
-/// Run length (s).
-pub const DURATION: f64 = 8.7;
 /// Times (s) at which ω and θ are checked: the end of the pulse and of the run.
 pub(crate) const CHECK_TIMES: [f64; 2] = [0.7, 8.7];
 
@@ -25,10 +21,11 @@ const FLOOR: f64 = 1e-9;
 /// `omega(t)` and `theta(t)`, for every method.
 pub(crate) fn rotation_case(
     case: &str,
-    drag: bool,
     omega: impl Fn(f64) -> f64,
     theta: impl Fn(f64) -> f64,
 ) -> Result<CaseReport> {
+    let scene = scenes::load(case)?;
+    let (dt, duration) = (scene.dt(), scene.duration());
     let mut report = CaseReport::default();
     let pick = |trace: &engine::Trace| -> Result<Vec<f64>> {
         let mut out = Vec::new();
@@ -44,12 +41,12 @@ pub(crate) fn rotation_case(
         .flat_map(|&t| [omega(t), theta(t)])
         .collect();
     for method in all_methods() {
-        let trace = worlds::torque(method, drag)?.run(DURATION, DT)?;
+        let trace = scenes::world(case, method)?.run(duration, dt)?;
         let values = pick(&trace)?;
         let mut sink = RowSink {
             case,
             method: method.id(),
-            dt: DT,
+            dt,
             rows: &mut report.rows,
         };
         if method.is_adaptive() {
@@ -58,7 +55,7 @@ pub(crate) fn rotation_case(
                 sink.within(check, *value, *want, bound, dp_reason(trace.stats.steps));
             }
         } else {
-            let half = pick(&worlds::torque(method, drag)?.run(DURATION, DT / 2.0)?)?;
+            let half = pick(&scenes::world(case, method)?.run(duration, dt / 2.0)?)?;
             for (((check, value), value_half), want) in
                 checks.iter().zip(&values).zip(&half).zip(&expected)
             {
@@ -74,7 +71,7 @@ pub(crate) fn rotation_case(
         }
         report.traces.push(MethodTrace {
             method: method.id().into(),
-            dt: DT,
+            dt,
             columns: vec!["t", "angle", "omega", "angle_error"],
             samples: trace
                 .samples
@@ -92,5 +89,5 @@ pub(crate) fn rotation_case(
 /// Runs the case.
 pub fn run() -> Result<CaseReport> {
     let exact = TorquePulse::seed();
-    rotation_case("torque", false, |t| exact.omega(t), |t| exact.theta(t))
+    rotation_case("torque", |t| exact.omega(t), |t| exact.theta(t))
 }

@@ -1,0 +1,318 @@
+//! Step sweeps: every method on every smooth case, halving the step level
+//! by level (Dormand–Prince: tightening its tolerance), recording the error
+//! against the reference, the CPU time (minimum of N runs, release build)
+//! and the derivative evaluations (machine-independent).
+
+use crate::cases::all_methods;
+use crate::scenes;
+use crate::timing::min_time;
+use anyhow::Result;
+use engine::{EngineError, Method, Tolerance, World, integrate_fixed};
+use references::{AngularDrag, DragReference, Hoffman, SpringOscillator};
+use serde::Serialize;
+
+/// One point of a sweep.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SweepPoint {
+    /// Method id.
+    pub method: String,
+    /// Step (s) of a fixed-step method; output interval of Dormand–Prince.
+    pub h: f64,
+    /// Dormand–Prince tolerance; `None` for fixed-step methods.
+    pub tolerance: Option<f64>,
+    /// |error| at the end of the run, in the case's unit.
+    pub error_end: f64,
+    /// max |error| over the run.
+    pub max_error: f64,
+    /// Minimum CPU time over the timing runs (s).
+    pub cpu_seconds: f64,
+    /// Evaluations of the right-hand side.
+    pub evaluations: u64,
+    /// Whether the run stayed finite and its error below the case's scale.
+    pub stable: bool,
+}
+
+/// A whole sweep of one case.
+#[derive(Debug, Clone, Serialize)]
+pub struct Sweep {
+    /// Case id.
+    pub case: &'static str,
+    /// What the error measures, with its unit.
+    pub error_label: &'static str,
+    /// Size of the solution (same unit): errors above it are "unstable".
+    pub scale: f64,
+    /// The points, method by method, coarse to fine.
+    pub points: Vec<SweepPoint>,
+}
+
+/// How much of a sweep to run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SweepSettings {
+    /// Timing runs per point (the minimum is kept).
+    pub timing_runs: usize,
+    /// Halvings of the step beyond the first level.
+    pub levels: u32,
+}
+
+impl SweepSettings {
+    /// The full sweep of the report.
+    pub const FULL: SweepSettings = SweepSettings {
+        timing_runs: 5,
+        levels: 13,
+    };
+    /// The `--quick` sweep: one timing run, fewer levels.
+    pub const QUICK: SweepSettings = SweepSettings {
+        timing_runs: 1,
+        levels: 10,
+    };
+}
+
+/// Dormand–Prince tolerances swept, 1e-3 to 1e-12.
+pub const DP_TOLERANCES: [f64; 10] = [
+    1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12,
+];
+
+/// Errors below this fraction of the scale are at the round-off floor:
+/// sweeping further only measures round-off.
+pub const ROUND_OFF_FLOOR: f64 = 1e-12;
+
+/// What one observed run returns: (|error| at the end, max |error| over the
+/// run, evaluations).
+type Measured = (f64, f64, u64);
+
+/// Runs a method at a step; `true` asks for the error to be observed.
+type RunFn = Box<dyn Fn(Method, f64, bool) -> Result<Measured>>;
+
+/// A case that can be swept: its error at step `h`, and the same run
+/// without observation for timing.
+struct SweepCase {
+    id: &'static str,
+    error_label: &'static str,
+    h0: f64,
+    scale: f64,
+    /// (error at end, max error, evaluations), or a blow-up.
+    run: RunFn,
+}
+
+/// Steps a world from 0 to `until` with `steps` equal steps (times i·h),
+/// calling `observe` after each step when asked.
+fn step_world(
+    world: &mut World,
+    until: f64,
+    steps: u64,
+    mut observe: impl FnMut(&World),
+) -> Result<(), EngineError> {
+    let h = until / steps as f64;
+    for i in 1..=steps {
+        let t = if i == steps { until } else { i as f64 * h };
+        world.step_to(t)?;
+        observe(world);
+    }
+    Ok(())
+}
+
+fn steps_for(until: f64, h: f64) -> u64 {
+    (until / h).round() as u64
+}
+
+fn spring_case() -> SweepCase {
+    let exact = SpringOscillator::seed();
+    SweepCase {
+        id: "spring",
+        error_label: "|x error| at 57.2 s (m)",
+        h0: 0.2,
+        scale: exact.x0 - exact.rest_length,
+        run: Box::new(move |method, h, observe| {
+            let mut world = scenes::world("spring", method)?;
+            let mut max_error: f64 = 0.0;
+            step_world(&mut world, 57.2, steps_for(57.2, h), |w| {
+                if observe {
+                    let e = (w.states()[0].position.x - exact.position(w.time())).abs();
+                    max_error = max_error.max(e);
+                }
+            })?;
+            let end = (world.states()[0].position.x - exact.position(57.2)).abs();
+            Ok((end, max_error, world.stats().evaluations))
+        }),
+    }
+}
+
+fn drag_case(reference: DragReference) -> SweepCase {
+    let reference = std::rc::Rc::new(reference);
+    SweepCase {
+        id: "projectile_drag",
+        error_label: "|position error| at 5 s (m)",
+        h0: 0.2,
+        scale: 100.0,
+        run: Box::new(move |method, h, observe| {
+            let mut world = scenes::world("projectile_drag", method)?;
+            let mut max_error: f64 = 0.0;
+            let mut failure = None;
+            step_world(&mut world, 5.0, steps_for(5.0, h), |w| {
+                if observe {
+                    match reference.state_at(w.time()) {
+                        Ok(r) => {
+                            let p = w.states()[0].position;
+                            max_error = max_error.max((p.x - r[0]).hypot(p.y - r[1]));
+                        }
+                        Err(e) => failure = Some(e),
+                    }
+                }
+            })?;
+            if let Some(e) = failure {
+                return Err(e.into());
+            }
+            let p = world.states()[0].position;
+            let r = reference.state_at(5.0)?;
+            Ok((
+                (p.x - r[0]).hypot(p.y - r[1]),
+                max_error,
+                world.stats().evaluations,
+            ))
+        }),
+    }
+}
+
+fn angular_drag_case() -> SweepCase {
+    let exact = AngularDrag::seed();
+    SweepCase {
+        id: "angular_drag",
+        error_label: "|angle error| at 8.7 s (rad)",
+        h0: 0.1,
+        scale: 1.0,
+        run: Box::new(move |method, h, observe| {
+            let mut world = scenes::world("angular_drag", method)?;
+            let mut max_error: f64 = 0.0;
+            step_world(&mut world, 8.7, steps_for(8.7, h), |w| {
+                if observe {
+                    max_error = max_error.max((w.states()[0].angle - exact.theta(w.time())).abs());
+                }
+            })?;
+            let end = (world.states()[0].angle - exact.theta(8.7)).abs();
+            Ok((end, max_error, world.stats().evaluations))
+        }),
+    }
+}
+
+fn hoffman_case() -> Result<SweepCase> {
+    let exact = Hoffman::seed();
+    let ode = scenes::load("hoffman")?
+        .linear_test()
+        .ok_or_else(|| anyhow::anyhow!("scenes/hoffman.toml must hold a [linear_test]"))?;
+    Ok(SweepCase {
+        id: "hoffman",
+        error_label: "|y error| at t = 1 (-)",
+        h0: 0.1,
+        scale: 1.0,
+        run: Box::new(move |method, h, _observe| {
+            let steps = steps_for(1.0, h) as usize;
+            let mut system = ode;
+            let solution = integrate_fixed(
+                &mut system,
+                method,
+                0.0,
+                &[ode.y0],
+                1.0 / steps as f64,
+                steps,
+            )?;
+            let errors = solution
+                .t
+                .iter()
+                .zip(&solution.y)
+                .map(|(&t, y)| (y[0] - exact.exact(t)).abs());
+            let max_error = errors.fold(0.0, f64::max);
+            let end = (solution.y[steps][0] - exact.exact(1.0)).abs();
+            Ok((end, max_error, solution.stats.evaluations))
+        }),
+    })
+}
+
+/// The cases swept, in report order.
+pub const SWEPT_CASES: [&str; 4] = ["spring", "projectile_drag", "angular_drag", "hoffman"];
+
+/// Runs the sweep of case `id`.
+pub fn run(id: &str, settings: SweepSettings) -> Result<Sweep> {
+    let case = match id {
+        "spring" => spring_case(),
+        "projectile_drag" => drag_case(DragReference::compute()?),
+        "angular_drag" => angular_drag_case(),
+        "hoffman" => hoffman_case()?,
+        other => anyhow::bail!("no sweep for case '{other}'"),
+    };
+    let mut points = Vec::new();
+    for method in all_methods() {
+        if id == "hoffman" && method.needs_second_order() {
+            continue;
+        }
+        let plan: Vec<(Method, f64, Option<f64>)> = if method.is_adaptive() {
+            DP_TOLERANCES
+                .iter()
+                .map(|&tol| {
+                    (
+                        Method::DormandPrince(Tolerance::uniform(tol)),
+                        case.h0,
+                        Some(tol),
+                    )
+                })
+                .collect()
+        } else {
+            (0..=settings.levels)
+                .map(|k| (method, case.h0 / f64::from(1u32 << k), None))
+                .collect()
+        };
+        for (m, h, tolerance) in plan {
+            let point = measure(&case, m, h, tolerance, settings)?;
+            let at_floor = point.stable && point.error_end < ROUND_OFF_FLOOR * case.scale;
+            points.push(point);
+            if at_floor && tolerance.is_none() {
+                break;
+            }
+        }
+    }
+    Ok(Sweep {
+        case: case.id,
+        error_label: case.error_label,
+        scale: case.scale,
+        points,
+    })
+}
+
+fn measure(
+    case: &SweepCase,
+    method: Method,
+    h: f64,
+    tolerance: Option<f64>,
+    settings: SweepSettings,
+) -> Result<SweepPoint> {
+    let observed = (case.run)(method, h, true);
+    let (error_end, max_error, evaluations, finite) = match observed {
+        Ok((e, m, n)) => (e, m, n, e.is_finite()),
+        Err(err) if is_blow_up(&err) => (f64::INFINITY, f64::INFINITY, 0, false),
+        Err(err) => return Err(err),
+    };
+    let cpu_seconds = if finite {
+        min_time(settings.timing_runs, || {
+            (case.run)(method, h, false).map(|_| ())
+        })?
+    } else {
+        f64::NAN
+    };
+    Ok(SweepPoint {
+        method: method.id().into(),
+        h,
+        tolerance,
+        error_end,
+        max_error,
+        cpu_seconds,
+        evaluations,
+        stable: finite && max_error < case.scale,
+    })
+}
+
+/// Whether an error is the engine reporting a blow-up (a result, not a fault).
+pub fn is_blow_up(err: &anyhow::Error) -> bool {
+    matches!(
+        err.downcast_ref::<EngineError>(),
+        Some(EngineError::BlowUp { .. })
+    )
+}
