@@ -78,6 +78,15 @@ pub enum EngineError {
         /// Last residual norm.
         residual: f64,
     },
+    /// Contact handling could not go on: a time-of-impact search did not
+    /// converge, or a step needed more contact events than allowed.
+    #[error("contact handling failed at t = {t} s: {reason}")]
+    Contact {
+        /// Time at the start of the step (or piece of step), in s.
+        t: f64,
+        /// What went wrong, with its numbers.
+        reason: String,
+    },
     /// The Jacobian of the implicit step is singular.
     #[error("singular Newton matrix at t = {t} s")]
     SingularJacobian {

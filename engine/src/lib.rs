@@ -8,8 +8,12 @@
 //!   polygons, boxes and circles with mass properties from the geometry;
 //! - [`forces`]: gravity, springs, quadratic and angular drag, point forces,
 //!   torques, each with an optional time window; the [`Force`] trait;
+//! - [`collision`], [`contact`]: detection (broad phase, separating axes,
+//!   time of impact) and response (impulses with restitution, resting
+//!   contact, Coulomb friction) of seed §7;
 //! - [`World`]: steps them, splits steps at force switches, locates events
-//!   (landing, apex) by root finding, and reports blow-ups as typed errors.
+//!   (landing, apex) by root finding, cuts steps at contacts, and reports
+//!   blow-ups as typed errors.
 //!
 //! ```
 //! use engine::{BodyDef, World, Method, forces::{Spring, Attachment}};
@@ -33,6 +37,7 @@
 
 pub mod body;
 pub mod collision;
+pub mod contact;
 pub mod error;
 pub mod events;
 pub mod forces;
@@ -46,6 +51,7 @@ mod world;
 mod world_ode;
 
 pub use body::{Body, BodyDef, BodyId, BodyKind, BodyState};
+pub use contact::{ContactEvent, ContactEventKind, ContactSettings, StepProfile, ToiMethod};
 pub use error::{EngineError, Result};
 pub use events::{Crossing, EventRecord, EventSpec, Quantity};
 pub use forces::{Force, ForceContext, TimeWindow, Wrench};

@@ -10,8 +10,31 @@
 //!    ([`crate::events`]); a terminal event ends the run at its exact time;
 //! 4. **guard**: a non-finite state, or an energy past the optional bound,
 //!    is a typed [`EngineError::BlowUp`] naming the time and the step.
+//!
+//! A world that asked for contacts ([`World::set_contact_settings`]) and
+//! has at least two shapes, one of them on a moving body, also handles
+//! contacts ([`crate::contact`]); each piece of step is then, in
+//! order, one flat list of named phases, each timed into a
+//! [`StepProfile`] when profiling is on:
+//! 1. **respond** (settle): at the piece's start, impulses for the touching
+//!    pairs that approach (seed eq. 7.15 with restitution), projection of
+//!    pairs that sank, and the choice of the resting pairs whose contact
+//!    forces enter the right-hand side (seed §7.1 after Baraff); the
+//!    integrator's cached derivative is dropped when anything changed;
+//! 2. **integrate** a trial step to the end of the step (or segment);
+//! 3. **broad phase** (sort-and-sweep of bounding boxes) and **narrow
+//!    phase** (exact distances) at the trial step's end;
+//! 4. **time of impact**: the first contact inside the trial step, by the
+//!    seed's bisection (Fig. 7.7–7.8) or conservative advancement, and the
+//!    first stop of a sliding contact, by root finding; the step is cut
+//!    there, events are located in the piece kept, and the next piece
+//!    starts with a settle. Several contacts in one step are so handled in
+//!    time order. A world without contacts runs none of this.
 
 use crate::body::{Body, BodyDef, BodyId, BodyState};
+use crate::contact::pipeline::{ContactPipeline, Phase, Profiler};
+use crate::contact::resting::RestingContacts;
+use crate::contact::{ContactEvent, ContactSettings, StepProfile};
 use crate::error::{EngineError, Result, require_positive};
 use crate::events::{EventRecord, EventSpec};
 use crate::forces::{Force, ForceContext, TimeWindow, Wrench};
@@ -52,6 +75,17 @@ pub struct World {
     time: f64,
     stopped: bool,
     energy_limit: Option<f64>,
+    contact_settings: ContactSettings,
+    /// Whether contacts were asked for ([`World::set_contact_settings`]).
+    contacts_enabled: bool,
+    /// Present iff contacts are enabled and the world has two collidable
+    /// shapes (one moving).
+    contacts: Option<ContactPipeline>,
+    /// The resting pairs, read by the right-hand side.
+    resting: RestingContacts,
+    /// Contact events of pipelines replaced when bodies were added.
+    earlier_contact_events: Vec<ContactEvent>,
+    profiler: Profiler,
     // Scratch buffers reused by every step.
     y: Vec<f64>,
     y_start: Vec<f64>,
@@ -73,6 +107,12 @@ impl World {
             time: 0.0,
             stopped: false,
             energy_limit: None,
+            contact_settings: ContactSettings::default(),
+            contacts_enabled: false,
+            contacts: None,
+            resting: RestingContacts::default(),
+            earlier_contact_events: Vec::new(),
+            profiler: Profiler::default(),
             y: Vec::new(),
             y_start: Vec::new(),
             y_probe: Vec::new(),
@@ -87,7 +127,92 @@ impl World {
         self.bodies.push(body);
         self.states.push(state);
         self.layout = Layout::new(&self.bodies);
+        self.rebuild_contacts();
         Ok(self.bodies.len() - 1)
+    }
+
+    fn rebuild_contacts(&mut self) {
+        if let Some(old) = self.contacts.take() {
+            self.earlier_contact_events.extend(old.events);
+        }
+        self.contacts = if self.contacts_enabled {
+            ContactPipeline::new(&self.bodies, self.contact_settings)
+        } else {
+            None
+        };
+        self.resting.pairs.clear();
+        self.resting.friction = self.contact_settings.friction;
+        self.resting.tolerance = self.contact_settings.tolerance;
+    }
+
+    /// Turns contact handling on with these settings (restitution,
+    /// friction, tolerances: see [`ContactSettings`]), validated; they apply
+    /// from the next step. Off by default: a world built without contact
+    /// settings lets shapes pass through each other (DESIGN.md: model no
+    /// more than the scene asks for), and a world with fewer than two
+    /// shapes, or none on a moving body, runs no collision code even when
+    /// on.
+    pub fn set_contact_settings(&mut self, settings: ContactSettings) -> Result<()> {
+        settings.validate()?;
+        self.contact_settings = settings;
+        if self.contacts_enabled {
+            if let Some(p) = self.contacts.as_mut() {
+                p.settings = settings;
+            }
+        } else {
+            self.contacts_enabled = true;
+            self.rebuild_contacts();
+        }
+        self.resting.friction = settings.friction;
+        self.resting.tolerance = settings.tolerance;
+        Ok(())
+    }
+
+    /// Turns contact handling off (resting pairs are dropped; the events
+    /// recorded so far are kept).
+    pub fn disable_contacts(&mut self) {
+        self.contacts_enabled = false;
+        self.rebuild_contacts();
+    }
+
+    /// The contact settings.
+    pub fn contact_settings(&self) -> ContactSettings {
+        self.contact_settings
+    }
+
+    /// Whether the world runs collision code: contacts are on and it has at
+    /// least two bodies with a shape, one of them dynamic (DESIGN.md: "a
+    /// scene without two collidable shapes runs no collision code").
+    pub fn has_contacts(&self) -> bool {
+        self.contacts.is_some()
+    }
+
+    /// The contact events so far (impacts, rest, release, stick, slip), in
+    /// time order.
+    pub fn contact_events(&self) -> Vec<ContactEvent> {
+        let mut all = self.earlier_contact_events.clone();
+        if let Some(p) = &self.contacts {
+            all.extend(p.events.iter().copied());
+        }
+        all
+    }
+
+    /// Turns per-phase timing on or off (off by default: reading the clock
+    /// around every phase costs more than a cheap step). The counters of
+    /// the [`StepProfile`] move either way.
+    pub fn set_profiling(&mut self, on: bool) {
+        self.profiler.on = on;
+    }
+
+    /// Time spent per phase and work counters since the world was built or
+    /// the profile was reset.
+    pub fn profile(&self) -> StepProfile {
+        self.profiler.profile
+    }
+
+    /// Zeroes the profile.
+    pub fn reset_profile(&mut self) {
+        self.profiler.profile = StepProfile::default();
     }
 
     /// Adds a force active at all times.
@@ -231,6 +356,7 @@ impl World {
         let mut t = self.time;
         for &segment_end in edges {
             let middle = 0.5 * (t + segment_end);
+            let mut pipeline = self.contacts.take();
             let mut sys = WorldOde {
                 bodies: &self.bodies,
                 forces: self
@@ -244,13 +370,47 @@ impl World {
                 layout: &self.layout,
                 states: &mut self.scratch_states,
                 wrenches: &mut self.scratch_wrenches,
+                contacts: pipeline.is_some().then_some(&mut self.resting),
             };
             sys.states.clone_from(&self.states);
             // The right-hand side may differ from the last segment's.
             self.integrator.invalidate_cache();
+            if let Some(p) = pipeline.as_mut() {
+                let outcome = contact_segment(
+                    SegmentParts {
+                        integrator: &mut self.integrator,
+                        events: &self.events,
+                        forces: &self.forces,
+                        template: &self.states,
+                        energy_limit: self.energy_limit,
+                        y_start: &mut self.y_start,
+                        y_probe: &mut self.y_probe,
+                        profiler: &mut self.profiler,
+                    },
+                    p,
+                    &mut sys,
+                    (t, segment_end),
+                    y,
+                    found,
+                );
+                self.contacts = pipeline;
+                match outcome? {
+                    Segment::Reached(t_end) => t = t_end,
+                    Segment::Stopped(t_stop) => {
+                        self.layout.unpack(y, &mut self.states);
+                        self.time = t_stop;
+                        self.stopped = true;
+                        return Ok(());
+                    }
+                }
+                continue;
+            }
             while t < segment_end {
                 self.y_start.clone_from(y);
+                let started = self.profiler.start();
                 let h = self.integrator.advance(&mut sys, t, y, segment_end - t)?;
+                self.profiler.stop(Phase::Integrate, started);
+                self.profiler.profile.steps += 1;
                 // A step that used all the room left lands exactly on the edge.
                 let t_next = if h == segment_end - t {
                     segment_end
@@ -277,19 +437,16 @@ impl World {
                     }
                 }
                 if let Some(limit) = self.energy_limit {
-                    self.layout.unpack(y, sys.states);
-                    let energy = total_energy(&self.bodies, &self.forces, t_next, sys.states);
-                    if energy.is_nan() || energy.abs() > limit {
-                        // Name the step that produced it, as the non-finite
-                        // check does: its start time and 0-based index.
-                        return Err(EngineError::BlowUp {
-                            t,
-                            step: self.integrator.stats().steps - 1,
-                            reason: format!(
-                                "energy {energy:e} J at t = {t_next} s beyond the bound {limit:e} J"
-                            ),
-                        });
-                    }
+                    check_energy(
+                        &self.bodies,
+                        &self.forces,
+                        &self.layout,
+                        &mut sys,
+                        y,
+                        (t, t_next),
+                        self.integrator.stats().steps - 1,
+                        limit,
+                    )?;
                 }
                 t = t_next;
             }
@@ -344,6 +501,150 @@ fn total_energy(bodies: &[Body], forces: &[ForceEntry], t: f64, states: &[BodySt
         .filter_map(|f| f.force.potential_energy(&ctx))
         .sum();
     kinetic + potential
+}
+
+/// The energy guard after the step `(t, t_next)`: a NaN energy or one
+/// beyond `limit` (J) is a blow-up naming the step (its start time and
+/// 0-based index), as the non-finite check does.
+#[allow(clippy::too_many_arguments)]
+fn check_energy(
+    bodies: &[Body],
+    forces: &[ForceEntry],
+    layout: &Layout,
+    sys: &mut WorldOde<'_>,
+    y: &[f64],
+    (t, t_next): (f64, f64),
+    step: u64,
+    limit: f64,
+) -> Result<()> {
+    layout.unpack(y, sys.states);
+    let energy = total_energy(bodies, forces, t_next, sys.states);
+    if energy.is_nan() || energy.abs() > limit {
+        return Err(EngineError::BlowUp {
+            t,
+            step,
+            reason: format!("energy {energy:e} J at t = {t_next} s beyond the bound {limit:e} J"),
+        });
+    }
+    Ok(())
+}
+
+/// The parts of a world a contact segment works with, besides the
+/// right-hand side (which borrows the bodies and scratch states).
+struct SegmentParts<'w> {
+    integrator: &'w mut Integrator,
+    events: &'w [EventSpec],
+    forces: &'w [ForceEntry],
+    template: &'w [BodyState],
+    energy_limit: Option<f64>,
+    y_start: &'w mut Vec<f64>,
+    y_probe: &'w mut Vec<f64>,
+    profiler: &'w mut Profiler,
+}
+
+/// How a contact segment ended.
+enum Segment {
+    /// At the segment's end (s).
+    Reached(f64),
+    /// At a terminal event (s); its state is in `y`.
+    Stopped(f64),
+}
+
+/// Integrates one force segment `(t, segment_end)` of a world with
+/// contacts: settle, trial step, cut at the first contact event, locate
+/// events in the piece kept, settle again, and so on (see the module docs).
+fn contact_segment(
+    parts: SegmentParts<'_>,
+    pipeline: &mut ContactPipeline,
+    sys: &mut WorldOde<'_>,
+    (mut t, segment_end): (f64, f64),
+    y: &mut Vec<f64>,
+    found: &mut Vec<EventRecord>,
+) -> Result<Segment> {
+    let SegmentParts {
+        integrator,
+        events,
+        forces,
+        template,
+        energy_limit,
+        y_start,
+        y_probe,
+        profiler,
+    } = parts;
+    let limit = pipeline.settings.max_events_per_step;
+    let events_before = pipeline.events.len();
+    let mut pieces = 0usize;
+    if pipeline.settle(sys, t, y, profiler) {
+        integrator.invalidate_cache();
+    }
+    while t < segment_end {
+        pieces += 1;
+        if pieces > limit.saturating_add(1) {
+            return Err(EngineError::Contact {
+                t,
+                reason: format!(
+                    "more than {limit} contact events in one step ({} recorded): \
+                     an endless sequence of impacts?",
+                    pipeline.events.len() - events_before
+                ),
+            });
+        }
+        y_start.clone_from(y);
+        let started = profiler.start();
+        let h = integrator.advance(sys, t, y, segment_end - t)?;
+        profiler.stop(Phase::Integrate, started);
+        profiler.profile.steps += 1;
+        let t_next = if h == segment_end - t {
+            segment_end
+        } else {
+            t + h
+        };
+        let cut = pipeline.first_event(sys, integrator, t, y_start, y, h, y_probe, profiler)?;
+        let t_kept = match cut {
+            Some(s) if s < h => {
+                let started = profiler.start();
+                integrator.single_step(sys, t, y_start, s, y)?;
+                profiler.stop(Phase::Integrate, started);
+                t + s
+            }
+            _ => t_next,
+        };
+        if !events.is_empty() {
+            let stop = locate_events(
+                events,
+                integrator,
+                sys,
+                template,
+                (t, y_start),
+                (t_kept, y),
+                y_probe,
+                found,
+            )?;
+            if let Some(t_stop) = stop {
+                y.clone_from(y_probe);
+                return Ok(Segment::Stopped(t_stop));
+            }
+        }
+        if let Some(limit) = energy_limit {
+            let step = integrator.stats().steps - 1;
+            check_energy(
+                sys.bodies,
+                forces,
+                sys.layout,
+                sys,
+                y,
+                (t, t_kept),
+                step,
+                limit,
+            )?;
+        }
+        t = t_kept;
+        if pipeline.settle(sys, t, y, profiler) {
+            integrator.invalidate_cache();
+        }
+    }
+    profiler.profile.events = pipeline.events.len() as u64;
+    Ok(Segment::Reached(t))
 }
 
 /// Looks for every event crossing inside the accepted step `start → end`,

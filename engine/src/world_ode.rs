@@ -6,6 +6,7 @@
 //! state at all (DESIGN.md: "model no more than a scene needs").
 
 use crate::body::{Body, BodyState};
+use crate::contact::resting::RestingContacts;
 use crate::forces::{Force, ForceContext, Wrench};
 use crate::ode::{OdeSystem, Structure};
 
@@ -90,7 +91,9 @@ pub(crate) struct ActiveForce<'a> {
 }
 
 /// The world's right-hand side: Newton–Euler for every dynamic body,
-/// `ẍ = F/m`, `θ̈ = τ/I` (seed §4.2.3–4.2.4).
+/// `ẍ = F/m`, `θ̈ = τ/I` (seed §4.2.3–4.2.4), the forces including the
+/// contact forces of resting pairs when the world has contacts (seed §7.1,
+/// [`crate::contact`]).
 pub(crate) struct WorldOde<'a> {
     pub bodies: &'a [Body],
     pub forces: Vec<ActiveForce<'a>>,
@@ -99,6 +102,9 @@ pub(crate) struct WorldOde<'a> {
     pub states: &'a mut Vec<BodyState>,
     /// Scratch: accumulated wrenches.
     pub wrenches: &'a mut Vec<Wrench>,
+    /// The resting pairs and their contact forces; `None` in a world
+    /// without contacts (no collision code runs then).
+    pub contacts: Option<&'a mut RestingContacts>,
 }
 
 impl OdeSystem for WorldOde<'_> {
@@ -124,6 +130,9 @@ impl OdeSystem for WorldOde<'_> {
         };
         for f in self.forces.iter().filter(|f| f.active) {
             f.force.apply(&ctx, self.wrenches);
+        }
+        if let Some(contacts) = self.contacts.as_deref_mut() {
+            contacts.apply(self.bodies, self.states, self.wrenches);
         }
         dydt[..n].copy_from_slice(&y[n..]);
         for ((slot, body), w) in self

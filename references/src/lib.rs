@@ -42,4 +42,5 @@ pub use hoffman::Hoffman;
 pub use projectile::{Projectile, SEED_GRAVITY};
 pub use spring::SpringOscillator;
 pub use torque::TorquePulse;
+pub mod rapier_contacts;
 pub mod rapier_world;

@@ -14,7 +14,8 @@
 //! 3. `[[forces]]` and `[[events]]`: every body name defined, parameters in
 //!    their domain, windows with `end > start`, no force on static bodies
 //!    only, no torque on a particle (in [`crate::forces`]);
-//! 4. `[contact]` and `[linear_test]`: in their domain.
+//! 4. `[contact]` and `[linear_test]`: in their domain; a `[contact]` table
+//!    turns the world's contact handling on.
 //!
 //! Every number is checked finite first: TOML allows `nan` and `inf`.
 
@@ -566,6 +567,13 @@ pub(crate) fn build_world(
         world
             .add_event(event.clone())
             .map_err(|e| Problem::engine(&FieldPath::root().key("events").index(i), e))?;
+    }
+    if let Some(c) = &plan.contact {
+        // A [contact] table turns contact handling on (the engine's other
+        // contact settings keep their defaults).
+        world
+            .set_contact_settings(engine::ContactSettings::new(c.restitution, c.friction))
+            .map_err(|e| Problem::engine(&FieldPath::root().key("contact"), e))?;
     }
     Ok(world)
 }

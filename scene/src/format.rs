@@ -260,9 +260,10 @@ pub enum EventEntry {
     },
 }
 
-/// `[contact]`: collision response. Parsed and validated for the collision
-/// work of CASES.md case III; **the engine does not use these yet** (it has
-/// no collision code), so they change nothing in a run today.
+/// `[contact]`: collision response (CASES.md case III). Its presence turns
+/// the world's contact handling on ([`engine::World::set_contact_settings`]):
+/// without it, shapes pass through each other. A world with fewer than two
+/// shapes, or none on a dynamic body, runs no collision code either way.
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSpec {

@@ -99,7 +99,7 @@
 //! type = "apex"           # vy goes through 0 downwards
 //! body = "box"
 //!
-//! [contact]               # stored for collision work; not used yet
+//! [contact]               # turns contacts on (shapes collide)
 //! restitution = 0.5
 //! friction = 0.2
 //! "##;

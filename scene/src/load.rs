@@ -180,7 +180,8 @@ impl Scene {
         self.body_id(name).map(|i| self.colours()[i])
     }
 
-    /// The `[contact]` settings, validated. Not used by the engine yet.
+    /// The `[contact]` settings, validated (they turn contacts on in the
+    /// built world).
     pub fn contact(&self) -> Option<ContactSpec> {
         match &self.plan.content {
             Content::World(w) => w.contact,

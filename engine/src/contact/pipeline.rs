@@ -1,0 +1,593 @@
+//! The contact pipeline of a world: what happens at the start of every piece
+//! of step ([`ContactPipeline::settle`]) and how a step is cut at its first
+//! contact event ([`ContactPipeline::first_event`]).
+//!
+//! **Settle** (the response, seed §7.2 "calculer l'état après la
+//! collision"), at a time t where the world stands still:
+//! 1. broad phase: bounding boxes grown by ε, sort-and-sweep;
+//! 2. narrow phase: the manifold of every candidate pair within ε;
+//! 3. impulses: for every touching point, the relative normal velocity
+//!    v_n. A point approaching faster than the resting speed gets the
+//!    restitution target v_n' = −e v_n (seed eq. 7.10), every other touching
+//!    point the target v_n' ≥ 0; with friction, one friction row per manifold
+//!    (Coulomb impulse, |j_t| ≤ μ Σ j_n). Solved simultaneously per island
+//!    ([`super::solver`]); for one frictionless point this is exactly seed
+//!    eq. 7.15;
+//! 4. projection: a pair overlapping by more than [`PROJECTION_SLOP`] ε is
+//!    pushed apart along its normal (positions only, velocities untouched,
+//!    so no energy is injected the way a Baumgarte velocity bias would);
+//! 5. classification: a touching pair whose points no longer separate
+//!    faster than the resting speed *rests*: it is held by contact forces
+//!    during the next piece of step ([`super::resting`]), sticking or sliding.
+//!
+//! **First event** (module `search`) of a trial step from t to t + h (integrated with the
+//! resting pairs' forces): the earliest of
+//! - a time of impact: a pair separated at t and overlapping by more than ε
+//!   at t + h is located by the seed's bisection of the step (seed Fig.
+//!   7.7–7.8: each probe is the integrator's own step from t of a shorter
+//!   length) until the separation is within ±ε, or by conservative
+//!   advancement; a pair that was touching at t and overlaps by more than ε
+//!   at t + h (a second corner coming down) is located until its overlap is
+//!   between ε and 2ε;
+//! - a stick time: a sliding pair's tangential velocity reaching zero, by
+//!   root finding on the same sub-steps.
+//!
+//! The world then integrates to that time, settles, and goes on with the
+//! rest of the step: several contacts in one step are handled in time order.
+
+use super::events::{ContactEvent, ContactEventKind, StepProfile};
+use super::resting::{
+    FrictionMode, RestingContacts, RestingPair, islands, manifold_of, manifold_rows, pose,
+};
+use super::rows::{BodyView, Row, RowKind, Side, effective_mass, perp};
+use super::settings::ContactSettings;
+use super::solver::solve;
+use crate::body::{Body, BodyState};
+use crate::collision::narrow_phase::rotation_radius;
+use crate::collision::{Aabb, Manifold, SweepAndPrune};
+use crate::world_ode::{Layout, WorldOde};
+use nalgebra::Vector2;
+use std::time::{Duration, Instant};
+
+/// Overlap (in units of ε) beyond which a pair is projected apart at a
+/// settle. Above the 2ε a located impact can leave, so a pair found by the
+/// time-of-impact search is never moved.
+pub const PROJECTION_SLOP: f64 = 4.0;
+
+/// Per-phase timing, on only when asked (an `Instant::now` per phase would
+/// otherwise cost more than a cheap step).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Profiler {
+    pub on: bool,
+    pub profile: StepProfile,
+}
+
+/// A phase of the step.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Phase {
+    Integrate,
+    Broad,
+    Narrow,
+    Toi,
+    Respond,
+}
+
+impl Profiler {
+    pub(crate) fn start(&self) -> Option<Instant> {
+        self.on.then(Instant::now)
+    }
+
+    pub(crate) fn stop(&mut self, phase: Phase, started: Option<Instant>) {
+        if let Some(s) = started {
+            let d = s.elapsed();
+            let slot: &mut Duration = match phase {
+                Phase::Integrate => &mut self.profile.integrate,
+                Phase::Broad => &mut self.profile.broad_phase,
+                Phase::Narrow => &mut self.profile.narrow_phase,
+                Phase::Toi => &mut self.profile.toi,
+                Phase::Respond => &mut self.profile.respond,
+            };
+            *slot += d;
+        }
+    }
+}
+
+/// Writes body `i`'s velocities into the state vector.
+fn write_velocity(layout: &Layout, y: &mut [f64], i: usize, s: &BodyState) {
+    if let Some(slot) = layout.slots[i] {
+        let o = layout.positions + slot.offset;
+        y[o] = s.velocity.x;
+        y[o + 1] = s.velocity.y;
+        if slot.rotates {
+            y[o + 2] = s.angular_velocity;
+        }
+    }
+}
+
+/// Writes body `i`'s pose into the state vector.
+fn write_pose(layout: &Layout, y: &mut [f64], i: usize, s: &BodyState) {
+    if let Some(slot) = layout.slots[i] {
+        let o = slot.offset;
+        y[o] = s.position.x;
+        y[o + 1] = s.position.y;
+        if slot.rotates {
+            y[o + 2] = s.angle;
+        }
+    }
+}
+
+/// A manifold found at a settle, with where its rows are.
+struct Found {
+    a: usize,
+    b: usize,
+    manifold: Manifold,
+    impact: bool,
+    rows: (usize, usize),
+    before: f64,
+}
+
+/// The contact machinery of a world that has at least two collidable
+/// shapes (DESIGN.md: a scene without them runs none of it).
+#[derive(Debug)]
+pub(crate) struct ContactPipeline {
+    pub settings: ContactSettings,
+    pub events: Vec<ContactEvent>,
+    pub(super) broad: SweepAndPrune,
+    /// Bodies with a shape, ascending.
+    collidable: Vec<usize>,
+    aabbs: Vec<Aabb>,
+    views: Vec<BodyView>,
+    rows: Vec<Row>,
+    k: Vec<f64>,
+    b: Vec<f64>,
+    lambda: Vec<f64>,
+    out: Vec<(Vector2<f64>, f64)>,
+    pub(super) states_a: Vec<BodyState>,
+    pub(super) states_b: Vec<BodyState>,
+    pub(super) probe_states: Vec<BodyState>,
+}
+
+impl ContactPipeline {
+    /// The pipeline of `bodies`, or `None` when fewer than two bodies have
+    /// a shape or none of those moves.
+    pub(crate) fn new(bodies: &[Body], settings: ContactSettings) -> Option<Self> {
+        let collidable: Vec<usize> = (0..bodies.len())
+            .filter(|&i| bodies[i].shape.is_some())
+            .collect();
+        let moving = collidable.iter().any(|&i| bodies[i].is_dynamic());
+        (collidable.len() >= 2 && moving).then(|| Self {
+            settings,
+            events: Vec::new(),
+            broad: SweepAndPrune::new(),
+            collidable,
+            aabbs: Vec::new(),
+            views: Vec::new(),
+            rows: Vec::new(),
+            k: Vec::new(),
+            b: Vec::new(),
+            lambda: Vec::new(),
+            out: Vec::new(),
+            states_a: Vec::new(),
+            states_b: Vec::new(),
+            probe_states: Vec::new(),
+        })
+    }
+
+    /// Candidate pairs `(a < b)`, at least one dynamic, whose boxes at
+    /// `states` grown by `margin` overlap; with `swept = Some((start, h))`
+    /// the boxes cover the whole motion from `start` over a step of `h`.
+    pub(super) fn candidates(
+        &mut self,
+        bodies: &[Body],
+        states: &[BodyState],
+        margin: f64,
+        swept: Option<(&[BodyState], f64)>,
+        profiler: &mut Profiler,
+    ) -> Vec<(usize, usize)> {
+        let started = profiler.start();
+        self.aabbs.clear();
+        for &i in &self.collidable {
+            let shape = bodies[i]
+                .shape
+                .as_ref()
+                .expect("collidable bodies have shapes");
+            let mut bx = Aabb::of_shape(shape, &pose(&states[i]));
+            if let Some((start, h)) = swept {
+                let s0 = &start[i];
+                let spin = s0
+                    .angular_velocity
+                    .abs()
+                    .max(states[i].angular_velocity.abs());
+                // The shape sweeps between its two boxes, off the chord by
+                // at most r·|ω|max·h (rotation) and |Δv| h / 8 (curvature).
+                let off = rotation_radius(shape) * spin * h
+                    + (states[i].velocity - s0.velocity).norm() * h / 8.0;
+                bx = bx.merged(&Aabb::of_shape(shape, &pose(s0))).loosened(off);
+            }
+            self.aabbs.push(bx.loosened(margin));
+        }
+        let pairs = self.broad.pairs(&self.aabbs);
+        profiler.stop(Phase::Broad, started);
+        let collidable = &self.collidable;
+        let pairs: Vec<(usize, usize)> = pairs
+            .into_iter()
+            .map(|(i, j)| (collidable[i], collidable[j]))
+            .filter(|&(a, b)| bodies[a].is_dynamic() || bodies[b].is_dynamic())
+            .collect();
+        profiler.profile.candidate_pairs += pairs.len() as u64;
+        pairs
+    }
+
+    /// The response at time `t`: impulses, projection, and the resting
+    /// pairs of the next piece of step (see the module docs). Returns
+    /// whether the state or the resting pairs changed (the integrator's
+    /// cached derivative is then stale).
+    pub(crate) fn settle(
+        &mut self,
+        sys: &mut WorldOde<'_>,
+        t: f64,
+        y: &mut [f64],
+        profiler: &mut Profiler,
+    ) -> bool {
+        let bodies = sys.bodies;
+        let layout = sys.layout;
+        layout.unpack(y, sys.states);
+        let eps = self.settings.tolerance;
+        let pairs = self.candidates(bodies, sys.states, eps, None, profiler);
+        let started = profiler.start();
+        let mut found: Vec<Found> = Vec::new();
+        for (a, b) in pairs {
+            if let Some(manifold) = manifold_of(bodies, sys.states, a, b, eps) {
+                found.push(Found {
+                    a,
+                    b,
+                    manifold,
+                    impact: false,
+                    rows: (0, 0),
+                    before: 0.0,
+                });
+            }
+        }
+        profiler.stop(Phase::Narrow, started);
+        let started = profiler.start();
+        let resting = sys
+            .contacts
+            .as_deref_mut()
+            .expect("a world with contacts carries its resting pairs");
+        let changed = self.respond(bodies, layout, sys.states, &mut found, y, t, resting);
+        profiler.stop(Phase::Respond, started);
+        changed
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn respond(
+        &mut self,
+        bodies: &[Body],
+        layout: &Layout,
+        states: &mut [BodyState],
+        found: &mut [Found],
+        y: &mut [f64],
+        t: f64,
+        resting: &mut RestingContacts,
+    ) -> bool {
+        let s = self.settings;
+        let mut changed = false;
+        self.views.clear();
+        self.views.extend(
+            bodies
+                .iter()
+                .zip(states.iter())
+                .map(|(b, st)| BodyView::new(b, st)),
+        );
+        // Impulses, one island at a time.
+        self.rows.clear();
+        let resting_speed = s.resting_speed;
+        let e = s.restitution;
+        for f in found.iter_mut() {
+            let start = self.rows.len();
+            let mut before = f64::INFINITY;
+            let mut impact = false;
+            manifold_rows(
+                &self.views,
+                f.a,
+                f.b,
+                &f.manifold,
+                (s.friction, FrictionMode::Sticking),
+                |_, vn| {
+                    before = before.min(vn);
+                    if vn < -resting_speed {
+                        impact = true;
+                        -e * vn
+                    } else {
+                        0.0
+                    }
+                },
+                &mut self.rows,
+            );
+            f.rows = (start, self.rows.len());
+            f.impact = impact;
+            f.before = before;
+        }
+        self.lambda.clear();
+        self.lambda.resize(self.rows.len(), 0.0);
+        let keys: Vec<(usize, usize)> = found.iter().map(|f| (f.a, f.b)).collect();
+        let island = islands(&self.views, &keys);
+        let mut order: Vec<usize> = (0..found.len()).collect();
+        order.sort_by_key(|&i| island[i]);
+        self.out.clear();
+        self.out.resize(bodies.len(), (Vector2::zeros(), 0.0));
+        let mut start = 0;
+        let mut rows = Vec::new();
+        let mut lambda = Vec::new();
+        while start < order.len() {
+            let mut end = start + 1;
+            while end < order.len() && island[order[end]] == island[order[start]] {
+                end += 1;
+            }
+            rows.clear();
+            let mut index = Vec::new();
+            for &i in &order[start..end] {
+                let (r0, r1) = found[i].rows;
+                let offset = rows.len() as isize - r0 as isize;
+                for r in r0..r1 {
+                    let mut row = self.rows[r];
+                    if let RowKind::Friction { mu, normals } = row.kind {
+                        let shift = |x: usize| (x as isize + offset) as usize;
+                        row.kind = RowKind::Friction {
+                            mu,
+                            normals: (shift(normals.0), shift(normals.1)),
+                        };
+                    }
+                    rows.push(row);
+                    index.push(r);
+                }
+            }
+            self.b.clear();
+            self.b
+                .extend(rows.iter().map(|r| r.velocity(&self.views) - r.target));
+            effective_mass(&rows, &self.views, &mut self.k);
+            solve(&rows, &self.k, &self.b, &mut lambda);
+            for ((row, &l), &r) in rows.iter().zip(&lambda).zip(&index) {
+                self.lambda[r] = l;
+                if l != 0.0 {
+                    row.apply(l, &mut self.out);
+                }
+            }
+            start = end;
+        }
+        for (i, (dv, dw)) in self.out.iter().enumerate() {
+            let v = &mut self.views[i];
+            if (dv.x != 0.0 || dv.y != 0.0 || *dw != 0.0) && v.inv_mass > 0.0 {
+                v.velocity += v.inv_mass * dv;
+                v.omega += v.inv_inertia * dw;
+                states[i].velocity = v.velocity;
+                if bodies[i].rotates() {
+                    states[i].angular_velocity = v.omega;
+                }
+                write_velocity(layout, y, i, &states[i]);
+                changed = true;
+            }
+        }
+        // Impact events.
+        for f in found.iter() {
+            if f.impact {
+                let event = self.event(t, ContactEventKind::Impact, f);
+                self.events.push(event);
+            }
+        }
+        // Projection of pairs that sank by more than the slop.
+        changed |= self.project(bodies, layout, states, found, y, s.tolerance);
+        // The resting pairs of the next piece of step.
+        let mut next: Vec<RestingPair> = Vec::new();
+        for f in found.iter() {
+            let (r0, r1) = f.rows;
+            let after = self.rows[r0..r1]
+                .iter()
+                .filter(|r| r.kind == RowKind::Normal)
+                .map(|r| r.velocity(&self.views))
+                .fold(f64::INFINITY, f64::min);
+            if after > resting_speed {
+                continue;
+            }
+            let friction = if s.friction > 0.0 {
+                let centre = f
+                    .manifold
+                    .points()
+                    .iter()
+                    .map(|p| p.point)
+                    .sum::<Vector2<f64>>()
+                    / f.manifold.points().len() as f64;
+                let v = self.views[f.b].point_velocity(centre - self.views[f.b].position)
+                    - self.views[f.a].point_velocity(centre - self.views[f.a].position);
+                let tangent = perp(f.manifold.normal);
+                let vt = tangent.dot(&v);
+                if vt.abs() <= s.sliding_speed {
+                    FrictionMode::Sticking
+                } else {
+                    FrictionMode::Sliding {
+                        direction: vt.signum() * tangent,
+                    }
+                }
+            } else {
+                FrictionMode::Frictionless
+            };
+            next.push(RestingPair {
+                a: f.a,
+                b: f.b,
+                friction,
+            });
+        }
+        next.sort_by_key(|p| (p.a, p.b));
+        // Events of the resting set: begins, ends, stick, slip.
+        for p in &next {
+            let old = resting.pairs.iter().find(|q| (q.a, q.b) == (p.a, p.b));
+            let f = found
+                .iter()
+                .find(|f| (f.a, f.b) == (p.a, p.b))
+                .expect("resting pairs come from the manifolds");
+            let kind = match (old.map(|q| q.friction), p.friction) {
+                (None, _) => Some(ContactEventKind::Rest),
+                (Some(FrictionMode::Sliding { .. }), FrictionMode::Sticking) => {
+                    Some(ContactEventKind::Stick)
+                }
+                (Some(FrictionMode::Sticking), FrictionMode::Sliding { .. }) => {
+                    Some(ContactEventKind::Slip)
+                }
+                _ => None,
+            };
+            if let Some(kind) = kind {
+                let event = self.event(t, kind, f);
+                self.events.push(event);
+            }
+        }
+        for q in &resting.pairs {
+            if !next.iter().any(|p| (p.a, p.b) == (q.a, q.b)) {
+                let f = found.iter().find(|f| (f.a, f.b) == (q.a, q.b));
+                let (point, normal, points) = match f {
+                    Some(f) => (
+                        f.manifold.points()[0].point,
+                        f.manifold.normal,
+                        f.manifold.points().len(),
+                    ),
+                    None => (
+                        0.5 * (states[q.a].position + states[q.b].position),
+                        Vector2::zeros(),
+                        0,
+                    ),
+                };
+                self.events.push(ContactEvent {
+                    t,
+                    kind: ContactEventKind::Release,
+                    body_a: q.a,
+                    body_b: q.b,
+                    point,
+                    normal,
+                    points,
+                    normal_impulse: 0.0,
+                    tangent_impulse: 0.0,
+                    normal_velocity_before: f64::NAN,
+                    normal_velocity_after: f64::NAN,
+                });
+            }
+        }
+        if next != resting.pairs {
+            changed = true;
+            resting.pairs = next;
+        }
+        resting.friction = s.friction;
+        resting.tolerance = s.tolerance;
+        changed
+    }
+
+    /// The record of manifold `f` after the impulses.
+    fn event(&self, t: f64, kind: ContactEventKind, f: &Found) -> ContactEvent {
+        let (r0, r1) = f.rows;
+        let mut normal_impulse = 0.0;
+        let mut tangent_impulse = 0.0;
+        let mut weighted = Vector2::zeros();
+        let mut centre = Vector2::zeros();
+        let mut after = f64::INFINITY;
+        let mut count = 0;
+        for r in r0..r1 {
+            let row = &self.rows[r];
+            let l = self.lambda[r];
+            match row.kind {
+                RowKind::Normal => {
+                    let p = self.views[row.sides[1].body].position + row.sides[1].arm;
+                    normal_impulse += l;
+                    weighted += l * p;
+                    centre += p;
+                    count += 1;
+                    after = after.min(row.velocity(&self.views));
+                }
+                RowKind::Friction { .. } => tangent_impulse += l,
+            }
+        }
+        let point = if normal_impulse > 0.0 {
+            weighted / normal_impulse
+        } else {
+            centre / count.max(1) as f64
+        };
+        ContactEvent {
+            t,
+            kind,
+            body_a: f.a,
+            body_b: f.b,
+            point,
+            normal: f.manifold.normal,
+            points: count,
+            normal_impulse,
+            tangent_impulse,
+            normal_velocity_before: f.before,
+            normal_velocity_after: after,
+        }
+    }
+
+    /// Pushes apart (positions only) the pairs overlapping by more than
+    /// [`PROJECTION_SLOP`] ε, by the linearised least motion that removes
+    /// the overlap of their points. Returns whether anything moved.
+    #[allow(clippy::too_many_arguments)]
+    fn project(
+        &mut self,
+        bodies: &[Body],
+        layout: &Layout,
+        states: &mut [BodyState],
+        found: &[Found],
+        y: &mut [f64],
+        eps: f64,
+    ) -> bool {
+        let deep: Vec<&Found> = found
+            .iter()
+            .filter(|f| f.manifold.max_depth() > PROJECTION_SLOP * eps)
+            .collect();
+        if deep.is_empty() {
+            return false;
+        }
+        let mut rows = Vec::new();
+        let mut b = Vec::new();
+        for f in &deep {
+            for p in f.manifold.points() {
+                let sides = [
+                    Side {
+                        body: f.a,
+                        sign: -1.0,
+                        arm: p.point - self.views[f.a].position,
+                    },
+                    Side {
+                        body: f.b,
+                        sign: 1.0,
+                        arm: p.point - self.views[f.b].position,
+                    },
+                ];
+                rows.push(Row {
+                    kind: RowKind::Normal,
+                    sides,
+                    measure: f.manifold.normal,
+                    push: f.manifold.normal,
+                    target: 0.0,
+                });
+                b.push(-p.depth);
+            }
+        }
+        effective_mass(&rows, &self.views, &mut self.k);
+        let mut lambda = Vec::new();
+        solve(&rows, &self.k, &b, &mut lambda);
+        let mut out = vec![(Vector2::zeros(), 0.0); bodies.len()];
+        for (row, &l) in rows.iter().zip(&lambda) {
+            row.apply(l, &mut out);
+        }
+        let mut moved = false;
+        for (i, (dx, dth)) in out.iter().enumerate() {
+            let v = &self.views[i];
+            if v.inv_mass > 0.0 && (dx.norm() > 0.0 || *dth != 0.0) {
+                states[i].position += v.inv_mass * dx;
+                if bodies[i].rotates() {
+                    states[i].angle += v.inv_inertia * dth;
+                }
+                write_pose(layout, y, i, &states[i]);
+                moved = true;
+            }
+        }
+        moved
+    }
+}

@@ -1,0 +1,153 @@
+//! The settings of contact handling, with their units, defaults and effect
+//! (Box2D's definition structs; rapier's habit of documenting every
+//! parameter).
+
+use crate::error::{EngineError, Result, require_non_negative, require_positive};
+
+/// How the time of first contact inside a step is found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ToiMethod {
+    /// The seed's bisection of the step (seed §7.2, Fig. 7.7–7.8): when a
+    /// pair interpenetrates by more than ε at the end of a step, the
+    /// integrator recomputes the state at t + Δt/2, then t + Δt/4 or
+    /// t + 3Δt/4, and so on, until the separation is within ±ε. Looks only
+    /// at the end of the step: a body crossing a thin one within one step is
+    /// missed (tunnelling). The default.
+    #[default]
+    Bisection,
+    /// Conservative advancement on the integrator's own solution: from the
+    /// separation d at a time s inside the step, no point can close the gap
+    /// faster than a bound on the relative speed of the two shapes' points
+    /// (the larger of its values at both ends of the step), so the pair
+    /// cannot touch before s + d/bound; advance to it and repeat until
+    /// d ≤ ε. Stops in [0, ε] (never overlapping) and does not tunnel.
+    ConservativeAdvancement,
+}
+
+/// Contact settings of a world. `Default` gives a perfectly elastic,
+/// frictionless contact (no loss the scene did not ask for) with tolerances
+/// far below every validation tolerance of the harness.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactSettings {
+    /// Coefficient of restitution e ∈ [0, 1] (seed eq. 7.10): the normal
+    /// relative velocity after an impact is −e times the one before.
+    /// Default 1.
+    pub restitution: f64,
+    /// Coulomb friction coefficient μ ≥ 0 (static and kinetic alike): the
+    /// tangential force is at most μ times the normal force, and equals it
+    /// (against the sliding direction) while the contact slides. Default 0.
+    pub friction: f64,
+    /// ε (m) > 0: two shapes closer than ε (or overlapping by less than ε)
+    /// touch (seed Fig. 7.7). The time of impact is located until the
+    /// separation is within ±ε. Default 1e-10 m: about 1e4 ulps of a
+    /// 100 m coordinate, so the bisection can always reach it, and small
+    /// enough that the energy e=1 reflection never sees it (it reflects the
+    /// velocity exactly whatever the residual gap).
+    pub tolerance: f64,
+    /// Approach speed (m/s) > 0 at or below which a touching contact is
+    /// *resting*: no restitution is applied (the approach velocity is
+    /// cancelled) and the pair is held by contact forces computed inside
+    /// the integration (seed §7.1 after Baraff). Above it, an impact with
+    /// restitution. Default 1e-3 m/s: a bounce of at most
+    /// v²/(2g) = 5e-8 m is then given up, which ends the infinite sequence
+    /// of ever smaller bounces of e < 1 in finite time.
+    pub resting_speed: f64,
+    /// Tangential speed (m/s) ≥ 0 at or below which a resting contact with
+    /// friction *sticks* (static friction holds it, within the cone);
+    /// above it the contact slides with kinetic friction μ·N against the
+    /// sliding direction until the tangential velocity reaches zero, a time
+    /// located by root finding. Default 1e-9 m/s.
+    pub sliding_speed: f64,
+    /// How the first contact inside a step is found. Default
+    /// [`ToiMethod::Bisection`] (the seed's).
+    pub toi_method: ToiMethod,
+    /// Most distance evaluations of one time-of-impact search before the
+    /// step is refused with an error. Default 200.
+    pub max_toi_iterations: usize,
+    /// Most contact events (impacts, stick/slip changes) handled inside
+    /// one step before it is refused with an error: a guard against an
+    /// endless sequence of ever smaller impacts. Default 10 000.
+    pub max_events_per_step: usize,
+}
+
+impl Default for ContactSettings {
+    fn default() -> Self {
+        Self {
+            restitution: 1.0,
+            friction: 0.0,
+            tolerance: 1e-10,
+            resting_speed: 1e-3,
+            sliding_speed: 1e-9,
+            toi_method: ToiMethod::Bisection,
+            max_toi_iterations: 200,
+            max_events_per_step: 10_000,
+        }
+    }
+}
+
+impl ContactSettings {
+    /// The default settings with restitution `e` and friction `mu`.
+    pub fn new(restitution: f64, friction: f64) -> Self {
+        Self {
+            restitution,
+            friction,
+            ..Self::default()
+        }
+    }
+
+    /// Checks every field's domain.
+    pub fn validate(&self) -> Result<()> {
+        let e = self.restitution;
+        if !(e.is_finite() && (0.0..=1.0).contains(&e)) {
+            return Err(EngineError::InvalidParameter {
+                what: "restitution".into(),
+                value: e,
+                reason: "must be in [0, 1]",
+            });
+        }
+        require_non_negative("friction", self.friction)?;
+        require_positive("contact tolerance", self.tolerance)?;
+        require_positive("resting speed", self.resting_speed)?;
+        require_non_negative("sliding speed", self.sliding_speed)?;
+        if self.max_toi_iterations == 0 || self.max_events_per_step == 0 {
+            return Err(EngineError::InvalidParameter {
+                what: "contact iteration limits".into(),
+                value: 0.0,
+                reason: "must be >= 1",
+            });
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_elastic_frictionless_and_valid() {
+        let s = ContactSettings::default();
+        assert_eq!((s.restitution, s.friction), (1.0, 0.0));
+        assert!(s.validate().is_ok());
+    }
+
+    #[test]
+    fn out_of_domain_settings_are_refused() {
+        for bad in [
+            ContactSettings::new(1.5, 0.0),
+            ContactSettings::new(-0.1, 0.0),
+            ContactSettings::new(f64::NAN, 0.0),
+            ContactSettings::new(0.5, -1.0),
+            ContactSettings {
+                tolerance: 0.0,
+                ..ContactSettings::default()
+            },
+            ContactSettings {
+                max_toi_iterations: 0,
+                ..ContactSettings::default()
+            },
+        ] {
+            assert!(bad.validate().is_err(), "{bad:?}");
+        }
+    }
+}
