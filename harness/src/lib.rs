@@ -4,11 +4,20 @@
 //! tests and the benches use too.
 
 pub mod cases;
+pub mod convergence;
+pub mod pictures;
+pub mod plots;
+pub mod progress;
+pub mod provenance;
+pub mod rapier_scene;
 pub mod report;
 pub mod row;
 pub mod scenes;
 pub mod simulate;
 pub mod snapshot;
+pub mod stability;
+pub mod study;
+pub mod study_report;
 pub mod sweep;
 pub mod timing;
 pub mod tolerance;

@@ -5,6 +5,7 @@ use anyhow::{Result, bail};
 use clap::{Parser, Subcommand};
 use harness::cases::{CASES, CaseReport, find};
 use harness::report;
+use harness::sweep::SweepSettings;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -17,7 +18,7 @@ struct Cli {
     /// Where to write the report. A full run writes `reports/` by default; a
     /// run of selected cases writes nothing unless this is given, so it never
     /// replaces the full report with a partial one.
-    #[arg(long, global = true)]
+    #[arg(long)]
     out: Option<PathBuf>,
 }
 
@@ -37,19 +38,43 @@ enum Command {
     Simulate(harness::simulate::SimulateArgs),
 }
 
+/// Exit codes: 0 every row passed (or the command succeeded), 1 a row
+/// failed, 2 the input was refused or the run could not be made (the
+/// message names the file, the field and the line when it comes from a
+/// scene file). Command-line usage errors are clap's, also 2.
 fn main() -> std::process::ExitCode {
+    harness::progress::init_tracing();
     match real_main() {
         Ok(true) => std::process::ExitCode::SUCCESS,
         Ok(false) => std::process::ExitCode::from(1),
         Err(e) => {
-            eprintln!("error: {e:#}");
+            eprintln!("error: {}", error_message(&e));
             std::process::ExitCode::from(2)
         }
     }
 }
 
+/// The error and its causes joined by ": ", each said once: a cause whose
+/// text the message already holds (a scene error quotes its I/O error,
+/// which is also its source) is left out.
+fn error_message(error: &anyhow::Error) -> String {
+    let mut message = String::new();
+    for cause in error.chain() {
+        let text = cause.to_string();
+        if message.contains(&text) {
+            continue;
+        }
+        if !message.is_empty() {
+            message.push_str(": ");
+        }
+        message.push_str(&text);
+    }
+    message
+}
+
 fn real_main() -> Result<bool> {
     let cli = Cli::parse();
+    let mut settings = SweepSettings::FULL;
     let selected: Vec<String> = match cli.command {
         Some(Command::List) => {
             println!("Cases:");
@@ -66,7 +91,18 @@ fn real_main() -> Result<bool> {
             harness::simulate::run(&args)?;
             return Ok(true);
         }
-        Some(Command::Run { cases, .. }) if !cases.is_empty() => cases,
+        Some(Command::Run { cases, quick }) if !cases.is_empty() => {
+            settings = if quick {
+                SweepSettings::QUICK
+            } else {
+                settings
+            };
+            cases
+        }
+        Some(Command::Run { quick: true, .. }) => {
+            settings = SweepSettings::QUICK;
+            CASES.iter().map(|c| c.id.to_string()).collect()
+        }
         _ => CASES.iter().map(|c| c.id.to_string()).collect(),
     };
     let started = Instant::now();
@@ -79,26 +115,29 @@ fn real_main() -> Result<bool> {
         print!("{}", report::console_table(case.id, &report.rows));
         results.push((case.id, report));
     }
-    let provenance = format!(
-        "Build profile: {}. Commit: {}.",
-        if cfg!(debug_assertions) {
-            "debug"
-        } else {
-            "release"
-        },
-        option_env!("HARNESS_COMMIT").unwrap_or("see git log"),
-    );
+    let provenance = harness::provenance::paragraph(settings.timing_runs);
     let full = results.len() == CASES.len();
     let out = cli.out.or_else(|| full.then(|| PathBuf::from("reports")));
+    // The studies (sweeps, orders, stability, energy, trajectories) run with
+    // every full run; a run of selected cases checks only those.
+    let study = match (&out, full) {
+        (Some(dir), true) => Some(harness::study::run(dir, settings)?),
+        _ => None,
+    };
     if let Some(dir) = &out {
-        report::write(dir, &results, &provenance)?;
+        report::write(dir, &results, study.as_ref(), &provenance)?;
+        harness::pictures::write_case_pictures(dir, &results)?;
     }
     // The README's headline table is printed by the harness too (only on a
     // full run, so that a partial run never drops rows from it).
     if full {
         report::update_readme(std::path::Path::new("README.md"), &results)?;
     }
-    let rows: Vec<_> = results.iter().flat_map(|(_, r)| &r.rows).collect();
+    let mut rows: Vec<_> = results.iter().flat_map(|(_, r)| &r.rows).collect();
+    if let Some(study) = &study {
+        print!("{}", report::console_table("studies", &study.rows));
+        rows.extend(&study.rows);
+    }
     let failed: Vec<_> = rows.iter().filter(|r| !r.pass).collect();
     println!(
         "\n{} rows, {} passed, {} failed ({:.1} s).{}",

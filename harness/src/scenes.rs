@@ -16,9 +16,11 @@ pub fn scenes_dir() -> PathBuf {
     std::env::var_os(SCENES_DIR_VAR)
         .map(PathBuf::from)
         .unwrap_or_else(|| {
-            PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
                 .join("..")
-                .join("scenes")
+                .join("scenes");
+            // Shown to users in `list` and errors: without the `..`.
+            std::fs::canonicalize(&dir).unwrap_or(dir)
         })
 }
 
@@ -38,14 +40,25 @@ pub fn world(id: &str, method: Method) -> Result<World> {
     Ok(load(id)?.build_world(Some(method))?)
 }
 
-/// The case scenes and every other `.toml` in the scenes folder, sorted.
+/// The `.toml` files of the scenes folder and of its subfolders one level
+/// down (`scenes/examples/`), sorted.
 pub fn list() -> Result<Vec<PathBuf>> {
     let dir = scenes_dir();
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .with_context(|| format!("reading {}", dir.display()))?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
+    let entries = |d: &std::path::Path| -> Result<Vec<PathBuf>> {
+        Ok(std::fs::read_dir(d)
+            .with_context(|| format!("reading {}", d.display()))?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .collect())
+    };
+    let mut files = Vec::new();
+    for path in entries(&dir)? {
+        if path.is_dir() {
+            files.extend(entries(&path)?);
+        } else {
+            files.push(path);
+        }
+    }
+    files.retain(|p| p.extension().is_some_and(|x| x == "toml"));
     files.sort();
     Ok(files)
 }

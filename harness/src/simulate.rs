@@ -1,22 +1,713 @@
-//! `harness simulate <scene.toml>`: runs a user's scene file.
-//! (Being built: see the issue on scene files and pictures.)
+//! `harness simulate <scene.toml>`: runs a scene file of your own and
+//! writes what you ask for.
+//!
+//! ```text
+//! harness simulate scene.toml [--method M] [--dt H] [--until T]
+//!     [--trace out.csv] [--svg out.svg] [--gif out.gif] [--compare rapier]
+//! ```
+//!
+//! - the scene runs with its own `[simulation]` method, step and duration,
+//!   each overridable on the command line (a terminal event such as a
+//!   landing may end it earlier); a `[linear_test]` scene solves its scalar
+//!   ODE instead;
+//! - `--trace`: CSV, one row per sample and body: `t, body, x, y, angle,
+//!   vx, vy, omega, energy` (s, m, rad, m/s, rad/s, J; `energy` is the
+//!   world's total, kinetic plus potential, repeated on each body's row).
+//!   Numbers are written in Rust's shortest round-trip form, so they read
+//!   back bit for bit. A `[linear_test]` trace has `t, y, exact, error`.
+//!   Written by hand (no csv crate): names are quoted when they need it;
+//! - `--svg`: a filmstrip of six frames; `--gif`: an animation (at most
+//!   `--frames`, default 120, ≤ 200); a `[linear_test]` gets its y(t) curve
+//!   as SVG and no animation;
+//! - `--compare rapier`: runs the scene in rapier2d-f64 too
+//!   (`references::rapier_world`; one dynamic body under gravity, an axial
+//!   spring to an anchor, drag, angular drag and torques) and prints the
+//!   largest difference of each quantity and rapier's configuration.
+//!
+//! Bad input never panics and never costs the user's work: the scene file
+//! is only read, every error (the scene's, with file, field and line, or a
+//! command-line value) is reported before the run, and the outputs are
+//! written only after the run succeeded, each to a temporary file renamed
+//! into place. An output path equal to the scene file is refused.
 
-use anyhow::Result;
-use clap::Args;
-use std::path::PathBuf;
+mod compare;
+
+use crate::pictures::{self, Film, GifOptions};
+use crate::progress::Ticker;
+use crate::report::fmt_num;
+use anyhow::{Context, Result, anyhow, bail};
+use clap::{Args, ValueEnum};
+use engine::time_grid::grid_time;
+use engine::{BodyState, EventRecord, MAX_RUN_STEPS, Method, Tolerance, World};
+use scene::Scene;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 /// Arguments of `simulate`.
 #[derive(Debug, Clone, Args)]
 pub struct SimulateArgs {
-    /// The scene file (TOML).
+    /// The scene file (TOML; see "Write your own scene" in the README).
     pub scene: PathBuf,
+    /// Integration method instead of the file's: explicit_euler,
+    /// semi_implicit_euler, rk2_midpoint, rk4, velocity_verlet,
+    /// implicit_euler or dormand_prince.
+    #[arg(long, value_name = "M", value_parser = parse_method)]
+    pub method: Option<String>,
+    /// Time step in seconds instead of the file's (> 0).
+    #[arg(long, value_name = "H", value_parser = parse_seconds, allow_negative_numbers = true)]
+    pub dt: Option<f64>,
+    /// Run length in seconds instead of the file's duration (> 0).
+    #[arg(long, value_name = "T", value_parser = parse_seconds, allow_negative_numbers = true)]
+    pub until: Option<f64>,
+    /// Write the trace as CSV: t, body, x, y, angle, vx, vy, omega, energy.
+    #[arg(long, value_name = "out.csv")]
+    pub trace: Option<PathBuf>,
+    /// Write a filmstrip of six frames as SVG.
+    #[arg(long, value_name = "out.svg")]
+    pub svg: Option<PathBuf>,
+    /// Write an animation as GIF.
+    #[arg(long, value_name = "out.gif")]
+    pub gif: Option<PathBuf>,
+    /// Frames of the GIF (2 to 200).
+    #[arg(long, value_name = "N", default_value_t = 120,
+          value_parser = clap::value_parser!(u16).range(2..=200))]
+    pub frames: u16,
+    /// Most samples kept in the trace: a longer run keeps every k-th step
+    /// (and always the first and the last).
+    #[arg(long, value_name = "N", default_value_t = 100_000,
+          value_parser = clap::value_parser!(u64).range(2..=100_000_000))]
+    pub max_samples: u64,
+    /// Run the scene in another engine too and print the differences.
+    #[arg(long, value_name = "ENGINE")]
+    pub compare: Option<CompareWith>,
+}
+
+/// Engines `--compare` knows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum CompareWith {
+    /// rapier2d-f64 0.36, configured as close to ideal rigid-body physics
+    /// as it allows (references::rapier_world).
+    Rapier,
+}
+
+/// The method ids `--method` accepts.
+pub fn method_ids() -> Vec<&'static str> {
+    Method::FIXED_STEP
+        .iter()
+        .map(Method::id)
+        .chain(["dormand_prince"])
+        .collect()
+}
+
+fn parse_method(text: &str) -> Result<String, String> {
+    if Method::from_id(text, Tolerance::uniform(1.0)).is_some() {
+        Ok(text.to_owned())
+    } else {
+        Err(format!(
+            "unknown method; expected one of {}",
+            method_ids().join(", ")
+        ))
+    }
+}
+
+fn parse_seconds(text: &str) -> Result<f64, String> {
+    let value: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| "not a number of seconds".to_string())?;
+    if !value.is_finite() {
+        return Err("must be a finite number of seconds".into());
+    }
+    if value <= 0.0 {
+        return Err(format!("must be > 0 s, got {value}"));
+    }
+    Ok(value)
+}
+
+/// Limits of a recorded run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RunLimits {
+    /// Most samples kept (≥ 2): a longer run keeps every k-th step.
+    pub max_samples: u64,
+    /// Runs of at least this many steps show a progress bar (on a terminal).
+    pub progress_from: u64,
+}
+
+impl Default for RunLimits {
+    /// 100 000 samples; a progress bar from 200 000 steps.
+    fn default() -> Self {
+        Self {
+            max_samples: 100_000,
+            progress_from: 200_000,
+        }
+    }
+}
+
+/// A run, sampled.
+#[derive(Debug, Clone, Default)]
+pub struct Recorded {
+    /// Sample times (s).
+    pub times: Vec<f64>,
+    /// Every body's state at each sample.
+    pub states: Vec<Vec<BodyState>>,
+    /// Total energy at each sample (J).
+    pub energies: Vec<f64>,
+    /// Events located, in time order.
+    pub events: Vec<EventRecord>,
+    /// Steps taken.
+    pub steps: u64,
+    /// Every `stride`-th step was kept.
+    pub stride: u64,
+    /// Whether a terminal event (a landing) ended the run.
+    pub stopped_by_event: bool,
+}
+
+impl Recorded {
+    fn push(&mut self, world: &World) {
+        self.times.push(world.time());
+        self.states.push(world.states().to_vec());
+        self.energies.push(world.energy());
+    }
+
+    /// Copies the samples into `film`.
+    pub fn fill(&self, film: &mut Film) {
+        for (t, states) in self.times.iter().zip(&self.states) {
+            film.push(*t, states);
+        }
+    }
+}
+
+/// Runs `world` from its current time to `until` (s) in steps of `dt`
+/// (s), on the grid of [`World::run`] (times `t0 + i·dt`, the last step
+/// shortened to end at `until`), and keeps at most `limits.max_samples`
+/// samples. After every step, `on_step(i, whole, world)` is called, with
+/// `whole` true when the world stands at exactly `t0 + i·dt` (not after a
+/// shortened last step or a terminal event). `ticker` counts the steps.
+pub fn record(
+    world: &mut World,
+    until: f64,
+    dt: f64,
+    limits: &RunLimits,
+    mut ticker: Ticker,
+    mut on_step: impl FnMut(u64, bool, &World),
+) -> Result<Recorded> {
+    let t0 = world.time();
+    let span = until - t0;
+    let steps = engine::step_count(span, dt)?;
+    let last_is_whole = (steps as f64 * dt - span).abs() <= 1e-9 * span;
+    let stride = (steps.div_ceil(limits.max_samples.max(2) - 1)).max(1);
+    let mut rec = Recorded {
+        stride,
+        ..Recorded::default()
+    };
+    rec.push(world);
+    for i in 1..=steps {
+        let t = grid_time(t0, until, dt, i, steps);
+        let events = world.step_to(t).map_err(|e| {
+            anyhow!(e).context(format!(
+                "the run failed in step {i} of {steps} (t = {} s)",
+                world.time()
+            ))
+        })?;
+        rec.events.extend(events);
+        ticker.tick();
+        let stopped = world.is_stopped();
+        on_step(i, !stopped && (i < steps || last_is_whole), world);
+        rec.steps = i;
+        if i % stride == 0 || i == steps || stopped {
+            rec.push(world);
+        }
+        if stopped {
+            rec.stopped_by_event = true;
+            break;
+        }
+    }
+    ticker.finish();
+    Ok(rec)
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same folder
+/// renamed into place, so that a failure never leaves half a file (nor
+/// destroys the previous one).
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let name = path
+        .file_name()
+        .ok_or_else(|| anyhow!("{}: not a file path", path.display()))?;
+    let tmp = dir.join(format!(
+        ".{}.{}.tmp",
+        name.to_string_lossy(),
+        std::process::id()
+    ));
+    std::fs::write(&tmp, bytes).with_context(|| format!("writing {}", tmp.display()))?;
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        anyhow!(e).context(format!("writing {}", path.display()))
+    })
+}
+
+/// One requested output: its option name and path.
+struct Output<'a> {
+    option: &'static str,
+    path: &'a Path,
+}
+
+fn outputs(args: &SimulateArgs) -> Vec<Output<'_>> {
+    [
+        ("--trace", &args.trace),
+        ("--svg", &args.svg),
+        ("--gif", &args.gif),
+    ]
+    .into_iter()
+    .filter_map(|(option, path)| path.as_deref().map(|path| Output { option, path }))
+    .collect()
+}
+
+/// Where `path` would be, resolved through existing folders.
+fn resolved(path: &Path) -> Option<PathBuf> {
+    if let Ok(p) = path.canonicalize() {
+        return Some(p);
+    }
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    Some(parent.canonicalize().ok()?.join(path.file_name()?))
+}
+
+/// Refuses outputs that would overwrite the scene file or each other, or
+/// that cannot be written (missing folder, a folder in the way), before
+/// any time is spent running.
+fn check_outputs(scene_path: &Path, outputs: &[Output<'_>]) -> Result<()> {
+    let scene_real = scene_path.canonicalize().ok();
+    let mut seen: Vec<(PathBuf, &str)> = Vec::new();
+    for out in outputs {
+        let shown = out.path.display();
+        let parent = match out.path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        };
+        if !parent.is_dir() {
+            bail!(
+                "{} {shown}: the folder {} does not exist",
+                out.option,
+                parent.display()
+            );
+        }
+        if out.path.is_dir() {
+            bail!("{} {shown}: is a folder, not a file", out.option);
+        }
+        let real =
+            resolved(out.path).ok_or_else(|| anyhow!("{} {shown}: not a file path", out.option))?;
+        if scene_real.as_ref() == Some(&real) {
+            bail!(
+                "{} {shown} is the scene file itself: refusing to overwrite it; choose another path",
+                out.option
+            );
+        }
+        if let Some((_, other)) = seen.iter().find(|(p, _)| *p == real) {
+            bail!(
+                "{} and {other} both write {shown}: give each its own path",
+                out.option
+            );
+        }
+        seen.push((real, out.option));
+    }
+    Ok(())
+}
+
+/// Step count of the run, with the command-line options named when they
+/// make it too long (the file's own values were checked on loading).
+fn steps_of(scene: &Scene, args: &SimulateArgs, dt: f64, until: f64) -> Result<u64> {
+    engine::step_count(until, dt).map_err(|_| {
+        let dt_from = if args.dt.is_some() { "--dt" } else { "simulation.dt" };
+        let until_from = if args.until.is_some() {
+            "--until"
+        } else {
+            "simulation.duration"
+        };
+        anyhow!(
+            "{}: a run of {} s ({until_from}) in steps of {} s ({dt_from}) would take {:.3e} steps, more than the {MAX_RUN_STEPS:.0e} allowed: raise {dt_from} or shorten {until_from}",
+            scene.origin(),
+            fmt_num(until),
+            fmt_num(dt),
+            until / dt
+        )
+    })
 }
 
 /// Runs `simulate`.
 pub fn run(args: &SimulateArgs) -> Result<()> {
-    let scene = scene::Scene::load(&args.scene)?;
-    let mut world = scene.build_world(None)?;
-    let trace = world.run(scene.duration(), scene.dt())?;
-    println!("{} samples", trace.samples.len());
+    let started = Instant::now();
+    let scene = Scene::load(&args.scene)?;
+    tracing::debug!(scene = %scene.origin(), "scene loaded");
+    let method = match &args.method {
+        Some(id) => Method::from_id(id, scene.tolerance()).ok_or_else(|| {
+            anyhow!(
+                "--method {id}: unknown method; expected one of {}",
+                method_ids().join(", ")
+            )
+        })?,
+        None => scene.method(),
+    };
+    let dt = args.dt.unwrap_or(scene.dt());
+    let until = args.until.unwrap_or(scene.duration());
+    let steps = steps_of(&scene, args, dt, until)?;
+    let outputs = outputs(args);
+    check_outputs(&args.scene, &outputs)?;
+    let header = format!(
+        "{}: {}, dt = {dt} s, until {until} s ({steps} steps)",
+        scene.origin(),
+        method.id()
+    );
+    if scene.is_linear_test() {
+        return run_linear_test(&scene, args, method, (dt, until), &header);
+    }
+    let mut comparison = match args.compare {
+        Some(CompareWith::Rapier) => Some(compare::Rapier::prepare(&scene, steps)?),
+        None => None,
+    };
+    let mut world = if args.method.is_some() {
+        scene.build_world(Some(method))?
+    } else {
+        scene.build_world(None)?
+    };
+    println!("{header}");
+    let limits = RunLimits {
+        max_samples: args.max_samples,
+        ..RunLimits::default()
+    };
+    let ticker = Ticker::for_loop(steps, limits.progress_from, "simulating");
+    let run_started = Instant::now();
+    let recorded = record(&mut world, until, dt, &limits, ticker, |i, whole, w| {
+        if let Some(c) = comparison.as_mut() {
+            c.observe(i, whole, w);
+        }
+    })
+    .map_err(|e| e.context(scene.origin().to_owned()))?;
+    let run_time = run_started.elapsed();
+    print!(
+        "{}",
+        summary(&scene, &world, &recorded, run_time.as_secs_f64())
+    );
+    if let Some(c) = comparison {
+        print!("{}", c.report(dt)?);
+    }
+    // Everything ran: now build the outputs in memory, then write them.
+    let names = scene.body_names();
+    let mut files: Vec<(&Output<'_>, Vec<u8>)> = Vec::new();
+    for out in &outputs {
+        let bytes = match out.option {
+            "--trace" => world_csv(&names, &recorded).into_bytes(),
+            "--svg" | "--gif" => {
+                let film = film_of(&scene, &world, &recorded, method, dt);
+                if out.option == "--svg" {
+                    pictures::svg::filmstrip(&film, pictures::FILMSTRIP_FRAMES)?.into_bytes()
+                } else {
+                    let options = GifOptions {
+                        max_frames: usize::from(args.frames),
+                        ..GifOptions::default()
+                    };
+                    pictures::gif::animation(&film, &options)?
+                }
+            }
+            _ => continue,
+        };
+        files.push((out, bytes));
+    }
+    write_all(&files, &recorded)?;
+    tracing::info!("simulate done in {:.3} s", started.elapsed().as_secs_f64());
     Ok(())
+}
+
+fn film_of(scene: &Scene, world: &World, recorded: &Recorded, method: Method, dt: f64) -> Film {
+    let name = Path::new(scene.origin()).file_name().map_or_else(
+        || scene.origin().to_owned(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    let mut film = Film::new(
+        scene,
+        world.bodies(),
+        name,
+        format!("{}, dt = {dt} s", method.id()),
+    );
+    recorded.fill(&mut film);
+    film.mark_events(scene, &recorded.events);
+    film
+}
+
+fn write_all(files: &[(&Output<'_>, Vec<u8>)], recorded: &Recorded) -> Result<()> {
+    for (out, bytes) in files {
+        write_atomically(out.path, bytes)
+            .with_context(|| format!("{} {}", out.option, out.path.display()))?;
+        let what = match out.option {
+            "--trace" => format!(
+                "{} samples{}",
+                recorded.times.len(),
+                if recorded.stride > 1 {
+                    format!(", every {}th step", recorded.stride)
+                } else {
+                    String::new()
+                }
+            ),
+            _ => format!("{:.1} kB", bytes.len() as f64 / 1024.0),
+        };
+        println!("wrote {} ({what})", out.path.display());
+    }
+    Ok(())
+}
+
+/// A duration for people: ms below a second.
+fn duration_text(seconds: f64) -> String {
+    if seconds < 1.0 {
+        format!("{:.1} ms", seconds * 1e3)
+    } else {
+        format!("{seconds:.2} s")
+    }
+}
+
+/// What the run did: steps, events, final states, energy (10 significant
+/// digits; the CSV has every digit).
+fn summary(scene: &Scene, world: &World, rec: &Recorded, seconds: f64) -> String {
+    let mut out = String::new();
+    let end = rec.times.last().copied().unwrap_or(0.0);
+    let ended_by = match (rec.stopped_by_event, rec.events.last()) {
+        (true, Some(e)) => format!(" (ended by the {} event)", e.name),
+        _ => String::new(),
+    };
+    let _ = writeln!(
+        out,
+        "ran {} steps to t = {} s in {}{ended_by}",
+        rec.steps,
+        fmt_num(end),
+        duration_text(seconds),
+    );
+    let names = scene.body_names();
+    if !rec.events.is_empty() {
+        let _ = writeln!(out, "events:");
+        for e in &rec.events {
+            let _ = write!(out, "  {:<8} t = {} s", e.name, fmt_num(e.t));
+            if let Some(id) = event_body(scene, &e.name) {
+                let p = e.states[id].position;
+                let _ = write!(
+                    out,
+                    ", {} at x = {} m, y = {} m",
+                    names[id],
+                    fmt_num(p.x),
+                    fmt_num(p.y)
+                );
+            }
+            out.push('\n');
+        }
+    }
+    let _ = writeln!(out, "final state:");
+    for (body, (name, s)) in world.bodies().iter().zip(names.iter().zip(world.states())) {
+        let _ = write!(
+            out,
+            "  {name}: x = {} m, y = {} m, vx = {} m/s, vy = {} m/s",
+            fmt_num(s.position.x),
+            fmt_num(s.position.y),
+            fmt_num(s.velocity.x),
+            fmt_num(s.velocity.y)
+        );
+        if body.rotates() {
+            let _ = write!(
+                out,
+                ", angle = {} rad, omega = {} rad/s",
+                fmt_num(s.angle),
+                fmt_num(s.angular_velocity)
+            );
+        }
+        out.push('\n');
+    }
+    if let (Some(e0), Some(e1)) = (rec.energies.first(), rec.energies.last()) {
+        let relative = if *e0 != 0.0 {
+            format!(" (relative change {:.3e})", (e1 - e0) / e0.abs())
+        } else {
+            String::new()
+        };
+        let _ = writeln!(
+            out,
+            "energy: {} J at t = 0, {} J at the end{relative}",
+            fmt_num(*e0),
+            fmt_num(*e1)
+        );
+    }
+    out
+}
+
+fn event_body(scene: &Scene, name: &str) -> Option<usize> {
+    use scene::format::EventEntry;
+    scene.file().events.iter().find_map(|e| match e {
+        EventEntry::Landing { body, .. } if name == "landing" => scene.body_id(body),
+        EventEntry::Apex { body } if name == "apex" => scene.body_id(body),
+        _ => None,
+    })
+}
+
+/// A CSV field: quoted when it holds a comma, a quote or a line break.
+fn csv_field(text: &str) -> String {
+    if text.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_owned()
+    }
+}
+
+/// The trace as CSV: one row per sample and body.
+pub fn world_csv(names: &[&str], rec: &Recorded) -> String {
+    let mut out = String::from("t,body,x,y,angle,vx,vy,omega,energy\n");
+    let names: Vec<String> = names.iter().map(|n| csv_field(n)).collect();
+    for ((t, states), energy) in rec.times.iter().zip(&rec.states).zip(&rec.energies) {
+        for (name, s) in names.iter().zip(states) {
+            let _ = writeln!(
+                out,
+                "{t:?},{name},{:?},{:?},{:?},{:?},{:?},{:?},{energy:?}",
+                s.position.x, s.position.y, s.angle, s.velocity.x, s.velocity.y, s.angular_velocity
+            );
+        }
+    }
+    out
+}
+
+/// A `[linear_test]` scene: the scalar ODE, its CSV and its curve.
+fn run_linear_test(
+    scene: &Scene,
+    args: &SimulateArgs,
+    method: Method,
+    (dt, until): (f64, f64),
+    header: &str,
+) -> Result<()> {
+    if args.gif.is_some() {
+        bail!(
+            "--gif: {} is a [linear_test] scene, with no bodies to animate (use --svg for its y(t) curve)",
+            scene.origin()
+        );
+    }
+    if args.compare.is_some() {
+        bail!(
+            "--compare: {} is a [linear_test] scene; only scenes of bodies run in rapier2d",
+            scene.origin()
+        );
+    }
+    if method.needs_second_order() {
+        bail!(
+            "--method {}: needs a (position, velocity) system; a [linear_test] is first order",
+            method.id()
+        );
+    }
+    let test = scene
+        .linear_test()
+        .ok_or_else(|| anyhow!("{}: not a [linear_test] scene", scene.origin()))?;
+    println!("{header}");
+    let started = Instant::now();
+    let solution = test
+        .solve(method, dt, until)
+        .with_context(|| format!("{}: the run failed", scene.origin()))?;
+    let (t_end, y_end) = match (solution.t.last(), solution.y.last()) {
+        (Some(t), Some(y)) => (*t, y[0]),
+        _ => bail!("{}: the run produced no samples", scene.origin()),
+    };
+    let exact = test.exact(t_end);
+    println!(
+        "ran {} steps to t = {} s in {}\ny = {}, exact {}, error {:.3e}",
+        solution.t.len().saturating_sub(1),
+        fmt_num(t_end),
+        duration_text(started.elapsed().as_secs_f64()),
+        fmt_num(y_end),
+        fmt_num(exact),
+        y_end - exact
+    );
+    let mut csv = String::from("t,y,exact,error\n");
+    for (t, y) in solution.t.iter().zip(&solution.y) {
+        let e = test.exact(*t);
+        let _ = writeln!(csv, "{t:?},{:?},{e:?},{:?}", y[0], y[0] - e);
+    }
+    let ys: Vec<f64> = solution.y.iter().map(|y| y[0]).collect();
+    let mut files = Vec::new();
+    let outputs = outputs(args);
+    for out in &outputs {
+        let bytes = match out.option {
+            "--trace" => csv.clone().into_bytes(),
+            "--svg" => pictures::svg::linear_test_curve(
+                scene.origin(),
+                &format!("{}, dt = {dt} s", method.id()),
+                &solution.t,
+                &ys,
+                |t| test.exact(t),
+            )?
+            .into_bytes(),
+            _ => continue,
+        };
+        files.push((out, bytes));
+    }
+    let recorded = Recorded {
+        times: solution.t.clone(),
+        stride: 1,
+        ..Recorded::default()
+    };
+    write_all(&files, &recorded)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn seconds_must_be_finite_and_positive() {
+        assert_eq!(parse_seconds("0.01"), Ok(0.01));
+        for bad in ["0", "-1", "nan", "inf", "-inf", "abc", ""] {
+            assert!(parse_seconds(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn methods_are_the_engine_ids() {
+        assert_eq!(parse_method("rk4"), Ok("rk4".into()));
+        let err = parse_method("rk5").unwrap_err();
+        assert!(err.contains("dormand_prince"), "{err}");
+    }
+
+    #[test]
+    fn csv_fields_are_quoted_only_when_needed() {
+        assert_eq!(csv_field("box"), "box");
+        assert_eq!(csv_field("a,b"), "\"a,b\"");
+        assert_eq!(csv_field("say \"hi\""), "\"say \"\"hi\"\"\"");
+    }
+
+    #[test]
+    fn a_recorded_run_keeps_at_most_max_samples() {
+        let scene = Scene::parse_str(
+            "inline.toml",
+            "[simulation]\ndt = 0.001\nduration = 1.0\n[[bodies]]\nname = \"p\"\nmass = 1.0\nvelocity = [1.0, 0.0]\n",
+        )
+        .unwrap();
+        let mut world = scene.build_world(None).unwrap();
+        let limits = RunLimits {
+            max_samples: 11,
+            ..RunLimits::default()
+        };
+        let mut whole = 0;
+        let rec = record(
+            &mut world,
+            1.0,
+            0.001,
+            &limits,
+            Ticker::new(indicatif::ProgressBar::hidden(), 1),
+            |_, w, _| whole += u64::from(w),
+        )
+        .unwrap();
+        assert_eq!(rec.steps, 1000);
+        assert_eq!(rec.stride, 100);
+        assert_eq!(rec.times.len(), 11);
+        assert_eq!(*rec.times.last().unwrap(), 1.0);
+        assert_eq!(whole, 1000);
+        let csv = world_csv(&["p"], &rec);
+        assert_eq!(csv.lines().count(), 12);
+        assert!(csv.lines().nth(11).unwrap().starts_with("1.0,p,"), "{csv}");
+    }
 }

@@ -4,10 +4,12 @@
 //! and the derivative evaluations (machine-independent).
 
 use crate::cases::all_methods;
+use crate::rapier_scene::rapier_problem;
 use crate::scenes;
 use crate::timing::min_time;
 use anyhow::Result;
 use engine::{EngineError, Method, Tolerance, World, integrate_fixed};
+use references::rapier_world::{RapierError, RapierSample, RapierSettings, run_single_body};
 use references::{AngularDrag, DragReference, Hoffman, SpringOscillator};
 use serde::Serialize;
 
@@ -37,7 +39,8 @@ pub struct SweepPoint {
 pub struct Sweep {
     /// Case id.
     pub case: &'static str,
-    /// What the error measures, with its unit.
+    /// What the error measures, with its unit (points hold its maximum over
+    /// the run and its value at the end).
     pub error_label: &'static str,
     /// Size of the solution (same unit): errors above it are "unstable".
     pub scale: f64,
@@ -52,6 +55,8 @@ pub struct SweepSettings {
     pub timing_runs: usize,
     /// Halvings of the step beyond the first level.
     pub levels: u32,
+    /// Halvings of rapier2d's step beyond the first level.
+    pub rapier_levels: u32,
 }
 
 impl SweepSettings {
@@ -59,11 +64,13 @@ impl SweepSettings {
     pub const FULL: SweepSettings = SweepSettings {
         timing_runs: 5,
         levels: 13,
+        rapier_levels: 9,
     };
     /// The `--quick` sweep: one timing run, fewer levels.
     pub const QUICK: SweepSettings = SweepSettings {
         timing_runs: 1,
-        levels: 10,
+        levels: 13,
+        rapier_levels: 5,
     };
 }
 
@@ -92,6 +99,41 @@ struct SweepCase {
     scale: f64,
     /// (error at end, max error, evaluations), or a blow-up.
     run: RunFn,
+    /// The same observation of a rapier2d-f64 run: (substeps, dt) → samples.
+    rapier: Option<RapierFn>,
+}
+
+/// Runs the case's scene in rapier2d-f64 with (substeps, dt) and measures
+/// its error like [`RunFn`]; `evaluations` counts force evaluations (one per
+/// step: rapier holds external forces over the substeps).
+type RapierFn = Box<dyn Fn(usize, f64, bool) -> Result<Measured>>;
+
+/// Substep counts of rapier2d swept (its default is 4).
+pub const RAPIER_SUBSTEPS: [usize; 3] = [1, 4, 16];
+
+/// The rapier runner of scene `id`, with `error(t, sample)` giving the error
+/// of one sample (its unit is the case's).
+fn rapier_runner(
+    id: &str,
+    duration: f64,
+    error: impl Fn(&RapierSample) -> Result<f64> + 'static,
+) -> Result<RapierFn> {
+    let (body, forces) = rapier_problem(&scenes::load(id)?)?;
+    Ok(Box::new(move |substeps, dt, observe| {
+        let settings = RapierSettings { dt, substeps };
+        let samples = run_single_body(&body, &forces, &settings, duration)?;
+        let last = samples
+            .last()
+            .ok_or_else(|| anyhow::anyhow!("rapier returned no sample"))?;
+        let end = error(last)?;
+        let mut max_error: f64 = 0.0;
+        if observe {
+            for s in &samples {
+                max_error = max_error.max(error(s)?);
+            }
+        }
+        Ok((end, max_error, samples.len() as u64 - 1))
+    }))
 }
 
 /// Steps a world from 0 to `until` with `steps` equal steps (times i·h),
@@ -115,11 +157,15 @@ fn steps_for(until: f64, h: f64) -> u64 {
     (until / h).round() as u64
 }
 
-fn spring_case() -> SweepCase {
+fn spring_case() -> Result<SweepCase> {
     let exact = SpringOscillator::seed();
-    SweepCase {
+    let rapier = rapier_runner("spring", 57.2, move |s| {
+        Ok((s.position[0] - exact.position(s.t)).abs())
+    })?;
+    Ok(SweepCase {
+        rapier: Some(rapier),
         id: "spring",
-        error_label: "|x error| at 57.2 s (m)",
+        error_label: "|x error| over 0-57.2 s (m)",
         h0: 0.2,
         scale: exact.x0 - exact.rest_length,
         run: Box::new(move |method, h, observe| {
@@ -134,14 +180,20 @@ fn spring_case() -> SweepCase {
             let end = (world.states()[0].position.x - exact.position(57.2)).abs();
             Ok((end, max_error, world.stats().evaluations))
         }),
-    }
+    })
 }
 
-fn drag_case(reference: DragReference) -> SweepCase {
+fn drag_case(reference: DragReference) -> Result<SweepCase> {
     let reference = std::rc::Rc::new(reference);
-    SweepCase {
+    let for_rapier = reference.clone();
+    let rapier = rapier_runner("projectile_drag", 5.0, move |s| {
+        let r = for_rapier.state_at(s.t)?;
+        Ok((s.position[0] - r[0]).hypot(s.position[1] - r[1]))
+    })?;
+    Ok(SweepCase {
+        rapier: Some(rapier),
         id: "projectile_drag",
-        error_label: "|position error| at 5 s (m)",
+        error_label: "|position error| over 0-5 s (m)",
         h0: 0.2,
         scale: 100.0,
         run: Box::new(move |method, h, observe| {
@@ -170,14 +222,18 @@ fn drag_case(reference: DragReference) -> SweepCase {
                 world.stats().evaluations,
             ))
         }),
-    }
+    })
 }
 
-fn angular_drag_case() -> SweepCase {
+fn angular_drag_case() -> Result<SweepCase> {
     let exact = AngularDrag::seed();
-    SweepCase {
+    let rapier = rapier_runner("angular_drag", 8.7, move |s| {
+        Ok((s.angle - exact.theta(s.t)).abs())
+    })?;
+    Ok(SweepCase {
+        rapier: Some(rapier),
         id: "angular_drag",
-        error_label: "|angle error| at 8.7 s (rad)",
+        error_label: "|angle error| over 0-8.7 s (rad)",
         h0: 0.1,
         scale: 1.0,
         run: Box::new(move |method, h, observe| {
@@ -191,7 +247,7 @@ fn angular_drag_case() -> SweepCase {
             let end = (world.states()[0].angle - exact.theta(8.7)).abs();
             Ok((end, max_error, world.stats().evaluations))
         }),
-    }
+    })
 }
 
 fn hoffman_case() -> Result<SweepCase> {
@@ -200,8 +256,9 @@ fn hoffman_case() -> Result<SweepCase> {
         .linear_test()
         .ok_or_else(|| anyhow::anyhow!("scenes/hoffman.toml must hold a [linear_test]"))?;
     Ok(SweepCase {
+        rapier: None,
         id: "hoffman",
-        error_label: "|y error| at t = 1 (-)",
+        error_label: "|y error| over 0-1 s (-)",
         h0: 0.1,
         scale: 1.0,
         run: Box::new(move |method, h, _observe| {
@@ -233,9 +290,9 @@ pub const SWEPT_CASES: [&str; 4] = ["spring", "projectile_drag", "angular_drag",
 /// Runs the sweep of case `id`.
 pub fn run(id: &str, settings: SweepSettings) -> Result<Sweep> {
     let case = match id {
-        "spring" => spring_case(),
-        "projectile_drag" => drag_case(DragReference::compute()?),
-        "angular_drag" => angular_drag_case(),
+        "spring" => spring_case()?,
+        "projectile_drag" => drag_case(DragReference::compute()?)?,
+        "angular_drag" => angular_drag_case()?,
         "hoffman" => hoffman_case()?,
         other => anyhow::bail!("no sweep for case '{other}'"),
     };
@@ -262,10 +319,30 @@ pub fn run(id: &str, settings: SweepSettings) -> Result<Sweep> {
         };
         for (m, h, tolerance) in plan {
             let point = measure(&case, m, h, tolerance, settings)?;
-            let at_floor = point.stable && point.error_end < ROUND_OFF_FLOOR * case.scale;
+            let at_floor = point.stable && point.max_error < ROUND_OFF_FLOOR * case.scale;
             points.push(point);
             if at_floor && tolerance.is_none() {
                 break;
+            }
+        }
+    }
+    if let Some(rapier) = &case.rapier {
+        for substeps in RAPIER_SUBSTEPS {
+            for k in 0..=settings.rapier_levels {
+                let h = case.h0 / f64::from(1u32 << k);
+                let point = measure_with(
+                    &format!("rapier2d_{substeps}sub"),
+                    case.scale,
+                    h,
+                    None,
+                    settings,
+                    |observe| rapier(substeps, h, observe),
+                )?;
+                let at_floor = point.stable && point.max_error < ROUND_OFF_FLOOR * case.scale;
+                points.push(point);
+                if at_floor {
+                    break;
+                }
             }
         }
     }
@@ -284,29 +361,51 @@ fn measure(
     tolerance: Option<f64>,
     settings: SweepSettings,
 ) -> Result<SweepPoint> {
-    let observed = (case.run)(method, h, true);
-    let (error_end, max_error, evaluations, finite) = match observed {
+    measure_with(method.id(), case.scale, h, tolerance, settings, |observe| {
+        (case.run)(method, h, observe)
+    })
+}
+
+/// Observes one run (errors, evaluations), then times it without
+/// observation. A blow-up is a point marked unstable, not a failure.
+fn measure_with(
+    label: &str,
+    scale: f64,
+    h: f64,
+    tolerance: Option<f64>,
+    settings: SweepSettings,
+    run: impl Fn(bool) -> Result<Measured>,
+) -> Result<SweepPoint> {
+    let (error_end, max_error, evaluations, finite) = match run(true) {
         Ok((e, m, n)) => (e, m, n, e.is_finite()),
-        Err(err) if is_blow_up(&err) => (f64::INFINITY, f64::INFINITY, 0, false),
+        Err(err) if is_blow_up(&err) || is_rapier_blow_up(&err) => {
+            (f64::INFINITY, f64::INFINITY, 0, false)
+        }
         Err(err) => return Err(err),
     };
     let cpu_seconds = if finite {
-        min_time(settings.timing_runs, || {
-            (case.run)(method, h, false).map(|_| ())
-        })?
+        min_time(settings.timing_runs, || run(false).map(|_| ()))?
     } else {
         f64::NAN
     };
     Ok(SweepPoint {
-        method: method.id().into(),
+        method: label.into(),
         h,
         tolerance,
         error_end,
         max_error,
         cpu_seconds,
         evaluations,
-        stable: finite && max_error < case.scale,
+        stable: finite && max_error < scale,
     })
+}
+
+/// Whether rapier2d's run went non-finite (its blow-up).
+fn is_rapier_blow_up(err: &anyhow::Error) -> bool {
+    matches!(
+        err.downcast_ref::<RapierError>(),
+        Some(RapierError::NonFinite { .. })
+    )
 }
 
 /// Whether an error is the engine reporting a blow-up (a result, not a fault).

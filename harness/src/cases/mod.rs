@@ -2,6 +2,13 @@
 //! with its reference, and returns rows and sampled traces.
 
 mod angular_drag;
+mod collision_bounce;
+pub mod collision_common;
+mod collision_friction;
+mod collision_impacts;
+pub mod collision_parry;
+mod collision_plots;
+mod collision_toi;
 mod hoffman;
 mod projectile;
 mod projectile_drag;
@@ -74,7 +81,7 @@ pub struct Case {
 }
 
 /// Every case, in the order of CASES.md.
-pub const CASES: [Case; 6] = [
+pub const CASES: [Case; 14] = [
     Case {
         id: "spring",
         title: "Case I: mass-spring, RK4 at h = 0.2 s over 57.2 s (seed §5)",
@@ -104,6 +111,46 @@ pub const CASES: [Case; 6] = [
         id: "hoffman",
         title: "Stiff test y' = -1000(y - (t + 2)) + 1 (seed §4.3, after Hoffman)",
         run: hoffman::run,
+    },
+    Case {
+        id: "collision_parry",
+        title: "Case III: detection against parry2d on 100 000 random convex pairs and 20 000 near-touching ones",
+        run: collision_parry::run,
+    },
+    Case {
+        id: "collision_toi",
+        title: "Case III: time of impact, 2.0 s and 1.8736370117 s with rotation (seed Fig. 7.7-7.8), against parry2d",
+        run: collision_toi::run,
+    },
+    Case {
+        id: "collision_head_on",
+        title: "Case III: head-on impact, 1 kg at 2 m/s on 3 kg at rest, e = 1 and 0.5 (seed eq. 7.15)",
+        run: collision_impacts::run_head_on,
+    },
+    Case {
+        id: "collision_off_centre",
+        title: "Case III: off-centre impact of two boxes against eq. 7.15, momentum and energy",
+        run: collision_impacts::run_off_centre,
+    },
+    Case {
+        id: "collision_bounce",
+        title: "Case III: a ball bouncing on fixed ground, e = 1 (100 bounces) and e = 0.8 (apex 0.64^n h0)",
+        run: collision_bounce::run,
+    },
+    Case {
+        id: "collision_slide",
+        title: "Case III: a box sliding to a stop with Coulomb friction, v0²/(2 mu g)",
+        run: collision_friction::run_slide,
+    },
+    Case {
+        id: "collision_incline",
+        title: "Case III: a box on an incline on both sides of tan θ = mu",
+        run: collision_friction::run_incline,
+    },
+    Case {
+        id: "collision_rest",
+        title: "Case III: a box resting on the ground for 10 s (seed §7.1, after Baraff)",
+        run: collision_friction::run_rest,
     },
 ];
 

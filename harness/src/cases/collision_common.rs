@@ -1,0 +1,257 @@
+//! What the collision cases (CASES.md case III, ids `collision_*`) share:
+//! running a collision scene in the engine (with its contact events and
+//! per-phase profile) and in rapier2d-f64, and the text form of contact
+//! events for snapshots.
+
+use crate::row::RowSink;
+use crate::scenes;
+use crate::snapshot::round_sig;
+use anyhow::{Context, Result, bail};
+use engine::{Body, BodyKind, ContactEvent, ContactEventKind, Trace, World};
+use references::rapier_contacts::{
+    RapierContactBody, RapierContactRun, RapierContactScene, run_contact_scene,
+};
+use references::rapier_world::{RapierBody, RapierSettings};
+use scene::Scene;
+use scene::format::ForceSpec;
+use std::fmt::Write as _;
+
+/// Method id of rapier rows.
+pub const RAPIER: &str = "rapier2d";
+
+/// A collision scene run in the engine with the scene's own method.
+pub struct EngineRun {
+    /// The scene.
+    pub scene: Scene,
+    /// The world at the end of the run.
+    pub world: World,
+    /// The run's samples and located events.
+    pub trace: Trace,
+}
+
+impl EngineRun {
+    /// Contact events of one kind.
+    pub fn events(&self, kind: ContactEventKind) -> Vec<ContactEvent> {
+        self.world
+            .contact_events()
+            .into_iter()
+            .filter(|e| e.kind == kind)
+            .collect()
+    }
+
+    /// The id of body `name`.
+    pub fn body(&self, name: &str) -> Result<usize> {
+        self.scene
+            .body_id(name)
+            .with_context(|| format!("{}: no body '{name}'", self.scene.origin()))
+    }
+
+    /// A note on where the run spent its time (per phase, min of one run:
+    /// indicative only).
+    pub fn profile_note(&self, id: &str) -> String {
+        let p = self.world.profile();
+        format!(
+            "`{id}` engine profile ({} build, one run): {} steps, {} candidate pairs, {} \
+             time-of-impact/stick searches ({} evaluations), {} contact events; integrate {:.3} ms, \
+             broad phase {:.3} ms, narrow phase {:.3} ms, time of impact {:.3} ms, respond {:.3} ms.",
+            if cfg!(debug_assertions) {
+                "debug"
+            } else {
+                "release"
+            },
+            p.steps,
+            p.candidate_pairs,
+            p.toi_searches,
+            p.toi_evaluations,
+            self.world.contact_events().len(),
+            1e3 * p.integrate.as_secs_f64(),
+            1e3 * p.broad_phase.as_secs_f64(),
+            1e3 * p.narrow_phase.as_secs_f64(),
+            1e3 * p.toi.as_secs_f64(),
+            1e3 * p.respond.as_secs_f64(),
+        )
+    }
+}
+
+/// Loads scene `id`, builds it with its own method and contact settings,
+/// and runs it to its duration with per-phase profiling on.
+pub fn run_engine(id: &str) -> Result<EngineRun> {
+    let scene = scenes::load(id)?;
+    let mut world = scene.build_world(None)?;
+    if !world.has_contacts() {
+        bail!("{id}: the scene runs no contacts (a [contact] table and two shapes are needed)");
+    }
+    world.set_profiling(true);
+    let trace = world
+        .run(scene.duration(), scene.dt())
+        .with_context(|| format!("running {id}"))?;
+    Ok(EngineRun {
+        scene,
+        world,
+        trace,
+    })
+}
+
+/// The rapier description of a collision scene: its bodies with their
+/// shapes, mass and inertia (as the engine computes them from the file),
+/// gravity, restitution and friction. Other forces are refused.
+pub fn rapier_scene(scene: &Scene) -> Result<RapierContactScene> {
+    let mut bodies = Vec::new();
+    for def in scene.bodies() {
+        let (body, state): (Body, _) = Body::from_def(def)?;
+        let shape = body
+            .shape
+            .clone()
+            .with_context(|| format!("body '{}' has no shape", body.name))?;
+        bodies.push(match body.kind {
+            BodyKind::Static => RapierContactBody::Fixed {
+                position: [state.position.x, state.position.y],
+                angle: state.angle,
+                shape,
+            },
+            BodyKind::Dynamic => RapierContactBody::Dynamic {
+                body: RapierBody {
+                    mass: body.mass,
+                    inertia: body.inertia,
+                    position: [state.position.x, state.position.y],
+                    angle: state.angle,
+                    velocity: [state.velocity.x, state.velocity.y],
+                    angular_velocity: state.angular_velocity,
+                },
+                shape,
+            },
+        });
+    }
+    let mut gravity = [0.0, 0.0];
+    for f in &scene.file().forces {
+        match f {
+            ForceSpec::Gravity { g, window: None } => {
+                gravity[0] += g.x;
+                gravity[1] += g.y;
+            }
+            other => bail!(
+                "{}: {other:?} has no counterpart in the rapier collision scenes",
+                scene.origin()
+            ),
+        }
+    }
+    let contact = scene
+        .contact()
+        .with_context(|| format!("{}: no [contact] table", scene.origin()))?;
+    Ok(RapierContactScene {
+        bodies,
+        gravity,
+        restitution: contact.restitution,
+        friction: contact.friction,
+    })
+}
+
+/// rapier's step for a scene: the scene's dt, rapier's default 4 substeps.
+pub fn rapier_settings(scene: &Scene) -> RapierSettings {
+    RapierSettings::new(scene.dt())
+}
+
+/// Runs scene `scene` in rapier over its duration.
+pub fn run_rapier(scene: &Scene) -> Result<RapierContactRun> {
+    let r = rapier_scene(scene)?;
+    Ok(run_contact_scene(
+        &r,
+        &rapier_settings(scene),
+        scene.duration(),
+    )?)
+}
+
+/// Kinetic energy ½ m v² + ½ I ω² of every dynamic body of `bodies` in
+/// `states` (J).
+pub fn kinetic_energy(bodies: &[Body], states: &[engine::BodyState]) -> f64 {
+    bodies
+        .iter()
+        .zip(states)
+        .map(|(b, s)| b.kinetic_energy(s))
+        .sum()
+}
+
+/// A row of rapier beside the engine: `|rapier − expected| ≤ bound`, where
+/// `bound` is a documented property of rapier's contact model (its
+/// soft-contact or step quantisation), not an accuracy goal.
+#[allow(clippy::too_many_arguments)]
+pub fn rapier_row(
+    rows: &mut Vec<crate::row::Row>,
+    case: &str,
+    dt: f64,
+    check: &str,
+    value: f64,
+    expected: f64,
+    bound: f64,
+    reason: impl Into<String>,
+) {
+    RowSink {
+        case,
+        method: RAPIER,
+        dt,
+        rows,
+    }
+    .within(check, value, expected, bound, reason);
+}
+
+/// Coordinates (m) under this print as 0 in event snapshots: a contact
+/// point lies midway between surfaces that may be up to ε = 1e-10 m apart
+/// when the time of impact is located, so its last digits below ~1e-9 m
+/// are the search's residual, not physics.
+pub const POINT_FLOOR: f64 = 1e-9;
+
+/// Impulses (N·s) under this print as 0: those that cancel a round-off
+/// approach speed at a resting contact.
+pub const IMPULSE_FLOOR: f64 = 1e-12;
+
+fn floored(v: f64, floor: f64) -> String {
+    if v.abs() < floor {
+        "0".into()
+    } else {
+        round_sig(v)
+    }
+}
+
+/// The contact events as text for snapshots: one line per event with its
+/// time, kind, bodies, point, normal and impulses, numbers rounded to
+/// significant digits (`crate::snapshot`), points and normals under
+/// [`POINT_FLOOR`] and impulses under [`IMPULSE_FLOOR`] as 0.
+pub fn render_contact_events(scene: &Scene, events: &[ContactEvent]) -> String {
+    let names = scene.body_names();
+    let mut out = String::from(
+        "t\tkind\tbody_a\tbody_b\tpoints\tpoint_x\tpoint_y\tnormal_x\tnormal_y\tnormal_impulse\ttangent_impulse\n",
+    );
+    for e in events {
+        let _ = writeln!(
+            out,
+            "{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}",
+            round_sig(e.t),
+            e.kind.id(),
+            names[e.body_a],
+            names[e.body_b],
+            e.points,
+            floored(e.point.x, POINT_FLOOR),
+            floored(e.point.y, POINT_FLOOR),
+            floored(e.normal.x, POINT_FLOOR),
+            floored(e.normal.y, POINT_FLOOR),
+            floored(e.normal_impulse, IMPULSE_FLOOR),
+            floored(e.tangent_impulse, IMPULSE_FLOOR),
+        );
+    }
+    out
+}
+
+/// At most `head` events, then the last `tail`, with a line saying how many
+/// were left out (a 100-bounce run has 100 impacts).
+pub fn thin_events(
+    events: &[ContactEvent],
+    head: usize,
+    tail: usize,
+) -> (Vec<ContactEvent>, usize) {
+    if events.len() <= head + tail {
+        return (events.to_vec(), 0);
+    }
+    let mut kept = events[..head].to_vec();
+    kept.extend_from_slice(&events[events.len() - tail..]);
+    (kept, events.len() - head - tail)
+}

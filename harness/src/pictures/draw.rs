@@ -1,0 +1,457 @@
+//! Drawing one frame of a [`Film`] on any plotters backend (SVG for the
+//! filmstrip, an RGB buffer for the GIF): the static part once
+//! ([`background`]: axes in metres, ground lines, static bodies, spring
+//! anchors), then per frame the moving part ([`foreground`]: trails,
+//! springs, bodies at their pose, event markers, the live label), as the
+//! seed drew its simulations on screen (§2.1.2, figures 5.3 and 6.6: the
+//! bodies' vertices and colours, and the current x, y and angular speed).
+
+use super::film::{Film, SpringEnd};
+use super::font::FAMILY;
+use super::view::{Layout, MARGIN, PARTICLE_PX, View, X_LABEL_AREA, Y_LABEL_AREA, round_px};
+use anyhow::{Result, anyhow};
+use engine::{BodyState, Shape};
+use nalgebra::{Rotation2, Vector2};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use scene::Colour;
+
+/// Turns a plotters error into an `anyhow` one.
+pub(crate) fn plot_err<E: std::fmt::Display>(e: E) -> anyhow::Error {
+    anyhow!("drawing failed: {e}")
+}
+
+/// The plotters colour of a scene colour.
+pub(crate) fn rgb(c: Colour) -> RGBColor {
+    RGBColor(c.r, c.g, c.b)
+}
+
+/// `c` mixed with white: `amount` 0 keeps it, 1 gives white.
+pub(crate) fn tint(c: Colour, amount: f64) -> Colour {
+    let mix = |v: u8| (f64::from(v) + (255.0 - f64::from(v)) * amount).round() as u8;
+    Colour::rgb(mix(c.r), mix(c.g), mix(c.b))
+}
+
+/// `c` darkened: `factor` 1 keeps it, 0 gives black.
+pub(crate) fn shade(c: Colour, factor: f64) -> Colour {
+    let mix = |v: u8| (f64::from(v) * factor).round() as u8;
+    Colour::rgb(mix(c.r), mix(c.g), mix(c.b))
+}
+
+/// Amount of white in a trail's colour.
+pub(crate) const TRAIL_TINT: f64 = 0.3;
+/// Amount of white in the faint whole-run path (filmstrip only).
+pub(crate) const PATH_TINT: f64 = 0.82;
+/// Darkening of outlines and orientation marks.
+pub(crate) const OUTLINE_SHADE: f64 = 0.55;
+/// Springs and anchors.
+pub(crate) const INK: Colour = Colour::rgb(70, 70, 70);
+/// Chart grid lines.
+pub(crate) const GRID: Colour = Colour::rgb(225, 225, 225);
+/// Chart fine grid lines.
+pub(crate) const GRID_FINE: Colour = Colour::rgb(242, 242, 242);
+
+/// The header's first line, at the top of a picture.
+pub(crate) const TITLE_Y: i32 = 5;
+/// Height of one header line (px).
+pub(crate) const LINE_PX: i32 = 17;
+
+/// Numbers for labels: four significant digits, no "-0"; below 1e-12 in
+/// magnitude (round-off around a zero, such as the height at a located
+/// landing) is shown as 0.
+pub fn sig(v: f64) -> String {
+    if v.abs() < 1e-12 || !v.is_finite() {
+        return if v.is_finite() {
+            "0".into()
+        } else {
+            format!("{v}")
+        };
+    }
+    let a = v.abs();
+    if (1e-3..1e6).contains(&a) {
+        let decimals = (3 - a.log10().floor() as i32).max(0) as usize;
+        let s = format!("{v:.decimals$}");
+        if s.trim_start_matches('-')
+            .trim_matches(|c| c == '0' || c == '.')
+            .is_empty()
+        {
+            "0".into()
+        } else {
+            s
+        }
+    } else {
+        format!("{v:.3e}")
+    }
+}
+
+/// What the live label says at sample `k`: the time, then the position,
+/// angle and angular speed of the first dynamic body (as the seed's
+/// figure 6.6 shows them).
+pub fn live_label(film: &Film, k: usize) -> String {
+    let mut text = format!("t = {} s", sig(film.times[k]));
+    if let Some(i) = film.lead_body() {
+        let s = &film.states[k][i];
+        let body = &film.bodies[i];
+        let named = film.bodies.iter().filter(|b| b.dynamic).count() > 1;
+        if named {
+            text.push_str(&format!(", {}:", body.name));
+        } else {
+            text.push(',');
+        }
+        text.push_str(&format!(
+            " x = {} m, y = {} m",
+            sig(s.position.x),
+            sig(s.position.y)
+        ));
+        if body.rotates {
+            text.push_str(&format!(
+                ", θ = {} rad, ω = {} rad/s",
+                sig(s.angle),
+                sig(s.angular_velocity)
+            ));
+        }
+    }
+    text
+}
+
+fn text_style(size: u32, colour: Colour) -> TextStyle<'static> {
+    (FAMILY, size).into_font().color(&rgb(colour))
+}
+
+/// Draws `lines` of header text from the top of `area`, the first one bold.
+pub(crate) fn header<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    lines: &[&str],
+) -> Result<()> {
+    for (i, line) in lines.iter().enumerate() {
+        let style = if i == 0 {
+            (FAMILY, 14)
+                .into_font()
+                .style(FontStyle::Bold)
+                .color(&BLACK)
+        } else {
+            text_style(12, Colour::rgb(40, 40, 40))
+        };
+        area.draw_text(line, &style, (MARGIN as i32, TITLE_Y + i as i32 * LINE_PX))
+            .map_err(plot_err)?;
+    }
+    Ok(())
+}
+
+/// Fills `area` white, draws the `header` lines, the axes in metres over
+/// `layout`'s window, the ground lines, the static bodies and the world
+/// anchors of springs; returns the view to draw the moving part with.
+pub(crate) fn background<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    film: &Film,
+    layout: &Layout,
+    header_lines: &[&str],
+) -> Result<View> {
+    area.fill(&WHITE).map_err(plot_err)?;
+    header(area, header_lines)?;
+    let mut chart = ChartBuilder::on(area)
+        .margin(MARGIN)
+        .margin_top(layout.header)
+        .x_label_area_size(X_LABEL_AREA)
+        .y_label_area_size(Y_LABEL_AREA)
+        .build_cartesian_2d(layout.x.0..layout.x.1, layout.y.0..layout.y.1)
+        .map_err(plot_err)?;
+    chart
+        .configure_mesh()
+        .x_desc("x (m)")
+        .y_desc("y (m)")
+        .x_labels(8)
+        .y_labels(6)
+        .label_style(text_style(11, Colour::rgb(60, 60, 60)))
+        .axis_desc_style(text_style(12, Colour::rgb(60, 60, 60)))
+        .bold_line_style(rgb(GRID))
+        .light_line_style(rgb(GRID_FINE))
+        .draw()
+        .map_err(plot_err)?;
+    let (px, py) = chart.plotting_area().get_pixel_range();
+    let (bx, by) = area.get_base_pixel();
+    let view = View::new(
+        film,
+        layout,
+        px.start - bx..px.end - bx,
+        py.start - by..py.end - by,
+    );
+    for &level in &film.grounds {
+        let (x0, y) = view.to_px(Vector2::new(view.x.0, level));
+        let (x1, _) = view.to_px(Vector2::new(view.x.1, level));
+        area.draw(&PathElement::new(
+            vec![(x0, y), (x1, y)],
+            rgb(INK).stroke_width(2),
+        ))
+        .map_err(plot_err)?;
+        // Hatching under the ground line.
+        let mut x = x0 + 4;
+        while x < x1 {
+            area.draw(&PathElement::new(
+                vec![(x, y + 1), (x - 6, y + 7)],
+                rgb(tint(INK, 0.5)).stroke_width(1),
+            ))
+            .map_err(plot_err)?;
+            x += 10;
+        }
+    }
+    if let Some(states) = film.states.first() {
+        for (i, look) in film.bodies.iter().enumerate() {
+            if !look.dynamic {
+                draw_body(area, film, &view, i, &states[i])?;
+            }
+        }
+    }
+    for (a, b) in &film.springs {
+        for end in [a, b] {
+            if let SpringEnd::World(p) = end {
+                let (x, y) = view.to_px(*p);
+                area.draw(&Rectangle::new(
+                    [(x - 4, y - 4), (x + 4, y + 4)],
+                    rgb(INK).filled(),
+                ))
+                .map_err(plot_err)?;
+            }
+        }
+    }
+    Ok(view)
+}
+
+/// Which trails the foreground draws.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Trails {
+    /// The path so far.
+    Past,
+    /// The whole run faint, the path so far strong (stills).
+    WholeAndPast,
+}
+
+/// Sample indices of the trails: at most about `count`, evenly spread.
+pub(crate) fn trail_samples(film: &Film, count: usize) -> Vec<usize> {
+    let n = film.times.len();
+    let stride = n.div_ceil(count.max(1)).max(1);
+    (0..n).step_by(stride).collect()
+}
+
+/// Draws the moving part at sample `k`: trails, springs, dynamic bodies,
+/// the markers of the events passed, and the live label at `label_at`.
+pub(crate) fn foreground<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    film: &Film,
+    view: &View,
+    k: usize,
+    (trails, trail_idx): (Trails, &[usize]),
+    label_at: (i32, i32),
+) -> Result<()> {
+    let states = &film.states[k];
+    for (i, look) in film.bodies.iter().enumerate() {
+        if !look.dynamic {
+            continue;
+        }
+        let centre = |j: usize| view.to_px(film.states[j][i].position);
+        if trails == Trails::WholeAndPast {
+            let mut all: Vec<(i32, i32)> = trail_idx.iter().map(|&j| centre(j)).collect();
+            all.push(centre(film.times.len() - 1));
+            area.draw(&PathElement::new(
+                all,
+                rgb(tint(look.colour, PATH_TINT)).stroke_width(1),
+            ))
+            .map_err(plot_err)?;
+        }
+        let mut past: Vec<(i32, i32)> = trail_idx
+            .iter()
+            .take_while(|&&j| j <= k)
+            .map(|&j| centre(j))
+            .collect();
+        past.push(centre(k));
+        past.dedup();
+        if past.len() > 1 {
+            // Bitmaps draw 1 px lines cleanly; wider ones are polygons,
+            // jagged along a curve of many short segments.
+            let width = if trails == Trails::Past { 1 } else { 2 };
+            area.draw(&PathElement::new(
+                past,
+                rgb(tint(look.colour, TRAIL_TINT)).stroke_width(width),
+            ))
+            .map_err(plot_err)?;
+        }
+    }
+    for (i, look) in film.bodies.iter().enumerate() {
+        if look.dynamic {
+            draw_body(area, film, view, i, &states[i])?;
+        }
+    }
+    // Springs over the bodies, so that enlarged bodies do not hide them.
+    for (a, b) in &film.springs {
+        draw_spring(area, view.to_px(a.at(states)), view.to_px(b.at(states)))?;
+    }
+    let t = film.times[k];
+    for mark in film.marks.iter().filter(|m| m.t <= t) {
+        let (x, y) = view.to_px(mark.position);
+        area.draw(&Circle::new((x, y), 4, BLACK.stroke_width(1)))
+            .map_err(plot_err)?;
+        // Left of the marker near the right edge, so the name stays inside.
+        let left = x > view.px.end - 60;
+        let anchor = if left { HPos::Right } else { HPos::Left };
+        let style = text_style(11, Colour::rgb(30, 30, 30)).pos(Pos::new(anchor, VPos::Top));
+        let at = if left {
+            (x - 6, y - 16)
+        } else {
+            (x + 6, y - 16)
+        };
+        area.draw_text(&mark.name, &style, at).map_err(plot_err)?;
+    }
+    area.draw_text(
+        &live_label(film, k),
+        &text_style(12, Colour::rgb(20, 20, 20)),
+        label_at,
+    )
+    .map_err(plot_err)?;
+    Ok(())
+}
+
+/// A spring as a zigzag between two pixels.
+fn draw_spring<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    a: (i32, i32),
+    b: (i32, i32),
+) -> Result<()> {
+    let (ax, ay) = (f64::from(a.0), f64::from(a.1));
+    let (dx, dy) = (f64::from(b.0) - ax, f64::from(b.1) - ay);
+    let length = dx.hypot(dy);
+    if length < 2.0 {
+        return Ok(());
+    }
+    let (ux, uy) = (dx / length, dy / length);
+    let (nx, ny) = (-uy, ux);
+    let coils = 14;
+    let amplitude = 5.0;
+    let lead = 0.1;
+    let mut points = vec![a];
+    for j in 0..=coils {
+        let f = lead + (1.0 - 2.0 * lead) * j as f64 / coils as f64;
+        let side = if j == 0 || j == coils {
+            0.0
+        } else if j % 2 == 0 {
+            amplitude
+        } else {
+            -amplitude
+        };
+        points.push((
+            (ax + f * dx + side * nx).round() as i32,
+            (ay + f * dy + side * ny).round() as i32,
+        ));
+    }
+    points.push(b);
+    area.draw(&PathElement::new(points, rgb(INK).stroke_width(1)))
+        .map_err(plot_err)?;
+    Ok(())
+}
+
+/// The outline of `shape` in the body frame, scaled by `enlarge` (m).
+fn outline(shape: &Shape, enlarge: f64) -> Vec<Vector2<f64>> {
+    match shape {
+        Shape::Polygon(p) => p.vertices().iter().map(|v| v * enlarge).collect(),
+        Shape::Circle(c) => (0..48)
+            .map(|j| {
+                let a = std::f64::consts::TAU * j as f64 / 48.0;
+                Vector2::new(a.cos(), a.sin()) * c.radius * enlarge
+            })
+            .collect(),
+    }
+}
+
+/// Body `i` at `state`: its shape filled in its colour with a darker
+/// outline and a mark from the centre along its x axis (so rotation shows
+/// on a circle too); a particle as a dot; a shapeless static body as a
+/// small square.
+fn draw_body<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    film: &Film,
+    view: &View,
+    i: usize,
+    state: &BodyState,
+) -> Result<()> {
+    let look = &film.bodies[i];
+    let centre = view.to_px(state.position);
+    let edge = rgb(shade(look.colour, OUTLINE_SHADE));
+    let Some(shape) = &look.shape else {
+        if look.dynamic {
+            area.draw(&Circle::new(centre, PARTICLE_PX, rgb(look.colour).filled()))
+                .map_err(plot_err)?;
+            area.draw(&Circle::new(centre, PARTICLE_PX, edge.stroke_width(1)))
+                .map_err(plot_err)?;
+        } else {
+            let (x, y) = centre;
+            area.draw(&Rectangle::new(
+                [(x - 4, y - 4), (x + 4, y + 4)],
+                rgb(INK).filled(),
+            ))
+            .map_err(plot_err)?;
+        }
+        return Ok(());
+    };
+    let enlarge = view.enlarge.get(i).copied().unwrap_or(1.0);
+    let rotation = Rotation2::new(state.angle);
+    let local = outline(shape, enlarge);
+    let fill = rgb(look.colour).filled();
+    let corners: Vec<(f64, f64)> = local
+        .iter()
+        .map(|v| view.to_px_f(state.position + rotation * v))
+        .collect();
+    let clipped = view.clip(&corners);
+    let whole = clipped.len() == corners.len() && clipped == corners;
+    match shape {
+        // A circle wholly inside the plot is drawn as one (exact in SVG).
+        Shape::Circle(c) if whole => {
+            let radius = (c.radius * enlarge * view.scale()).round().max(1.0) as i32;
+            area.draw(&Circle::new(centre, radius, fill))
+                .map_err(plot_err)?;
+            area.draw(&Circle::new(centre, radius, edge.stroke_width(1)))
+                .map_err(plot_err)?;
+        }
+        _ if clipped.len() >= 3 => {
+            let pixels: Vec<(i32, i32)> = clipped.into_iter().map(round_px).collect();
+            area.draw(&Polygon::new(pixels.clone(), fill))
+                .map_err(plot_err)?;
+            let mut closed = pixels;
+            closed.push(closed[0]);
+            area.draw(&PathElement::new(closed, edge.stroke_width(1)))
+                .map_err(plot_err)?;
+        }
+        _ => return Ok(()),
+    }
+    if look.rotates {
+        let reach = local.iter().map(|v| v.x).fold(0.0, f64::max);
+        let tip = view.to_px(state.position + rotation * Vector2::new(reach, 0.0));
+        area.draw(&PathElement::new(vec![centre, tip], edge.stroke_width(2)))
+            .map_err(plot_err)?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn labels_keep_four_significant_digits() {
+        assert_eq!(sig(0.0), "0");
+        assert_eq!(sig(-0.0), "0");
+        assert_eq!(sig(367.1015801), "367.1");
+        assert_eq!(sig(4.326333611), "4.326");
+        assert_eq!(sig(-0.0123456), "-0.01235");
+        assert_eq!(sig(1.2e-7), "1.200e-7");
+        assert_eq!(sig(-0.00001), "-1.000e-5");
+        assert_eq!(sig(-2.7e-17), "0");
+    }
+
+    #[test]
+    fn tints_and_shades_stay_in_range() {
+        let c = Colour::rgb(200, 10, 0);
+        assert_eq!(tint(c, 0.0), c);
+        assert_eq!(tint(c, 1.0), Colour::rgb(255, 255, 255));
+        assert_eq!(shade(c, 0.5), Colour::rgb(100, 5, 0));
+    }
+}

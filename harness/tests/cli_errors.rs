@@ -1,0 +1,259 @@
+//! Bad input through the real binary: every mistake of the issue on scene
+//! files gets a clear message on stderr naming the file, the field and the
+//! line (or the command-line option), exit code 2, no panic, no output
+//! file written, and the scene file left as it was.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+const BIN: &str = env!("CARGO_BIN_EXE_harness");
+
+/// A valid head: `[simulation]` and the start of one body named `plate`
+/// (line 5 is `[[bodies]]`, line 6 its name, line 7 the next line).
+const HEAD: &str = "[simulation]\ndt = 0.01\nduration = 1.0\n\n[[bodies]]\nname = \"plate\"\n";
+
+struct Run {
+    code: Option<i32>,
+    stderr: String,
+    dir: tempfile::TempDir,
+}
+
+/// Writes `text` as `scene.toml` in a fresh folder and runs
+/// `harness simulate scene.toml --trace out.csv <extra>` there.
+fn simulate(text: &str, extra: &[&str]) -> Run {
+    let dir = tempfile::tempdir().expect("temp dir");
+    std::fs::write(dir.path().join("scene.toml"), text).expect("write scene");
+    let output: Output = Command::new(BIN)
+        .current_dir(dir.path())
+        .args(["simulate", "scene.toml", "--trace", "out.csv"])
+        .args(extra)
+        .output()
+        .expect("run the harness binary");
+    Run {
+        code: output.status.code(),
+        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
+        dir,
+    }
+}
+
+impl Run {
+    /// Exit code 2, no panic, no output, the scene untouched, and stderr
+    /// holding every one of `needles`.
+    fn refused(&self, scene: &str, needles: &[&str]) {
+        assert_eq!(self.code, Some(2), "exit code; stderr:\n{}", self.stderr);
+        assert!(
+            !self.stderr.contains("panicked"),
+            "a panic:\n{}",
+            self.stderr
+        );
+        assert!(!self.stderr.contains("RUST_BACKTRACE"), "{}", self.stderr);
+        for needle in needles {
+            assert!(
+                self.stderr.contains(needle),
+                "stderr lacks {needle:?}:\n{}",
+                self.stderr
+            );
+        }
+        assert!(!self.path("out.csv").exists(), "an output was written");
+        let kept = std::fs::read_to_string(self.path("scene.toml")).expect("scene still there");
+        assert_eq!(kept, scene, "the scene file changed");
+    }
+
+    fn path(&self, name: &str) -> PathBuf {
+        self.dir.path().join(name)
+    }
+}
+
+fn refused(scene: &str, needles: &[&str]) {
+    simulate(scene, &[]).refused(scene, needles);
+}
+
+#[test]
+fn malformed_toml_names_the_line() {
+    refused(
+        "[simulation\ndt = 0.01\n",
+        &["scene.toml:1:", "expected `]`"],
+    );
+}
+
+#[test]
+fn an_unknown_field_is_named_with_its_line() {
+    let scene = format!("{HEAD}mass = 1.0\nmas = 2.0\n");
+    refused(
+        &scene,
+        &["scene.toml:8:", "bodies[0].mas", "unknown field `mas`"],
+    );
+}
+
+#[test]
+fn a_non_convex_polygon_names_the_body_and_the_vertex() {
+    let scene = format!(
+        "{HEAD}mass = 1.0\nshape = {{ type = \"polygon\", vertices = [[0, 0], [2, 0], [1, 0.5], [2, 2], [0, 2]] }}\n"
+    );
+    refused(
+        &scene,
+        &[
+            "scene.toml:8:",
+            "bodies[0].shape.vertices[2]",
+            "'plate'",
+            "not convex at vertex 2",
+        ],
+    );
+}
+
+#[test]
+fn a_clockwise_polygon_names_the_body_and_the_vertex() {
+    let scene = format!(
+        "{HEAD}mass = 1.0\nshape = {{ type = \"polygon\", vertices = [[0, 0], [0, 1], [1, 0]] }}\n"
+    );
+    refused(
+        &scene,
+        &[
+            "scene.toml:8:",
+            "bodies[0].shape.vertices[",
+            "'plate'",
+            "clockwise",
+            "at vertex",
+        ],
+    );
+}
+
+#[test]
+fn a_mass_at_or_below_zero_is_refused() {
+    for mass in ["0.0", "-3.0"] {
+        let scene = format!("{HEAD}mass = {mass}\n");
+        refused(&scene, &["scene.toml:7:8", "bodies[0].mass", "must be > 0"]);
+    }
+}
+
+#[test]
+fn a_density_at_or_below_zero_is_refused() {
+    let scene = format!("{HEAD}density = 0.0\nshape = {{ type = \"circle\", radius = 1.0 }}\n");
+    refused(
+        &scene,
+        &["scene.toml:7:", "bodies[0].density", "must be > 0"],
+    );
+}
+
+#[test]
+fn a_step_at_or_below_zero_in_the_file_is_refused() {
+    for dt in ["0.0", "-0.01"] {
+        let scene = format!(
+            "[simulation]\ndt = {dt}\nduration = 1.0\n[[bodies]]\nname = \"p\"\nmass = 1.0\n"
+        );
+        refused(&scene, &["scene.toml:2:6", "simulation.dt", "must be > 0"]);
+    }
+}
+
+#[test]
+fn nan_is_refused() {
+    let scene = format!("{HEAD}mass = 1.0\nposition = [nan, 0.0]\n");
+    refused(
+        &scene,
+        &[
+            "scene.toml:8:",
+            "bodies[0].position[0]",
+            "not a finite number",
+        ],
+    );
+}
+
+#[test]
+fn infinity_is_refused() {
+    let scene = format!("{HEAD}mass = 1.0\nvelocity = [0.0, -inf]\n");
+    refused(
+        &scene,
+        &[
+            "scene.toml:8:",
+            "bodies[0].velocity[1]",
+            "not a finite number",
+        ],
+    );
+}
+
+#[test]
+fn a_force_on_a_missing_body_is_refused() {
+    let scene = format!(
+        "{HEAD}mass = 1.0\n\n[[forces]]\ntype = \"drag\"\nbody = \"ghost\"\ncoefficient = 0.1\n"
+    );
+    refused(
+        &scene,
+        &[
+            "scene.toml:11:",
+            "forces[0].body",
+            "no body is named 'ghost'",
+        ],
+    );
+}
+
+#[test]
+fn a_run_of_more_than_1e8_steps_is_refused_before_it_starts() {
+    let scene = "[simulation]\ndt = 1e-9\nduration = 1.0\n[[bodies]]\nname = \"p\"\nmass = 1.0\n";
+    refused(scene, &["scene.toml:2:", "simulation.dt", "1e8"]);
+}
+
+const GOOD: &str =
+    "[simulation]\ndt = 0.01\nduration = 1.0\n[[bodies]]\nname = \"p\"\nmass = 1.0\n";
+
+#[test]
+fn an_unknown_method_on_the_command_line_is_refused() {
+    simulate(GOOD, &["--method", "rk5"])
+        .refused(GOOD, &["--method", "rk5", "rk4", "dormand_prince"]);
+}
+
+#[test]
+fn a_command_line_step_at_or_below_zero_is_refused() {
+    for dt in ["0", "-0.5", "nan", "inf"] {
+        simulate(GOOD, &["--dt", dt]).refused(GOOD, &["--dt", dt]);
+    }
+    simulate(GOOD, &["--until", "-1"]).refused(GOOD, &["--until", "must be > 0"]);
+}
+
+#[test]
+fn a_command_line_step_needing_more_than_1e8_steps_is_refused() {
+    simulate(GOOD, &["--dt", "1e-12"]).refused(GOOD, &["scene.toml", "--dt", "1e8"]);
+    simulate(GOOD, &["--until", "1e7", "--dt", "0.01"])
+        .refused(GOOD, &["scene.toml", "--until", "1e8"]);
+}
+
+#[test]
+fn a_missing_file_is_reported_once() {
+    let run = simulate(GOOD, &[]);
+    let output = Command::new(BIN)
+        .current_dir(run.dir.path())
+        .args(["simulate", "nowhere.toml"])
+        .output()
+        .expect("run");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("nowhere.toml: cannot read the scene file"),
+        "{stderr}"
+    );
+    let cause = if cfg!(windows) {
+        "os error"
+    } else {
+        "(os error 2)"
+    };
+    assert_eq!(stderr.matches(cause).count(), 1, "said twice:\n{stderr}");
+}
+
+#[test]
+fn an_output_over_the_scene_file_is_refused() {
+    let run = simulate(GOOD, &["--svg", "scene.toml"]);
+    run.refused(GOOD, &["--svg scene.toml", "scene file itself"]);
+    let run = simulate(GOOD, &["--gif", "no_such_folder/out.gif"]);
+    run.refused(GOOD, &["--gif", "does not exist"]);
+}
+
+#[test]
+fn a_blow_up_is_an_error_and_writes_nothing() {
+    // Explicit Euler on a stiff spring: |1 + i h w| = 1000 per step, so the
+    // state overflows after about a hundred steps.
+    let scene = "[simulation]\nmethod = \"explicit_euler\"\ndt = 1.0\nduration = 1000.0\n\
+                 [[bodies]]\nname = \"p\"\nmass = 1.0\nposition = [1.0, 0.0]\n\
+                 [[forces]]\ntype = \"spring\"\nbody = \"p\"\nanchor = [0.0, 0.0]\nstiffness = 1e6\n";
+    let run = simulate(scene, &["--svg", "out.svg"]);
+    run.refused(scene, &["scene.toml", "the run failed", "blow-up"]);
+    assert!(!run.path("out.svg").exists());
+}
