@@ -117,7 +117,15 @@ fn real_main() -> Result<bool> {
     }
     let provenance = harness::provenance::paragraph(settings.timing_runs);
     let full = results.len() == CASES.len();
-    let out = cli.out.or_else(|| full.then(|| PathBuf::from("reports")));
+    // A full run writes reports/; a quick one (reduced timing) writes
+    // target/quick-report/ so it never replaces the committed report.
+    let quick = settings == SweepSettings::QUICK;
+    let default_dir = if quick {
+        "target/quick-report"
+    } else {
+        "reports"
+    };
+    let out = cli.out.or_else(|| full.then(|| PathBuf::from(default_dir)));
     // The studies (sweeps, orders, stability, energy, trajectories) run with
     // every full run; a run of selected cases checks only those.
     let study = match (&out, full) {
@@ -130,8 +138,12 @@ fn real_main() -> Result<bool> {
     }
     // The README's headline table is printed by the harness too (only on a
     // full run, so that a partial run never drops rows from it).
-    if full {
-        report::update_readme(std::path::Path::new("README.md"), &results)?;
+    if full && !quick {
+        let mut all: Vec<&harness::row::Row> = results.iter().flat_map(|(_, r)| &r.rows).collect();
+        if let Some(study) = &study {
+            all.extend(&study.rows);
+        }
+        report::update_readme(std::path::Path::new("README.md"), &all)?;
     }
     let mut rows: Vec<_> = results.iter().flat_map(|(_, r)| &r.rows).collect();
     if let Some(study) = &study {

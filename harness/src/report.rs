@@ -23,6 +23,15 @@ pub fn fmt_num(v: f64) -> String {
     }
 }
 
+/// A row's step for tables: `-` when the row has none (study rows).
+fn fmt_dt(dt: f64) -> String {
+    if dt.is_finite() {
+        dt.to_string()
+    } else {
+        "-".into()
+    }
+}
+
 fn symbol(c: Comparison) -> &'static str {
     match c {
         Comparison::Within => "±",
@@ -42,7 +51,7 @@ pub fn markdown_table(rows: &[Row]) -> String {
             "| {} | {} | {} | {} | {} | {} {} | {} |",
             r.check,
             r.method,
-            r.dt,
+            fmt_dt(r.dt),
             fmt_num(r.value),
             fmt_num(r.expected),
             symbol(r.comparison),
@@ -67,7 +76,7 @@ pub fn console_table(case: &str, rows: &[Row]) -> String {
             "{:<26} {:<20} {:>8} {:>18} {:>18} {:>12}  {}",
             r.check,
             r.method,
-            r.dt,
+            fmt_dt(r.dt),
             fmt_num(r.value),
             fmt_num(r.expected),
             fmt_num(r.tolerance),
@@ -145,19 +154,43 @@ pub fn write(
 
 /// The rows shown in the top-level README's headline table, as
 /// (case, check, method, dt).
-const HEADLINE: [(&str, &str, &str, f64); 12] = [
-    ("spring", "x_end_seed", "rk4", 0.2),
-    ("spring", "max_error", "rk4", 0.2),
-    ("spring", "amplitude_growth", "explicit_euler", 0.2),
-    ("projectile", "landing_time", "rk4", 0.01),
-    ("projectile", "range", "rk4", 0.01),
-    ("projectile_drag", "landing_time", "dormand_prince", 0.01),
-    ("projectile_drag", "range", "dormand_prince", 0.01),
-    ("projectile_drag", "position_error_t5", "rk4", 0.2),
-    ("torque", "theta_8.7", "rk4", 0.01),
-    ("angular_drag", "theta_8.7", "rk4", 0.01),
-    ("hoffman", "error_end", "explicit_euler", 0.0021),
-    ("hoffman", "error_end", "rk4", 0.0029),
+/// `dt` is matched only when given (study rows have no single step).
+const HEADLINE: [(&str, &str, &str, Option<f64>); 20] = [
+    ("spring", "x_end_seed", "rk4", Some(0.2)),
+    ("spring", "max_error", "rk4", Some(0.2)),
+    ("spring", "amplitude_growth", "explicit_euler", Some(0.2)),
+    ("projectile", "landing_time", "rk4", Some(0.01)),
+    (
+        "projectile_drag",
+        "landing_time",
+        "dormand_prince",
+        Some(0.01),
+    ),
+    ("projectile_drag", "position_error_t5", "rk4", Some(0.2)),
+    ("torque", "theta_8.7", "rk4", Some(0.01)),
+    ("angular_drag", "omega_0.7", "rk4", Some(0.01)),
+    ("hoffman", "error_end", "explicit_euler", Some(0.0021)),
+    ("projectile_drag", "order", "rk4", None),
+    ("spring", "order", "velocity_verlet", None),
+    ("spring", "stability_limit", "rk4", None),
+    ("hoffman", "stability_limit", "explicit_euler", None),
+    ("hoffman", "stability_limit", "rk4", None),
+    (
+        "collision_parry",
+        "verdict_agreement_rate",
+        "engine_vs_parry2d",
+        None,
+    ),
+    ("collision_toi", "toi_world_bisection_rotating", "rk4", None),
+    ("collision_head_on", "v1_after_e0.5", "rk4", None),
+    ("collision_bounce", "apex_drift_per_bounce_e1", "rk4", None),
+    (
+        "collision_bounce",
+        "apex_loss_per_bounce_e1",
+        "rapier2d",
+        None,
+    ),
+    ("collision_slide", "stopping_distance", "rk4", None),
 ];
 
 /// Marker lines between which the harness writes the README's headline table.
@@ -165,7 +198,7 @@ pub const README_MARKERS: (&str, &str) = ("<!-- headline:start -->", "<!-- headl
 
 /// Rewrites the headline table between [`README_MARKERS`] in `readme`, when
 /// the file exists and has them. Returns whether it did.
-pub fn update_readme(readme: &Path, results: &[(&str, CaseReport)]) -> Result<bool> {
+pub fn update_readme(readme: &Path, all_rows: &[&Row]) -> Result<bool> {
     let Ok(text) = std::fs::read_to_string(readme) else {
         return Ok(false);
     };
@@ -176,13 +209,15 @@ pub fn update_readme(readme: &Path, results: &[(&str, CaseReport)]) -> Result<bo
     let rows: Vec<Row> = HEADLINE
         .iter()
         .filter_map(|(case, check, method, dt)| {
-            results
+            all_rows
                 .iter()
-                .flat_map(|(_, r)| &r.rows)
                 .find(|r| {
-                    r.case == *case && r.check == *check && r.method == *method && r.dt == *dt
+                    r.case == *case
+                        && r.check == *check
+                        && r.method == *method
+                        && dt.is_none_or(|d| r.dt == d)
                 })
-                .cloned()
+                .map(|r| (*r).clone())
         })
         .collect();
     let mut table = String::from(
@@ -195,7 +230,7 @@ pub fn update_readme(readme: &Path, results: &[(&str, CaseReport)]) -> Result<bo
             r.case,
             r.check,
             r.method,
-            r.dt,
+            fmt_dt(r.dt),
             fmt_num(r.value),
             fmt_num(r.expected),
             symbol(r.comparison),

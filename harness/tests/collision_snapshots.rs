@@ -8,20 +8,10 @@
 
 use harness::cases::collision_common::{render_contact_events, run_engine, thin_events};
 use harness::cases::collision_parry::{agreement, report};
-use harness::cases::{CaseReport, find};
+use harness::cases::{CaseReport, failing_rows, find};
 
 fn assert_rows_pass(id: &str, report: &CaseReport) {
-    let failed: Vec<String> = report
-        .rows
-        .iter()
-        .filter(|r| !r.pass)
-        .map(|r| {
-            format!(
-                "{} {} dt={}: {} vs {} ± {}",
-                r.check, r.method, r.dt, r.value, r.expected, r.tolerance
-            )
-        })
-        .collect();
+    let failed = failing_rows(&report.rows);
     assert!(
         failed.is_empty(),
         "{id}: failing rows:\n{}",

@@ -6,23 +6,13 @@
 //! (`cargo insta review` or `INSTA_UPDATE=always`), read the diff, and
 //! commit it with the reason.
 
-use harness::cases::{CaseReport, MethodTrace, find};
+use harness::cases::{CaseReport, MethodTrace, failing_rows, find};
 use harness::snapshot::render;
 
 fn check_case(id: &str) {
     let case = find(id).expect("case exists");
     let report: CaseReport = (case.run)().expect("case runs");
-    let failed: Vec<String> = report
-        .rows
-        .iter()
-        .filter(|r| !r.pass)
-        .map(|r| {
-            format!(
-                "{} {} dt={}: {} vs {} ± {}",
-                r.check, r.method, r.dt, r.value, r.expected, r.tolerance
-            )
-        })
-        .collect();
+    let failed = failing_rows(&report.rows);
     assert!(
         failed.is_empty(),
         "{id}: failing rows:\n{}",

@@ -118,14 +118,7 @@ impl AngularDrag {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn assert_close(actual: f64, expected: f64, tol: f64, what: &str) {
-        let err = (actual - expected).abs();
-        assert!(
-            err <= tol,
-            "{what}: got {actual:.17e}, expected {expected:.17e}, |error| {err:.3e} > tol {tol:.3e}"
-        );
-    }
+    use crate::test_support::assert_close;
 
     #[test]
     fn constants_match_cases_md() {

@@ -36,6 +36,9 @@ pub mod projectile;
 pub mod spring;
 pub mod torque;
 
+#[cfg(test)]
+mod test_support;
+
 pub use angular_drag::AngularDrag;
 pub use drag_projectile::{DragError, DragParams, DragReference, SolverSettings};
 pub use hoffman::Hoffman;

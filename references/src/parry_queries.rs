@@ -31,6 +31,7 @@ use parry2d_f64::query::{
 };
 use parry2d_f64::shape::{Ball, ConvexPolygon, SharedShape};
 
+pub mod exact;
 #[cfg(test)]
 mod tests;
 

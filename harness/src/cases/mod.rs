@@ -159,6 +159,21 @@ pub fn find(id: &str) -> Option<&'static Case> {
     CASES.iter().find(|c| c.id == id)
 }
 
+/// One line per row that fails, for an assertion message: check, method,
+/// step (s), then value vs expected ± tolerance (in the value's unit). Empty
+/// when every row passes.
+pub fn failing_rows(rows: &[Row]) -> Vec<String> {
+    rows.iter()
+        .filter(|r| !r.pass)
+        .map(|r| {
+            format!(
+                "{} {} dt={}: {} vs {} ± {}",
+                r.check, r.method, r.dt, r.value, r.expected, r.tolerance
+            )
+        })
+        .collect()
+}
+
 /// Keeps about `count` evenly spaced samples of a trace (always the last).
 pub fn thin<T: Clone>(samples: &[T], count: usize) -> Vec<T> {
     if samples.len() <= count {

@@ -4,98 +4,13 @@
 //!
 //! Run with `--nocapture` to see the measured agreement.
 
+use super::exact::{Hull, Rng, overlap_along, signed_distance_to_polygon, world_vertices};
 use super::*;
 use engine::collision::{
     Motion, ToiOptions, collide, distance_polygon_polygon, proximity, separation_polygon_polygon,
     toi_bisection, toi_conservative_advancement,
 };
 use engine::{Circle, ConvexPolygon};
-use nalgebra::Point2;
-use std::f64::consts::PI;
-
-/// xorshift64*: deterministic, so a failing pair can be replayed.
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        let mut x = self.0;
-        x ^= x >> 12;
-        x ^= x << 25;
-        x ^= x >> 27;
-        self.0 = x;
-        (x.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    fn pose(&mut self, half_width: f64) -> Isometry2<f64> {
-        Isometry2::new(
-            Vector2::new(
-                self.range(-half_width, half_width),
-                self.range(-half_width, half_width),
-            ),
-            self.range(-PI, PI),
-        )
-    }
-}
-
-/// A convex polygon with 3 to 12 vertices: the hull of 3–12 random points
-/// on an annulus of random size, re-centred on its centroid as a body's
-/// shape is.
-fn random_polygon(rng: &mut Rng) -> ConvexPolygon {
-    loop {
-        let k = 3 + (rng.unit() * 10.0) as usize;
-        let scale = rng.range(0.2, 1.5);
-        let points: Vec<Vector2<f64>> = (0..k)
-            .map(|_| {
-                let (t, r) = (rng.range(0.0, 2.0 * PI), scale * rng.range(0.85, 1.0));
-                Vector2::new(r * t.cos(), r * t.sin())
-            })
-            .collect();
-        if let Ok(p) = ConvexPolygon::convex_hull(&points) {
-            return p.centered();
-        }
-    }
-}
-
-fn world_vertices(p: &ConvexPolygon, pose: &Isometry2<f64>) -> Vec<Vector2<f64>> {
-    p.vertices()
-        .iter()
-        .map(|v| pose.transform_point(&Point2::from(*v)).coords)
-        .collect()
-}
-
-/// Overlap of the projections of A and B on unit axis `n` (from A to B):
-/// `max_A n·x − min_B n·x`. The true penetration depth is the smallest
-/// overlap over all axes, so of two candidate normals the one with the
-/// smaller overlap is the better one.
-fn overlap_along(wa: &[Vector2<f64>], wb: &[Vector2<f64>], n: &Vector2<f64>) -> f64 {
-    let max_a = wa
-        .iter()
-        .map(|v| n.dot(v))
-        .fold(f64::NEG_INFINITY, f64::max);
-    let min_b = wb.iter().map(|v| n.dot(v)).fold(f64::INFINITY, f64::min);
-    max_a - min_b
-}
-
-/// Signed distance of a point to a convex polygon's boundary (world
-/// vertices, CCW): > 0 outside, < 0 inside. Exact up to round-off.
-fn signed_distance_to_polygon(w: &[Vector2<f64>], p: &Vector2<f64>) -> f64 {
-    let n = w.len();
-    let mut max_s = f64::NEG_INFINITY;
-    let mut min_d = f64::INFINITY;
-    for i in 0..n {
-        let (a, b) = (w[i], w[(i + 1) % n]);
-        let e = b - a;
-        let normal = Vector2::new(e.y, -e.x) / e.norm();
-        max_s = max_s.max(normal.dot(&(p - a)));
-        let t = ((p - a).dot(&e) / e.norm_squared()).clamp(0.0, 1.0);
-        min_d = min_d.min((p - (a + t * e)).norm());
-    }
-    if max_s > 0.0 { min_d } else { max_s }
-}
 
 #[derive(Default, Debug)]
 struct Agreement {
@@ -212,7 +127,7 @@ fn engine_detection_agrees_with_parry_near_touching() {
     let mut rng = Rng(0x70C4);
     let mut stats = Agreement::default();
     for i in 0..2000 {
-        let (a, b) = (random_polygon(&mut rng), random_polygon(&mut rng));
+        let (a, b) = (rng.polygon(Hull::AsDrawn), rng.polygon(Hull::AsDrawn));
         let (pa, pb) = (rng.pose(0.5), rng.pose(2.0));
         let p = distance_polygon_polygon(&a, &pa, &b, &pb);
         // Target signed distance ±10^u m, u ∈ [−8, −3].
@@ -233,7 +148,7 @@ fn engine_detection_agrees_with_parry_on_random_convex_pairs() {
     let mut rng = Rng(0xC0111DE);
     let mut stats = Agreement::default();
     for _ in 0..2000 {
-        let (a, b) = (random_polygon(&mut rng), random_polygon(&mut rng));
+        let (a, b) = (rng.polygon(Hull::AsDrawn), rng.polygon(Hull::AsDrawn));
         let (pa, pb) = (rng.pose(0.5), rng.pose(2.0));
         compare_polygon_pair(&a, &pa, &b, &pb, &mut stats);
     }
@@ -300,7 +215,7 @@ fn engine_circle_queries_agree_with_parry() {
         (0.0f64, 0.0f64, 0.0f64, 0);
     for i in 0..2000 {
         let a = if i % 2 == 0 {
-            Shape::Polygon(random_polygon(&mut rng))
+            Shape::Polygon(rng.polygon(Hull::AsDrawn))
         } else {
             Shape::Circle(Circle::new(rng.range(0.1, 1.0)).unwrap())
         };
