@@ -105,6 +105,8 @@ fn real_main() -> Result<bool> {
         }
         _ => CASES.iter().map(|c| c.id.to_string()).collect(),
     };
+    // Read before anything is written, so the commit's state is the code's.
+    let provenance = harness::provenance::paragraph(settings.timing_runs);
     let started = Instant::now();
     let mut results: Vec<(&str, CaseReport)> = Vec::new();
     for id in &selected {
@@ -115,7 +117,6 @@ fn real_main() -> Result<bool> {
         print!("{}", report::console_table(case.id, &report.rows));
         results.push((case.id, report));
     }
-    let provenance = harness::provenance::paragraph(settings.timing_runs);
     let full = results.len() == CASES.len();
     // A full run writes reports/; a quick one (reduced timing) writes
     // target/quick-report/ so it never replaces the committed report.
