@@ -18,8 +18,9 @@ pub fn machine() -> String {
     format!("{model}, {cpus} logical CPUs, {}", std::env::consts::OS)
 }
 
-/// The commit the report was produced from (`git describe`), `+dirty` when
-/// the work tree had changes, or "unknown" outside a git checkout.
+/// The commit the report was produced from, `+dirty` when the code (all but
+/// `reports/` and `README.md`) had uncommitted changes, or "unknown" outside
+/// a git checkout.
 pub fn commit() -> String {
     let run = |args: &[&str]| {
         Command::new("git")
