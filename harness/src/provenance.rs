@@ -22,8 +22,12 @@ pub fn machine() -> String {
 /// `reports/` and `README.md`) had uncommitted changes, or "unknown" outside
 /// a git checkout.
 pub fn commit() -> String {
+    // The workspace the harness was built from, wherever it is run.
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
     let run = |args: &[&str]| {
         Command::new("git")
+            .arg("-C")
+            .arg(root)
             .args(args)
             .output()
             .ok()
@@ -32,8 +36,18 @@ pub fn commit() -> String {
     };
     match run(&["rev-parse", "--short=12", "HEAD"]) {
         Some(hash) => {
-            let dirty = run(&["status", "--porcelain", "--untracked-files=no"])
-                .is_some_and(|s| !s.is_empty());
+            // The harness's own outputs (reports/, the README's table) do not
+            // make the code dirty.
+            let dirty = run(&[
+                "status",
+                "--porcelain",
+                "--untracked-files=no",
+                "--",
+                ".",
+                ":!reports",
+                ":!README.md",
+            ])
+            .is_some_and(|s| !s.is_empty());
             if dirty { format!("{hash}+dirty") } else { hash }
         }
         None => "unknown".into(),
