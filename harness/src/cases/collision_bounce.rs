@@ -107,9 +107,7 @@ pub fn run() -> Result<CaseReport> {
             .into(),
     );
     if !cfg!(debug_assertions) {
-        let path = write_chart("collision_bounce_apex.svg", |area| {
-            apex_chart(area, &elastic, &damped)
-        })?;
+        let path = write_chart("collision_bounce_apex.svg", &apex_chart(&elastic, &damped))?;
         report.notes.push(format!(
             "![apex per bounce: closed form, engine, rapier2d]({path}) — left: e = 1, apex / h0 \
              per bounce (the engine stays on 1, rapier2d loses a little at each bounce); right: \

@@ -212,18 +212,16 @@ pub fn run_slide() -> Result<CaseReport> {
             .iter()
             .map(|s| (s[b].t, s[b].position[0] - x0))
             .collect();
-        let path = write_chart("collision_slide_distance.svg", |area| {
-            time_chart(
-                area,
-                "box sliding to a stop: distance travelled",
-                "distance (m)",
-                &[
-                    Series::new("closed form v0 t - mu g t²/2, then v0²/(2 mu g)", closed),
-                    Series::new("engine (rk4, dt 0.01 s)", engine),
-                    Series::new(&format!("rapier2d (dt {rdt} s, 4 substeps)"), rap),
-                ],
-            )
-        })?;
+        let chart = time_chart(
+            "box sliding to a stop: distance travelled",
+            "distance (m)",
+            &[
+                Series::new("closed form v0 t - mu g t²/2, then v0²/(2 mu g)", closed),
+                Series::new("engine (rk4, dt 0.01 s)", engine),
+                Series::new(&format!("rapier2d (dt {rdt} s, 4 substeps)"), rap),
+            ],
+        );
+        let path = write_chart("collision_slide_distance.svg", &[chart])?;
         report.notes.push(format!(
             "![distance travelled: closed form, engine, rapier2d]({path}) — the engine lies on \
              the closed form; rapier2d stops {:.1} mm short.",
