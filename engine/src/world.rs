@@ -89,6 +89,7 @@ pub struct World {
     // Scratch buffers reused by every step.
     y: Vec<f64>,
     y_start: Vec<f64>,
+    scratch_edges: Vec<f64>,
     y_probe: Vec<f64>,
     scratch_states: Vec<BodyState>,
     scratch_wrenches: Vec<Wrench>,
@@ -115,6 +116,7 @@ impl World {
             profiler: Profiler::default(),
             y: Vec::new(),
             y_start: Vec::new(),
+            scratch_edges: Vec::new(),
             y_probe: Vec::new(),
             scratch_states: Vec::new(),
             scratch_wrenches: Vec::new(),
@@ -331,12 +333,14 @@ impl World {
         // would otherwise ask the integrator for a step below resolution.
         let resolution =
             EDGE_RESOLUTION_ULPS * f64::EPSILON * self.time.abs().max(t_end.abs()).max(1.0);
-        let mut edges: Vec<f64> = self
-            .forces
-            .iter()
-            .flat_map(|f| f.window.edges())
-            .filter(|&e| e > self.time + resolution && e < t_end - resolution)
-            .collect();
+        let mut edges = std::mem::take(&mut self.scratch_edges);
+        edges.clear();
+        edges.extend(
+            self.forces
+                .iter()
+                .flat_map(|f| f.window.edges())
+                .filter(|&e| e > self.time + resolution && e < t_end - resolution),
+        );
         edges.sort_by(f64::total_cmp);
         edges.dedup();
         edges.push(t_end);
@@ -344,6 +348,7 @@ impl World {
         self.layout.pack(&self.states, &mut y);
         let result = self.integrate_segments(&edges, &mut y, &mut found);
         self.y = y;
+        self.scratch_edges = edges;
         result.map(|()| found)
     }
 
@@ -406,7 +411,10 @@ impl World {
                 continue;
             }
             while t < segment_end {
-                self.y_start.clone_from(y);
+                // Event location restarts from the step's start state.
+                if !self.events.is_empty() {
+                    self.y_start.clone_from(y);
+                }
                 let started = self.profiler.start();
                 let h = self.integrator.advance(&mut sys, t, y, segment_end - t)?;
                 self.profiler.stop(Phase::Integrate, started);
@@ -662,23 +670,21 @@ fn locate_events(
     found: &mut Vec<EventRecord>,
 ) -> Result<Option<f64>> {
     let layout = sys.layout;
-    let mut states_a = template.to_vec();
-    let mut states_b = template.to_vec();
-    layout.unpack(y_a, &mut states_a);
-    layout.unpack(y_b, &mut states_b);
+    // g of one event at a state vector: only the watched body is read.
+    let value = |spec: &EventSpec, y: &[f64]| {
+        spec.quantity.of(&layout.state_of(y, template, spec.body)) - spec.level
+    };
     let h = t_b - t_a;
     let mut hits: Vec<(f64, usize, Vec<BodyState>, Vec<f64>)> = Vec::new();
     for (index, spec) in specs.iter().enumerate() {
-        let (ga, gb) = (spec.value(&states_a), spec.value(&states_b));
+        let (ga, gb) = (value(spec, y_a), value(spec, y_b));
         if !spec.crossing.detects(ga, gb) {
             continue;
         }
-        let mut states = template.to_vec();
         let mut g_at = |s: f64, probe: &mut Vec<f64>| -> Result<f64> {
             probe.resize(y_a.len(), 0.0);
             integrator.single_step(sys, t_a, y_a, s, probe)?;
-            layout.unpack(probe, &mut states);
-            Ok(spec.value(&states))
+            Ok(value(spec, probe))
         };
         let s = illinois(
             |s| g_at(s, probe),

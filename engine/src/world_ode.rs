@@ -68,18 +68,32 @@ impl Layout {
 
     /// Reads the dynamic bodies' states back from `y`; static ones keep theirs.
     pub(crate) fn unpack(&self, y: &[f64], states: &mut [BodyState]) {
-        let n = self.positions;
         for (slot, s) in self.slots.iter().zip(states.iter_mut()) {
-            let Some(slot) = slot else { continue };
-            let o = slot.offset;
-            s.position.x = y[o];
-            s.position.y = y[o + 1];
-            s.velocity.x = y[n + o];
-            s.velocity.y = y[n + o + 1];
-            if slot.rotates {
-                s.angle = y[o + 2];
-                s.angular_velocity = y[n + o + 2];
+            if let Some(slot) = slot {
+                self.read_slot(y, *slot, s);
             }
+        }
+    }
+
+    /// One body's state in `y` (a static body's is `template[body]`),
+    /// without unpacking the others.
+    pub(crate) fn state_of(&self, y: &[f64], template: &[BodyState], body: usize) -> BodyState {
+        let mut s = template[body];
+        if let Some(slot) = self.slots[body] {
+            self.read_slot(y, slot, &mut s);
+        }
+        s
+    }
+
+    fn read_slot(&self, y: &[f64], slot: Slot, s: &mut BodyState) {
+        let (n, o) = (self.positions, slot.offset);
+        s.position.x = y[o];
+        s.position.y = y[o + 1];
+        s.velocity.x = y[n + o];
+        s.velocity.y = y[n + o + 1];
+        if slot.rotates {
+            s.angle = y[o + 2];
+            s.angular_velocity = y[n + o + 2];
         }
     }
 }

@@ -42,10 +42,22 @@ fn symbol(c: Comparison) -> &'static str {
 
 /// The Markdown table of a set of rows.
 pub fn markdown_table(rows: &[Row]) -> String {
-    let mut out = String::from(
-        "| check | method | dt (s) | value | expected | tolerance | pass |\n|---|---|---|---|---|---|---|\n",
-    );
+    table(rows.iter(), false)
+}
+
+/// The Markdown table of `rows`, with a leading `case` column when asked.
+fn table<'a>(rows: impl Iterator<Item = &'a Row>, with_case: bool) -> String {
+    let mut out = String::new();
+    if with_case {
+        out.push_str("| case ");
+    }
+    out.push_str("| check | method | dt (s) | value | expected | tolerance | pass |\n");
+    out.push_str(if with_case { "|---" } else { "" });
+    out.push_str("|---|---|---|---|---|---|---|\n");
     for r in rows {
+        if with_case {
+            let _ = write!(out, "| {} ", r.case);
+        }
         let _ = writeln!(
             out,
             "| {} | {} | {} | {} | {} | {} {} | {} |",
@@ -206,38 +218,18 @@ pub fn update_readme(readme: &Path, all_rows: &[&Row]) -> Result<bool> {
     let (Some(a), Some(b)) = (text.find(start), text.find(end)) else {
         return Ok(false);
     };
-    let rows: Vec<Row> = HEADLINE
-        .iter()
-        .filter_map(|(case, check, method, dt)| {
-            all_rows
-                .iter()
-                .find(|r| {
-                    r.case == *case
-                        && r.check == *check
-                        && r.method == *method
-                        && dt.is_none_or(|d| r.dt == d)
-                })
-                .map(|r| (*r).clone())
-        })
-        .collect();
-    let mut table = String::from(
-        "| case | check | method | dt (s) | value | expected | tolerance | pass |\n|---|---|---|---|---|---|---|---|\n",
-    );
-    for r in &rows {
-        let _ = writeln!(
-            table,
-            "| {} | {} | {} | {} | {} | {} | {} {} | {} |",
-            r.case,
-            r.check,
-            r.method,
-            fmt_dt(r.dt),
-            fmt_num(r.value),
-            fmt_num(r.expected),
-            symbol(r.comparison),
-            fmt_num(r.tolerance),
-            if r.pass { "yes" } else { "**NO**" }
-        );
-    }
+    let rows = HEADLINE.iter().filter_map(|(case, check, method, dt)| {
+        all_rows
+            .iter()
+            .find(|r| {
+                r.case == *case
+                    && r.check == *check
+                    && r.method == *method
+                    && dt.is_none_or(|d| r.dt == d)
+            })
+            .copied()
+    });
+    let table = table(rows, true);
     let new = format!("{}{start}\n{table}{}", &text[..a], &text[b..]);
     if new != text {
         std::fs::write(readme, new).with_context(|| format!("writing {}", readme.display()))?;

@@ -20,7 +20,7 @@
 
 use crate::row::{Comparison, Row};
 use crate::scenes;
-use anyhow::Result;
+use anyhow::{Context, Result};
 use engine::{EngineError, FnSystem, Integrator, Method, Tolerance};
 use references::{Hoffman, SpringOscillator};
 
@@ -115,14 +115,13 @@ fn oscillator_growth(method: Method, h: f64, bound: f64) -> Result<Option<f64>> 
 }
 
 fn hoffman_stable(method: Method, h: f64) -> Result<bool> {
-    let exact = Hoffman::seed();
-    let mut sys = FnSystem::new(1, move |t, y: &[f64], dy: &mut [f64]| {
-        dy[0] = exact.rhs(t, y[0])
-    });
-    // e = y − (t + 2) at the step's start; the integrator advances t with
-    // the step index, so track e through y and t.
+    // The case's own ODE (scenes/hoffman.toml), stepped with fixed steps
+    // (Dormand–Prince included); e = y − g(t) must not grow past |e0| = 1.
+    let mut sys = scenes::load("hoffman")?
+        .linear_test()
+        .context("scenes/hoffman.toml must hold a [linear_test]")?;
     let mut integrator = Integrator::new(method)?;
-    let mut y = vec![exact.y0];
+    let mut y = vec![sys.y0];
     let mut next = y.clone();
     for i in 0..HOFFMAN_STEPS {
         let t = i as f64 * h;
@@ -132,7 +131,7 @@ fn hoffman_stable(method: Method, h: f64) -> Result<bool> {
             Err(e) => return Err(e.into()),
         }
         std::mem::swap(&mut y, &mut next);
-        let e = y[0] - (t + h + 2.0);
+        let e = y[0] - sys.forcing(t + h);
         if e.is_nan() || e.abs() > 1.0 {
             return Ok(false);
         }
@@ -165,7 +164,7 @@ pub fn theory_limit(method: Method, axis: Axis) -> Option<f64> {
     use Method::*;
     match (axis, method) {
         (Axis::Real, ExplicitEuler | Midpoint) => Some(2.0),
-        (Axis::Real, Rk4) => Some(2.785_293_56),
+        (Axis::Real, Rk4) => Some(-references::hoffman::RK4_REAL_STABILITY_BOUNDARY),
         (Axis::Real, DormandPrince(_)) => Some(3.306_567_89),
         (Axis::Real, ImplicitEuler) => Some(f64::INFINITY),
         (Axis::Real, SemiImplicitEuler | VelocityVerlet) => None,

@@ -15,7 +15,8 @@ use std::path::Path;
 /// Accuracy target of the speed comparison on `projectile_drag` (m).
 pub const TARGET_ERROR: f64 = 1e-6;
 
-/// The cheapest run of one method that reaches [`TARGET_ERROR`].
+/// One run of the projectile_drag sweep, summarised (the cheapest to reach
+/// [`TARGET_ERROR`], or the most accurate).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cheapest {
     /// Method label.
@@ -51,16 +52,22 @@ pub struct StudyResults {
     pub seconds: f64,
 }
 
-fn cheapest<'a>(points: impl Iterator<Item = &'a sweep::SweepPoint>) -> Option<Cheapest> {
-    points
-        .filter(|p| p.stable && p.max_error <= TARGET_ERROR && p.cpu_seconds.is_finite())
-        .min_by(|a, b| a.cpu_seconds.total_cmp(&b.cpu_seconds))
-        .map(|p| Cheapest {
+impl From<&sweep::SweepPoint> for Cheapest {
+    fn from(p: &sweep::SweepPoint) -> Self {
+        Self {
             method: p.method.clone(),
             h: p.h,
             error: p.max_error,
             cpu_seconds: p.cpu_seconds,
-        })
+        }
+    }
+}
+
+fn cheapest<'a>(points: impl Iterator<Item = &'a sweep::SweepPoint>) -> Option<Cheapest> {
+    points
+        .filter(|p| p.stable && p.max_error <= TARGET_ERROR && p.cpu_seconds.is_finite())
+        .min_by(|a, b| a.cpu_seconds.total_cmp(&b.cpu_seconds))
+        .map(Cheapest::from)
 }
 
 /// Runs every study and writes its figures into `dir`.
@@ -98,12 +105,7 @@ pub fn run(dir: &Path, settings: SweepSettings) -> Result<StudyResults> {
             out.rapier_most_accurate = rapier()
                 .filter(|p| p.stable)
                 .min_by(|a, b| a.max_error.total_cmp(&b.max_error))
-                .map(|p| Cheapest {
-                    method: p.method.clone(),
-                    h: p.h,
-                    error: p.max_error,
-                    cpu_seconds: p.cpu_seconds,
-                });
+                .map(Cheapest::from);
         }
         out.sweeps.push(sweep);
         progress.inc(1);

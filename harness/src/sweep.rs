@@ -8,7 +8,8 @@ use crate::rapier_scene::rapier_problem;
 use crate::scenes;
 use crate::timing::min_time;
 use anyhow::Result;
-use engine::{EngineError, Method, Tolerance, World, integrate_fixed};
+use engine::time_grid::grid_time;
+use engine::{EngineError, Method, Tolerance, World, integrate_to, step_count};
 use references::rapier_world::{RapierError, RapierSample, RapierSettings, run_single_body};
 use references::{AngularDrag, DragReference, Hoffman, SpringOscillator};
 use serde::Serialize;
@@ -138,23 +139,22 @@ fn rapier_runner(
 
 /// Steps a world from 0 to `until` with `steps` equal steps (times i·h),
 /// calling `observe` after each step when asked.
+/// Steps a world from its current time to `until` on the engine's time grid
+/// with step `h` (no sampling, unlike [`World::run`]), calling `observe`
+/// after each step.
 fn step_world(
     world: &mut World,
     until: f64,
-    steps: u64,
+    h: f64,
     mut observe: impl FnMut(&World),
-) -> Result<(), EngineError> {
-    let h = until / steps as f64;
+) -> Result<()> {
+    let t0 = world.time();
+    let steps = step_count(until - t0, h)?;
     for i in 1..=steps {
-        let t = if i == steps { until } else { i as f64 * h };
-        world.step_to(t)?;
+        world.step_to(grid_time(t0, until, h, i, steps))?;
         observe(world);
     }
     Ok(())
-}
-
-fn steps_for(until: f64, h: f64) -> u64 {
-    (until / h).round() as u64
 }
 
 fn spring_case() -> Result<SweepCase> {
@@ -171,7 +171,7 @@ fn spring_case() -> Result<SweepCase> {
         run: Box::new(move |method, h, observe| {
             let mut world = scenes::world("spring", method)?;
             let mut max_error: f64 = 0.0;
-            step_world(&mut world, 57.2, steps_for(57.2, h), |w| {
+            step_world(&mut world, 57.2, h, |w| {
                 if observe {
                     let e = (w.states()[0].position.x - exact.position(w.time())).abs();
                     max_error = max_error.max(e);
@@ -200,7 +200,7 @@ fn drag_case(reference: DragReference) -> Result<SweepCase> {
             let mut world = scenes::world("projectile_drag", method)?;
             let mut max_error: f64 = 0.0;
             let mut failure = None;
-            step_world(&mut world, 5.0, steps_for(5.0, h), |w| {
+            step_world(&mut world, 5.0, h, |w| {
                 if observe {
                     match reference.state_at(w.time()) {
                         Ok(r) => {
@@ -239,7 +239,7 @@ fn angular_drag_case() -> Result<SweepCase> {
         run: Box::new(move |method, h, observe| {
             let mut world = scenes::world("angular_drag", method)?;
             let mut max_error: f64 = 0.0;
-            step_world(&mut world, 8.7, steps_for(8.7, h), |w| {
+            step_world(&mut world, 8.7, h, |w| {
                 if observe {
                     max_error = max_error.max((w.states()[0].angle - exact.theta(w.time())).abs());
                 }
@@ -252,7 +252,9 @@ fn angular_drag_case() -> Result<SweepCase> {
 
 fn hoffman_case() -> Result<SweepCase> {
     let exact = Hoffman::seed();
-    let ode = scenes::load("hoffman")?
+    let scene = scenes::load("hoffman")?;
+    let duration = scene.duration();
+    let ode = scene
         .linear_test()
         .ok_or_else(|| anyhow::anyhow!("scenes/hoffman.toml must hold a [linear_test]"))?;
     Ok(SweepCase {
@@ -262,23 +264,16 @@ fn hoffman_case() -> Result<SweepCase> {
         h0: 0.1,
         scale: 1.0,
         run: Box::new(move |method, h, _observe| {
-            let steps = steps_for(1.0, h) as usize;
             let mut system = ode;
-            let solution = integrate_fixed(
-                &mut system,
-                method,
-                0.0,
-                &[ode.y0],
-                1.0 / steps as f64,
-                steps,
-            )?;
+            let solution = integrate_to(&mut system, method, 0.0, &[ode.y0], duration, h)?;
             let errors = solution
                 .t
                 .iter()
                 .zip(&solution.y)
                 .map(|(&t, y)| (y[0] - exact.exact(t)).abs());
             let max_error = errors.fold(0.0, f64::max);
-            let end = (solution.y[steps][0] - exact.exact(1.0)).abs();
+            let last = solution.y.len() - 1;
+            let end = (solution.y[last][0] - exact.exact(duration)).abs();
             Ok((end, max_error, solution.stats.evaluations))
         }),
     })

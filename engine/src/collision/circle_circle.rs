@@ -6,7 +6,7 @@
 //! A circle's orientation does not matter: its centre is its body's
 //! position.
 
-use super::manifold::{Manifold, ManifoldPoint, Proximity};
+use super::manifold::{Manifold, Proximity};
 use crate::shape::Circle;
 use nalgebra::{Isometry2, Vector2};
 
@@ -39,15 +39,7 @@ pub fn collide_circle_circle_with_margin(
     margin: f64,
 ) -> Option<Manifold> {
     let p = distance_circle_circle(a, pose_a, b, pose_b);
-    (p.distance <= margin).then(|| {
-        Manifold::one(
-            p.normal,
-            ManifoldPoint {
-                point: 0.5 * (p.point_a + p.point_b),
-                depth: -p.distance,
-            },
-        )
-    })
+    (p.distance <= margin).then(|| p.one_point_manifold())
 }
 
 /// The contact manifold of two touching or overlapping circles, `None` if

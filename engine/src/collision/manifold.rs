@@ -110,6 +110,18 @@ pub struct Proximity {
 }
 
 impl Proximity {
+    /// The one-point manifold these witnesses make: the point midway between
+    /// the surfaces, depth = −distance.
+    pub fn one_point_manifold(&self) -> Manifold {
+        Manifold::one(
+            self.normal,
+            ManifoldPoint {
+                point: 0.5 * (self.point_a + self.point_b),
+                depth: -self.distance,
+            },
+        )
+    }
+
     /// The same proximity seen with A and B swapped.
     pub fn flipped(&self) -> Self {
         Self {

@@ -13,7 +13,7 @@
 //!   edge or a vertex); the normal is `(c − q)/|c − q|` and the signed
 //!   distance `|c − q| − r`.
 
-use super::manifold::{Manifold, ManifoldPoint, Proximity};
+use super::manifold::{Manifold, Proximity};
 use crate::shape::{Circle, ConvexPolygon};
 use nalgebra::{Isometry2, Point2, Vector2};
 
@@ -93,15 +93,7 @@ pub fn collide_polygon_circle_with_margin(
     margin: f64,
 ) -> Option<Manifold> {
     let p = distance_polygon_circle(polygon, pose_a, circle, pose_b);
-    (p.distance <= margin).then(|| {
-        Manifold::one(
-            p.normal,
-            ManifoldPoint {
-                point: 0.5 * (p.point_a + p.point_b),
-                depth: -p.distance,
-            },
-        )
-    })
+    (p.distance <= margin).then(|| p.one_point_manifold())
 }
 
 /// The contact manifold of a touching or overlapping polygon (A) and

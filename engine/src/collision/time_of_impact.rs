@@ -29,7 +29,7 @@
 //! Both return the time and the contact manifold at that time, computed with
 //! a margin of ε so that a pair stopped just short of contact has one.
 
-use super::manifold::{Manifold, ManifoldPoint, Proximity};
+use super::manifold::{Manifold, Proximity};
 use super::narrow_phase::{collide, proximity, rotation_radius};
 use crate::shape::Shape;
 use nalgebra::{Isometry2, Translation2, UnitComplex, Vector2};
@@ -199,17 +199,10 @@ impl Probe<'_> {
     fn impact(&self, time: f64, p: &Proximity, tolerance: f64, iterations: usize) -> Impact {
         let (pa, pb) = (self.motion_a.pose_at(time), self.motion_b.pose_at(time));
         let margin = tolerance.max(p.distance);
-        let manifold = collide(self.a, &pa, self.b, &pb, margin).unwrap_or_else(|| {
-            // Only reachable through round-off at |distance| ≈ ε: the exact
-            // witnesses make a one-point manifold.
-            Manifold::one(
-                p.normal,
-                ManifoldPoint {
-                    point: 0.5 * (p.point_a + p.point_b),
-                    depth: -p.distance,
-                },
-            )
-        });
+        // The fallback is only reachable through round-off at |distance| ≈ ε:
+        // the exact witnesses make a one-point manifold.
+        let manifold =
+            collide(self.a, &pa, self.b, &pb, margin).unwrap_or_else(|| p.one_point_manifold());
         Impact {
             time,
             separation: p.distance,

@@ -24,8 +24,6 @@ use crate::error::{EngineError, Result};
 use crate::ode::{OdeSystem, Structure};
 use step_controller::StepController;
 
-pub use implicit_euler::MAX_ITERATIONS as IMPLICIT_EULER_MAX_ITERATIONS;
-
 /// Error tolerances of the adaptive method.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tolerance {
