@@ -64,15 +64,37 @@ impl Aabb {
             && other.min.y <= self.max.y
     }
 
-    /// The smallest box containing both (used for the swept box of a moving
-    /// shape: the union of its boxes at the start and end of a step is a
-    /// bound on its path only for a pure translation; add
+    /// The smallest box containing both, their union (used for the swept
+    /// box of a moving shape: the union of its boxes at the start and end of
+    /// a step is a bound on its path only for a pure translation; add
     /// [`Aabb::loosened`] by the rotation's sweep otherwise).
+    ///
+    /// Symmetric, and a NaN coordinate is ignored: the other box's
+    /// coordinate is kept (NaN only if both are NaN). A box holding a NaN
+    /// overlaps nothing, so leaving it out of a union never hides a hit.
     pub fn merged(&self, other: &Aabb) -> Self {
+        // f64::min/max return the non-NaN operand; nalgebra's inf/sup would
+        // keep or drop a NaN depending on the argument order.
         Self {
-            min: self.min.inf(&other.min),
-            max: self.max.sup(&other.max),
+            min: Vector2::new(self.min.x.min(other.min.x), self.min.y.min(other.min.y)),
+            max: Vector2::new(self.max.x.max(other.max.x), self.max.y.max(other.max.y)),
         }
+    }
+
+    /// True when `other` lies inside this closed box (a shared edge
+    /// counts). False if either holds a NaN.
+    pub fn contains(&self, other: &Aabb) -> bool {
+        self.min.x <= other.min.x
+            && self.min.y <= other.min.y
+            && other.max.x <= self.max.x
+            && other.max.y <= self.max.y
+    }
+
+    /// The perimeter 2·(width + height) (m): the 2D surface-area measure
+    /// the dynamic tree minimises. Negative for an inverted box.
+    pub fn perimeter(&self) -> f64 {
+        let e = self.extents();
+        2.0 * (e.x + e.y)
     }
 
     /// The box grown by `margin` (m) on every side (shrunk if negative).
@@ -137,5 +159,40 @@ mod tests {
         assert!((m.max - Vector2::new(4.1, 1.1)).norm() < 1e-15);
         assert!(m.contains_point(&Vector2::new(2.0, 0.0)));
         assert!((m.extents() - Vector2::new(4.2, 2.2)).norm() < 1e-14);
+    }
+
+    #[test]
+    fn merged_is_symmetric_and_ignores_nan_coordinates() {
+        let a = Aabb::new(Vector2::new(0.0, 0.0), Vector2::new(1.0, 1.0));
+        let nan = Aabb::new(Vector2::new(f64::NAN, -2.0), Vector2::new(0.5, f64::NAN));
+        let expected = Aabb::new(Vector2::new(0.0, -2.0), Vector2::new(1.0, 1.0));
+        assert_eq!(a.merged(&nan), expected);
+        assert_eq!(nan.merged(&a), expected);
+        let both = nan.merged(&nan);
+        assert!(both.min.x.is_nan() && both.max.y.is_nan());
+        assert_eq!((both.min.y, both.max.x), (-2.0, 0.5));
+    }
+
+    #[test]
+    fn contains_is_closed_and_false_for_nan() {
+        let outer = Aabb::new(Vector2::new(0.0, 0.0), Vector2::new(2.0, 1.0));
+        // Sharing the whole boundary still counts: a box contains itself.
+        assert!(outer.contains(&outer));
+        let inner = Aabb::new(Vector2::new(0.0, 0.25), Vector2::new(1.0, 1.0));
+        assert!(outer.contains(&inner) && !inner.contains(&outer));
+        let poking_out = Aabb::new(Vector2::new(1.0, 0.25), Vector2::new(2.0 + 1e-12, 0.5));
+        assert!(!outer.contains(&poking_out));
+        let point = Aabb::new(Vector2::new(2.0, 1.0), Vector2::new(2.0, 1.0));
+        assert!(outer.contains(&point));
+        let nan = Aabb::new(Vector2::new(f64::NAN, 0.5), Vector2::new(1.0, 0.5));
+        assert!(!outer.contains(&nan) && !nan.contains(&outer));
+    }
+
+    #[test]
+    fn perimeter_is_twice_width_plus_height() {
+        let b = Aabb::new(Vector2::new(-1.0, 2.0), Vector2::new(2.0, 2.5));
+        assert_eq!(b.perimeter(), 7.0);
+        let point = Aabb::new(Vector2::new(3.0, 3.0), Vector2::new(3.0, 3.0));
+        assert_eq!(point.perimeter(), 0.0);
     }
 }

@@ -12,7 +12,15 @@
 //!    candidate pairs, those whose axis-aligned bounding boxes ([`aabb`])
 //!    overlap, by a sort-and-sweep over x-intervals in O(n log n) (the modern
 //!    form of the Fortune-style sweep the seed cites). The brute-force O(n²)
-//!    test is kept as its oracle.
+//!    test is kept as its oracle. The exact contact model uses it.
+//!
+//!    For scenes of thousands of bodies the broad phase must be
+//!    incremental: the [`dynamic_tree`] keeps one leaf per shape with a
+//!    *fat* box (its box enlarged by a margin, m) in a balanced tree of
+//!    box unions. A shape that stays inside its fat box costs nothing; only
+//!    a shape that left it is moved in the tree (O(log n)) and queried
+//!    against it for new candidate pairs. This is the broad phase of the
+//!    soft-step contact model.
 //! 2. **Narrow phase** ([`narrow_phase`], seed §7.2, Fig. 7.2–7.6): for each
 //!    candidate, the separating axis theorem over the edge normals of both
 //!    polygons ([`polygon_polygon`]), with the seed's OBB test as a fast path
@@ -38,6 +46,7 @@
 pub mod aabb;
 pub mod broad_phase;
 pub mod circle_circle;
+pub mod dynamic_tree;
 pub mod manifold;
 pub mod narrow_phase;
 pub mod obb;
@@ -53,6 +62,7 @@ pub use broad_phase::{SweepAndPrune, brute_force_pairs};
 pub use circle_circle::{
     collide_circle_circle, collide_circle_circle_with_margin, distance_circle_circle,
 };
+pub use dynamic_tree::{DynamicTree, ProxyId};
 pub use manifold::{Contact, Manifold, ManifoldPoint, Proximity};
 pub use narrow_phase::{collide, proximity};
 pub use obb::{Obb, obb_overlap, obb_separation};

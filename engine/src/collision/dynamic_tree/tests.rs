@@ -1,0 +1,446 @@
+//! Tests of the dynamic tree: exact agreement with brute force under
+//! random queries, moves, destroys and re-creates; the pair count of a
+//! resting column; the height under ordered insertions; degenerate boxes;
+//! the query's stack fallback; the node pool; determinism.
+
+use super::*;
+use crate::collision::brute_force_pairs;
+use crate::collision::test_rng::Rng;
+use nalgebra::Vector2;
+
+fn aabb(min_x: f64, min_y: f64, max_x: f64, max_y: f64) -> Aabb {
+    Aabb::new(Vector2::new(min_x, min_y), Vector2::new(max_x, max_y))
+}
+
+/// A box of half-size up to `size` (m) centred in [0, world]².
+fn random_box(rng: &mut Rng, world: f64, size: f64) -> Aabb {
+    let c = Vector2::new(rng.range(0.0, world), rng.range(0.0, world));
+    let h = Vector2::new(rng.range(0.0, size), rng.range(0.0, size));
+    Aabb::new(c - h, c + h)
+}
+
+/// The user data of the proxies the tree reports for `query`, sorted.
+fn hits(tree: &DynamicTree, query: &Aabb) -> Vec<u32> {
+    let mut found = Vec::new();
+    tree.query(query, |id, data| {
+        assert_eq!(tree.user_data(id), data);
+        found.push(data);
+        true
+    });
+    found.sort_unstable();
+    found
+}
+
+/// The oracle: the user data of every live box overlapping `query`.
+fn brute_hits(live: &[(u32, Aabb)], query: &Aabb) -> Vec<u32> {
+    let mut found: Vec<u32> = live
+        .iter()
+        .filter(|(_, b)| b.overlaps(query))
+        .map(|&(d, _)| d)
+        .collect();
+    found.sort_unstable();
+    found
+}
+
+/// A tree of `boxes` inserted in order, user data = index, and the
+/// proxy ids by index.
+fn build(boxes: &[Aabb]) -> (DynamicTree, Vec<ProxyId>) {
+    let mut tree = DynamicTree::new();
+    let ids = boxes
+        .iter()
+        .enumerate()
+        .map(|(i, b)| tree.create_proxy(*b, i as u32))
+        .collect();
+    (tree, ids)
+}
+
+/// The pairs `(i, j)`, `i < j` (user data), found by querying the tree
+/// with the fat box of every proxy, sorted: the same form as
+/// [`brute_force_pairs`].
+fn pairs_by_query(tree: &DynamicTree, ids: &[ProxyId]) -> Vec<(usize, usize)> {
+    let mut pairs = Vec::new();
+    for &id in ids {
+        let i = tree.user_data(id) as usize;
+        tree.query(tree.fat_aabb(id), |_, j| {
+            let j = j as usize;
+            // Each pair is found from both ends; keep it once.
+            if j > i {
+                pairs.push((i, j));
+            }
+            true
+        });
+    }
+    pairs.sort_unstable();
+    pairs
+}
+
+/// [`build`] then [`pairs_by_query`].
+fn tree_pairs(boxes: &[Aabb]) -> (DynamicTree, Vec<(usize, usize)>) {
+    let (tree, ids) = build(boxes);
+    let pairs = pairs_by_query(&tree, &ids);
+    (tree, pairs)
+}
+
+/// A column of `n` unit boxes resting on each other, inserted
+/// bottom-to-top with a fat margin of 0.1 m.
+fn column(n: usize) -> Vec<Aabb> {
+    (0..n)
+        .map(|i| aabb(0.0, i as f64, 1.0, i as f64 + 1.0).loosened(0.1))
+        .collect()
+}
+
+#[test]
+fn random_queries_match_brute_force_exactly() {
+    let mut rng = Rng::new(0x7EE_0001);
+    let mut tree = DynamicTree::new();
+    let mut live = Vec::new();
+    for i in 0..400 {
+        let size = if i % 4 == 0 { 4.0 } else { 1.0 };
+        let b = random_box(&mut rng, 60.0, size);
+        tree.create_proxy(b, i);
+        live.push((i, b));
+    }
+    tree.validate().unwrap();
+    assert_eq!(tree.proxy_count(), 400);
+    let mut total = 0;
+    for q in 0..500 {
+        // Points, small and large query boxes.
+        let size = [0.0, 0.5, 3.0, 20.0][q % 4];
+        let query = random_box(&mut rng, 60.0, size);
+        let expected = brute_hits(&live, &query);
+        assert_eq!(hits(&tree, &query), expected, "query {q}");
+        total += expected.len();
+    }
+    assert!(total > 2000, "the queries must hit something: {total}");
+}
+
+#[test]
+fn moves_destroys_and_recreates_keep_the_tree_valid_and_exact() {
+    let mut rng = Rng::new(0x7EE_0002);
+    let mut tree = DynamicTree::new();
+    // Slot k of the mirror: the proxy with user data k and its box.
+    let mut mirror: Vec<Option<(ProxyId, Aabb)>> = Vec::new();
+    for k in 0..200 {
+        let b = random_box(&mut rng, 40.0, 1.5);
+        mirror.push(Some((tree.create_proxy(b, k), b)));
+    }
+    let mut checked_hits = 0;
+    for op in 0..3000 {
+        let k = rng.int(0, mirror.len() - 1);
+        match (rng.int(0, 9), mirror[k]) {
+            (0..=5, Some((id, b))) => {
+                // A small displacement, as between two steps, or a jump.
+                let reach = if op % 10 == 0 { 20.0 } else { 0.5 };
+                let d = Vector2::new(rng.range(-reach, reach), rng.range(-reach, reach));
+                let moved = Aabb::new(b.min + d, b.max + d);
+                tree.move_proxy(id, moved);
+                assert_eq!(tree.user_data(id), k as u32);
+                mirror[k] = Some((id, moved));
+            }
+            (6..=7, Some((id, _))) => {
+                tree.destroy_proxy(id);
+                mirror[k] = None;
+            }
+            (_, None) => {
+                let b = random_box(&mut rng, 40.0, 1.5);
+                mirror[k] = Some((tree.create_proxy(b, k as u32), b));
+            }
+            _ => {}
+        }
+        tree.validate()
+            .unwrap_or_else(|e| panic!("after operation {op}: {e}"));
+        let live: Vec<(u32, Aabb)> = mirror
+            .iter()
+            .enumerate()
+            .filter_map(|(k, e)| e.map(|(_, b)| (k as u32, b)))
+            .collect();
+        assert_eq!(tree.proxy_count(), live.len());
+        for &(k, b) in &live {
+            assert_eq!(tree.fat_aabb(mirror[k as usize].unwrap().0), &b);
+        }
+        if op % 10 == 0 {
+            for _ in 0..5 {
+                let query = random_box(&mut rng, 40.0, 3.0);
+                let expected = brute_hits(&live, &query);
+                assert_eq!(hits(&tree, &query), expected, "operation {op}");
+                checked_hits += expected.len();
+            }
+        }
+    }
+    assert!(checked_hits > 500, "{checked_hits} hits checked");
+}
+
+#[test]
+fn querying_every_proxy_gives_the_brute_force_pairs() {
+    let mut rng = Rng::new(0x7EE_0003);
+    let mut total = 0;
+    for trial in 0..40 {
+        let n = rng.int(0, 150);
+        let mut boxes: Vec<Aabb> = (0..n).map(|_| random_box(&mut rng, 25.0, 1.5)).collect();
+        // Exact ties and boxes touching along an edge.
+        if n > 4 {
+            boxes[1] = boxes[0];
+            boxes[3].min.x = boxes[2].max.x;
+            boxes[3].min.y = boxes[2].min.y;
+        }
+        let expected = brute_force_pairs(&boxes);
+        let (tree, pairs) = tree_pairs(&boxes);
+        tree.validate().unwrap();
+        assert_eq!(pairs, expected, "trial {trial}, n = {n}");
+        total += expected.len();
+    }
+    assert!(total > 1000, "the sets must have pairs: {total}");
+}
+
+#[test]
+fn a_resting_column_gives_one_pair_per_contact_and_a_logarithmic_height() {
+    // Fat boxes [i − 0.1, i + 1.1]: each overlaps its two neighbours
+    // (by 0.2 m) and nothing else, so a column of n boxes has n − 1
+    // pairs.
+    let boxes = column(1000);
+    let (tree, pairs) = tree_pairs(&boxes);
+    tree.validate().unwrap();
+    assert_eq!(pairs.len(), 999);
+    assert_eq!(pairs, brute_force_pairs(&boxes));
+    assert!(pairs.iter().all(|&(i, j)| j == i + 1));
+    // The bound of the task: 2.5·log2(n) (≈ 24.9). An AVL tree stays
+    // under 1.44·log2(n + 2); a tree without rotations would be 999
+    // deep here.
+    let bound = 2.5 * (1000f64).log2();
+    assert!((tree.height() as f64) <= bound, "height {}", tree.height());
+
+    // Ten times more: checked against the known pairs instead of the
+    // O(n²) oracle.
+    let (tree, pairs) = tree_pairs(&column(10_000));
+    assert_eq!(pairs.len(), 9999);
+    assert!(pairs.iter().enumerate().all(|(k, &p)| p == (k, k + 1)));
+    let bound = 2.5 * (10_000f64).log2();
+    assert!((tree.height() as f64) <= bound, "height {}", tree.height());
+}
+
+#[test]
+fn ordered_insertions_in_two_dimensions_stay_shallow() {
+    // A pyramid of base 45 (1035 boxes) built row by row, and a 40 × 40
+    // grid of boxes inserted row-major: the other orders a scene is
+    // built in.
+    let mut pyramid = Vec::new();
+    for row in 0..45 {
+        for k in 0..45 - row {
+            let x = k as f64 + 0.5 * row as f64;
+            pyramid.push(aabb(x, row as f64, x + 1.0, row as f64 + 1.0).loosened(0.1));
+        }
+    }
+    let grid: Vec<Aabb> = (0..1600)
+        .map(|i| {
+            let (x, y) = ((i % 40) as f64, (i / 40) as f64);
+            aabb(x, y, x + 1.0, y + 1.0).loosened(0.1)
+        })
+        .collect();
+    for boxes in [pyramid, grid] {
+        let (tree, pairs) = tree_pairs(&boxes);
+        tree.validate().unwrap();
+        assert_eq!(pairs, brute_force_pairs(&boxes));
+        let bound = 2.5 * (boxes.len() as f64).log2();
+        assert!((tree.height() as f64) <= bound, "height {}", tree.height());
+    }
+}
+
+#[test]
+fn degenerate_boxes_give_correct_answers() {
+    let mut rng = Rng::new(0x7EE_0004);
+    let point = |x: f64, y: f64| aabb(x, y, x, y);
+    let big = 1e12;
+    let sets: Vec<Vec<Aabb>> = vec![
+        // Zero-size boxes, some coincident, some touching larger boxes.
+        (0..60)
+            .map(|i| point((i % 7) as f64, (i % 5) as f64))
+            .chain((0..20).map(|i| aabb(i as f64, 0.0, i as f64 + 1.0, 1.0)))
+            .collect(),
+        // Identical boxes: every pair overlaps.
+        vec![aabb(1.0, 2.0, 3.0, 4.0); 50],
+        // Huge coordinates, unit boxes 1 m apart: still exact, since
+        // 1e12 + k is exactly representable.
+        (0..100)
+            .map(|i| {
+                let x = big + (i % 10) as f64 * 2.0;
+                let y = -big + (i / 10) as f64 * 1.5;
+                aabb(x, y, x + 1.0, y + 1.0)
+            })
+            .collect(),
+        // Mixed scales, an infinite ground, an inverted box and NaN.
+        (0..80)
+            .map(|_| random_box(&mut rng, 10.0, 1.0))
+            .chain([
+                aabb(-big, -big, big, big),
+                aabb(f64::NEG_INFINITY, -1.0, f64::INFINITY, 0.0),
+                aabb(2.0, 2.0, 1.0, 1.0),
+                aabb(f64::NAN, 0.0, 1.0, 1.0),
+                aabb(f64::NAN, f64::NAN, f64::NAN, f64::NAN),
+                point(5.0, 5.0),
+            ])
+            .collect(),
+    ];
+    for (s, boxes) in sets.iter().enumerate() {
+        let (mut tree, ids) = build(boxes);
+        tree.validate().unwrap();
+        assert_eq!(
+            pairs_by_query(&tree, &ids),
+            brute_force_pairs(boxes),
+            "set {s}"
+        );
+        let live: Vec<(u32, Aabb)> = boxes
+            .iter()
+            .enumerate()
+            .map(|(i, b)| (i as u32, *b))
+            .collect();
+        for q in [
+            point(0.0, 0.0),
+            point(big + 1.0, -big + 1.0),
+            aabb(-1.0, -1.0, 3.0, 3.0),
+            aabb(
+                f64::NEG_INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::INFINITY,
+            ),
+            aabb(f64::NAN, 0.0, 1.0, 1.0),
+        ] {
+            assert_eq!(
+                hits(&tree, &q),
+                brute_hits(&live, &q),
+                "set {s}, query {q:?}"
+            );
+        }
+        // Tear it down through moves onto one point and destroys.
+        for &id in &ids {
+            tree.move_proxy(id, point(0.0, 0.0));
+            tree.validate().unwrap();
+        }
+        for &id in &ids {
+            tree.destroy_proxy(id);
+            tree.validate().unwrap();
+        }
+        assert_eq!((tree.proxy_count(), tree.height()), (0, 0));
+    }
+}
+
+#[test]
+fn the_callback_can_stop_a_query() {
+    let tree = tree_pairs(&vec![aabb(0.0, 0.0, 1.0, 1.0); 20]).0;
+    let mut calls = 0;
+    tree.query(&aabb(0.5, 0.5, 0.5, 0.5), |_, _| {
+        calls += 1;
+        calls < 3
+    });
+    assert_eq!(calls, 3);
+    // An empty tree calls nothing.
+    DynamicTree::new().query(&aabb(0.0, 0.0, 1.0, 1.0), |_, _| panic!("no proxy"));
+}
+
+/// The user data reported by a query with a stack of `N` entries,
+/// stopped after `stop_after` hits, sorted.
+fn hits_with_stack<const N: usize>(
+    tree: &DynamicTree,
+    query: &Aabb,
+    stop_after: usize,
+) -> Vec<u32> {
+    let mut found = Vec::new();
+    tree.query_with_stack::<N>(query, &mut |_, data| {
+        found.push(data);
+        found.len() < stop_after
+    });
+    found.sort_unstable();
+    found
+}
+
+#[test]
+fn a_full_query_stack_falls_back_to_recursion_with_the_same_hits() {
+    let mut rng = Rng::new(0x7EE_0005);
+    let boxes: Vec<Aabb> = (0..300).map(|_| random_box(&mut rng, 30.0, 2.0)).collect();
+    let tree = tree_pairs(&boxes).0;
+    // The walk needs about height + 1 entries: stacks of 0, 1 and 3
+    // overflow.
+    assert!(tree.height() > 3, "height {}", tree.height());
+    let mut compared = 0;
+    for q in 0..50 {
+        let query = random_box(&mut rng, 30.0, 6.0);
+        let full = hits(&tree, &query);
+        for found in [
+            hits_with_stack::<0>(&tree, &query, usize::MAX),
+            hits_with_stack::<1>(&tree, &query, usize::MAX),
+            hits_with_stack::<3>(&tree, &query, usize::MAX),
+        ] {
+            assert_eq!(found, full, "query {q}");
+        }
+        // Stopping still works from within the recursive walk.
+        for found in [
+            hits_with_stack::<0>(&tree, &query, 2),
+            hits_with_stack::<1>(&tree, &query, 2),
+            hits_with_stack::<3>(&tree, &query, 2),
+        ] {
+            assert_eq!(found.len(), full.len().min(2), "query {q}");
+            assert!(found.iter().all(|d| full.contains(d)));
+        }
+        compared += full.len();
+    }
+    assert!(compared > 100, "{compared} hits compared");
+}
+
+#[test]
+fn the_node_pool_stops_growing_after_warm_up() {
+    let mut rng = Rng::new(0x7EE_0006);
+    let mut tree = DynamicTree::new();
+    let mut ids: Vec<ProxyId> = (0..200)
+        .map(|k| tree.create_proxy(random_box(&mut rng, 40.0, 1.0), k))
+        .collect();
+    // 200 leaves and 199 internal nodes.
+    assert_eq!(tree.nodes.len(), 399);
+    let capacity = tree.nodes.capacity();
+    for cycle in 0..2000 {
+        let k = rng.int(0, ids.len() - 1);
+        if cycle % 3 == 0 {
+            tree.destroy_proxy(ids[k]);
+            ids[k] = tree.create_proxy(random_box(&mut rng, 40.0, 1.0), k as u32);
+        } else {
+            tree.move_proxy(ids[k], random_box(&mut rng, 40.0, 1.0));
+        }
+        assert_eq!(tree.nodes.len(), 399, "cycle {cycle}");
+    }
+    assert_eq!(tree.nodes.capacity(), capacity);
+    tree.validate().unwrap();
+}
+
+#[test]
+fn the_same_operations_build_the_same_tree() {
+    let build = || {
+        let mut rng = Rng::new(0x7EE_0007);
+        let mut tree = DynamicTree::new();
+        let mut ids = Vec::new();
+        for k in 0..300 {
+            ids.push(tree.create_proxy(random_box(&mut rng, 30.0, 1.0), k));
+            if k % 5 == 4 {
+                tree.destroy_proxy(ids.swap_remove(rng.int(0, ids.len() - 1)));
+            }
+            if k % 3 == 2 {
+                let id = ids[rng.int(0, ids.len() - 1)];
+                tree.move_proxy(id, random_box(&mut rng, 30.0, 1.0));
+            }
+        }
+        (tree, ids)
+    };
+    let (a, ids_a) = build();
+    let (b, ids_b) = build();
+    assert_eq!(ids_a, ids_b);
+    assert_eq!((a.root, a.free_list), (b.root, b.free_list));
+    assert!(a.nodes == b.nodes);
+}
+
+#[test]
+#[should_panic(expected = "is not a live proxy")]
+fn destroying_a_proxy_twice_is_refused() {
+    let mut tree = DynamicTree::new();
+    let a = tree.create_proxy(aabb(0.0, 0.0, 1.0, 1.0), 0);
+    tree.create_proxy(aabb(2.0, 0.0, 3.0, 1.0), 1);
+    tree.destroy_proxy(a);
+    tree.destroy_proxy(a);
+}
