@@ -6,9 +6,14 @@
 //! are those of the centre of mass. A body with neither a shape nor an
 //! explicit inertia is a **particle**: it carries no rotational state and
 //! costs no rotational work. A **static** body never moves and is not
-//! integrated.
+//! integrated. A **kinematic** body moves at its prescribed velocity and
+//! angular velocity whatever pushes on it (infinite mass): a conveyor, a
+//! stirring paddle, a rotating container (soft-step contact model only).
 
-use crate::error::{EngineError, Result, require_finite, require_positive};
+use crate::error::{
+    EngineError, Result, require_finite, require_non_negative, require_positive,
+    require_unit_interval,
+};
 use crate::shape::Shape;
 use nalgebra::Vector2;
 
@@ -23,6 +28,10 @@ pub enum BodyKind {
     Dynamic,
     /// Never moves; not integrated (an anchor, the ground).
     Static,
+    /// Moves at its initial velocity and angular velocity forever, pushed
+    /// by nothing (infinite mass and inertia); pushes what it touches.
+    /// Supported by the soft-step contact model.
+    Kinematic,
 }
 
 /// The kinematic state of a body at one time.
@@ -67,6 +76,14 @@ pub struct BodyDef {
     pub shape: Option<Shape>,
     /// Initial state. Default: at rest at the origin.
     pub state: BodyState,
+    /// Coulomb friction coefficient of this body's shape, ≥ 0. Default:
+    /// the world's contact settings. A pair combines its two values by the
+    /// contact model's mixing rule (geometric mean under the soft step).
+    pub friction: Option<f64>,
+    /// Coefficient of restitution of this body's shape, in [0, 1].
+    /// Default: the world's contact settings. A pair takes the larger of
+    /// its two values under the soft step.
+    pub restitution: Option<f64>,
 }
 
 impl BodyDef {
@@ -83,6 +100,8 @@ impl BodyDef {
                 position,
                 ..BodyState::default()
             },
+            friction: None,
+            restitution: None,
         }
     }
 
@@ -102,6 +121,37 @@ impl BodyDef {
             shape,
             ..Self::particle(name, 1.0, position)
         }
+    }
+
+    /// A kinematic body at `position` (m) with `shape`, moving at
+    /// `velocity` (m/s) and `angular_velocity` (rad/s) forever.
+    pub fn kinematic(
+        name: &str,
+        position: Vector2<f64>,
+        shape: Shape,
+        velocity: Vector2<f64>,
+        angular_velocity: f64,
+    ) -> Self {
+        Self {
+            kind: BodyKind::Kinematic,
+            mass: None,
+            shape: Some(shape),
+            state: BodyState {
+                position,
+                angle: 0.0,
+                velocity,
+                angular_velocity,
+            },
+            ..Self::particle(name, 1.0, position)
+        }
+    }
+
+    /// Sets this body's friction coefficient (≥ 0) and restitution (in
+    /// [0, 1]), instead of the world's.
+    pub fn with_material(mut self, friction: f64, restitution: f64) -> Self {
+        self.friction = Some(friction);
+        self.restitution = Some(restitution);
+        self
     }
 
     /// Sets the initial velocity (m/s).
@@ -138,6 +188,10 @@ pub struct Body {
     pub inertia: Option<f64>,
     /// Geometry in the body frame, centred on the centre of mass.
     pub shape: Option<Shape>,
+    /// Friction coefficient of its shape, if it has its own.
+    pub friction: Option<f64>,
+    /// Restitution of its shape, if it has its own.
+    pub restitution: Option<f64>,
 }
 
 impl Body {
@@ -157,18 +211,32 @@ impl Body {
             require_finite(format!("{what} of body '{name}'"), v)?;
         }
         let shape = def.shape.as_ref().map(Shape::centered);
-        if def.kind == BodyKind::Static {
+        let friction = def
+            .friction
+            .map(|mu| require_non_negative(format!("friction of body '{name}'"), mu))
+            .transpose()?;
+        let restitution = def
+            .restitution
+            .map(|e| require_unit_interval(format!("restitution of body '{name}'"), e))
+            .transpose()?;
+        if def.kind != BodyKind::Dynamic {
             let body = Body {
                 name: name.clone(),
-                kind: BodyKind::Static,
+                kind: def.kind,
                 mass: f64::INFINITY,
                 inertia: Some(f64::INFINITY),
                 shape,
+                friction,
+                restitution,
             };
-            let state = BodyState {
-                velocity: Vector2::zeros(),
-                angular_velocity: 0.0,
-                ..*s
+            let state = if def.kind == BodyKind::Static {
+                BodyState {
+                    velocity: Vector2::zeros(),
+                    angular_velocity: 0.0,
+                    ..*s
+                }
+            } else {
+                *s
             };
             return Ok((body, state));
         }
@@ -206,6 +274,8 @@ impl Body {
                 mass,
                 inertia,
                 shape,
+                friction,
+                restitution,
             },
             state,
         ))
@@ -216,12 +286,18 @@ impl Body {
         self.kind == BodyKind::Dynamic
     }
 
+    /// Whether the body ever moves (dynamic or kinematic).
+    pub fn moves(&self) -> bool {
+        self.kind != BodyKind::Static
+    }
+
     /// Whether the body carries rotational state (a dynamic rigid body).
     pub fn rotates(&self) -> bool {
         self.is_dynamic() && self.inertia.is_some()
     }
 
-    /// Kinetic energy ½ m v² + ½ I ω² (J); 0 for a static body.
+    /// Kinetic energy ½ m v² + ½ I ω² (J); 0 for a static or kinematic
+    /// body (driven from outside, not part of the energy balance).
     pub fn kinetic_energy(&self, state: &BodyState) -> f64 {
         if !self.is_dynamic() {
             return 0.0;

@@ -87,6 +87,16 @@ pub enum EngineError {
         /// What went wrong, with its numbers.
         reason: String,
     },
+    /// The world's contact model cannot do what was asked (a kinematic
+    /// body under the exact model, an integrator the soft step does not
+    /// use, a joint under the exact model, ...).
+    #[error("{what} is not supported: {reason}")]
+    Unsupported {
+        /// What was asked, e.g. `"kinematic body 'paddle'"`.
+        what: String,
+        /// Why, and what to use instead.
+        reason: &'static str,
+    },
     /// The Jacobian of the implicit step is singular.
     #[error("singular Newton matrix at t = {t} s")]
     SingularJacobian {
@@ -120,6 +130,19 @@ pub(crate) fn require_non_negative(what: impl Into<String>, value: f64) -> Resul
             what: what.into(),
             value,
             reason: "must be finite and >= 0",
+        })
+    }
+}
+
+/// Checks that `value` is in [0, 1] (a restitution coefficient).
+pub(crate) fn require_unit_interval(what: impl Into<String>, value: f64) -> Result<f64> {
+    if (0.0..=1.0).contains(&value) {
+        Ok(value)
+    } else {
+        Err(EngineError::InvalidParameter {
+            what: what.into(),
+            value,
+            reason: "must be in [0, 1]",
         })
     }
 }

@@ -38,20 +38,25 @@
 pub mod body;
 pub mod collision;
 pub mod contact;
+mod contact_model;
 pub mod error;
 pub mod events;
+mod exact_model;
 pub mod forces;
 pub mod integrators;
 pub mod ode;
 pub mod root_finding;
 pub mod shape;
+pub mod soft_step;
 pub mod time_grid;
 pub mod trace;
 mod world;
+mod world_core;
 mod world_ode;
 
 pub use body::{Body, BodyDef, BodyId, BodyKind, BodyState};
 pub use contact::{ContactEvent, ContactEventKind, ContactSettings, StepProfile, ToiMethod};
+pub use contact_model::ContactModel;
 pub use error::{EngineError, Result};
 pub use events::{Crossing, EventRecord, EventSpec, Quantity};
 pub use forces::{Force, ForceContext, TimeWindow, Wrench};
@@ -59,7 +64,8 @@ pub use integrators::{
     Integrator, Method, Solution, Stats, Tolerance, integrate_fixed, integrate_to,
 };
 pub use ode::{FnSystem, OdeSystem, Structure};
-pub use shape::{Circle, ConvexPolygon, Shape};
+pub use shape::{Circle, Compound, CompoundPart, ConvexPolygon, Shape};
+pub use soft_step::SoftStepSettings;
 pub use time_grid::{MAX_RUN_STEPS, step_count};
 pub use trace::{Sample, Trace};
 pub use world::World;

@@ -222,6 +222,128 @@ impl Circle {
     }
 }
 
+/// One part of a [`Compound`]: a polygon or a circle placed in the body
+/// frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CompoundPart {
+    /// Where the part's own origin sits in the body frame (m).
+    pub offset: Vector2<f64>,
+    /// The part's orientation in the body frame (rad), counter-clockwise.
+    pub angle: f64,
+    /// The part, in its own frame: a polygon or a circle, not a compound.
+    pub shape: Shape,
+}
+
+impl CompoundPart {
+    /// Maps a point of the part's frame into the body frame (m).
+    pub fn to_body(&self, p: Vector2<f64>) -> Vector2<f64> {
+        let (s, c) = self.angle.sin_cos();
+        self.offset + Vector2::new(c * p.x - s * p.y, s * p.x + c * p.y)
+    }
+
+    /// The part's centroid in the body frame (m).
+    pub fn centroid(&self) -> Vector2<f64> {
+        match &self.shape {
+            Shape::Polygon(p) => self.to_body(p.centroid()),
+            _ => self.offset,
+        }
+    }
+}
+
+/// A rigid union of convex parts (a hollow box, an L): one body, several
+/// shapes, of uniform density. Supported by the soft-step contact model;
+/// the exact model refuses it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Compound {
+    parts: Vec<CompoundPart>,
+}
+
+impl Compound {
+    /// A compound of at least one part; parts are polygons or circles with
+    /// finite offsets and angles.
+    pub fn new(parts: Vec<CompoundPart>) -> Result<Self> {
+        if parts.is_empty() {
+            return Err(EngineError::InvalidParameter {
+                what: "compound shape".into(),
+                value: 0.0,
+                reason: "needs at least one part",
+            });
+        }
+        for (i, p) in parts.iter().enumerate() {
+            if let Shape::Compound(_) = p.shape {
+                return Err(EngineError::InvalidParameter {
+                    what: format!("part {i} of a compound shape"),
+                    value: f64::NAN,
+                    reason: "a part must be a polygon or a circle, not a compound",
+                });
+            }
+            for v in [p.offset.x, p.offset.y, p.angle] {
+                crate::error::require_finite(
+                    format!("placement of part {i} of a compound shape"),
+                    v,
+                )?;
+            }
+        }
+        Ok(Self { parts })
+    }
+
+    /// A hollow rectangle: four walls of thickness `wall` (m) around an
+    /// inside of `width × height` (m), centred on the origin.
+    pub fn hollow_box(width: f64, height: f64, wall: f64) -> Result<Self> {
+        let (w, h, t) = (
+            require_positive("hollow box width", width)?,
+            require_positive("hollow box height", height)?,
+            require_positive("hollow box wall", wall)?,
+        );
+        let part = |x: f64, y: f64, pw: f64, ph: f64| -> Result<CompoundPart> {
+            Ok(CompoundPart {
+                offset: Vector2::new(x, y),
+                angle: 0.0,
+                shape: Shape::rectangle(pw, ph)?,
+            })
+        };
+        Self::new(vec![
+            part(0.0, -0.5 * (h + t), w + 2.0 * t, t)?,
+            part(0.0, 0.5 * (h + t), w + 2.0 * t, t)?,
+            part(-0.5 * (w + t), 0.0, t, h)?,
+            part(0.5 * (w + t), 0.0, t, h)?,
+        ])
+    }
+
+    /// The parts.
+    pub fn parts(&self) -> &[CompoundPart] {
+        &self.parts
+    }
+
+    /// Total area (m²).
+    pub fn area(&self) -> f64 {
+        self.parts.iter().map(|p| p.shape.area()).sum()
+    }
+
+    /// Centroid of the union (m, body frame), area-weighted.
+    pub fn centroid(&self) -> Vector2<f64> {
+        let mut c = Vector2::zeros();
+        for p in &self.parts {
+            c += p.shape.area() * p.centroid();
+        }
+        c / self.area()
+    }
+
+    /// Second moment of area about the centroid (m⁴): each part's own
+    /// moment plus its area times the squared distance of its centroid
+    /// (parallel axis theorem).
+    pub fn polar_moment_about_centroid(&self) -> f64 {
+        let c = self.centroid();
+        self.parts
+            .iter()
+            .map(|p| {
+                let a = p.shape.area();
+                a * p.shape.inertia_per_unit_mass() + a * (p.centroid() - c).norm_squared()
+            })
+            .sum()
+    }
+}
+
 /// The shapes a body can carry.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Shape {
@@ -229,6 +351,9 @@ pub enum Shape {
     Polygon(ConvexPolygon),
     /// A circle.
     Circle(Circle),
+    /// Several polygons and circles making one rigid body (soft-step model
+    /// only).
+    Compound(Compound),
 }
 
 impl Shape {
@@ -237,11 +362,22 @@ impl Shape {
         Ok(Shape::Polygon(ConvexPolygon::rectangle(width, height)?))
     }
 
+    /// A circle of `radius` (m).
+    pub fn circle(radius: f64) -> Result<Self> {
+        Ok(Shape::Circle(Circle::new(radius)?))
+    }
+
+    /// A convex polygon from vertices listed counter-clockwise (m).
+    pub fn polygon(vertices: Vec<Vector2<f64>>) -> Result<Self> {
+        Ok(Shape::Polygon(ConvexPolygon::new(vertices)?))
+    }
+
     /// Area (m²).
     pub fn area(&self) -> f64 {
         match self {
             Shape::Polygon(p) => p.area(),
             Shape::Circle(c) => std::f64::consts::PI * c.radius * c.radius,
+            Shape::Compound(c) => c.area(),
         }
     }
 
@@ -251,6 +387,7 @@ impl Shape {
         match self {
             Shape::Polygon(p) => p.polar_moment_about_centroid() / p.area(),
             Shape::Circle(c) => 0.5 * c.radius * c.radius,
+            Shape::Compound(c) => c.polar_moment_about_centroid() / c.area(),
         }
     }
 
@@ -259,6 +396,32 @@ impl Shape {
         match self {
             Shape::Polygon(p) => Shape::Polygon(p.centered()),
             Shape::Circle(c) => Shape::Circle(*c),
+            Shape::Compound(c) => {
+                let centroid = c.centroid();
+                Shape::Compound(Compound {
+                    parts: c
+                        .parts
+                        .iter()
+                        .map(|p| CompoundPart {
+                            offset: p.offset - centroid,
+                            ..p.clone()
+                        })
+                        .collect(),
+                })
+            }
+        }
+    }
+
+    /// The convex pieces of the shape with their placement in the body
+    /// frame: the shape itself at the origin, or a compound's parts.
+    pub fn pieces(&self) -> Vec<(Vector2<f64>, f64, &Shape)> {
+        match self {
+            Shape::Compound(c) => c
+                .parts
+                .iter()
+                .map(|p| (p.offset, p.angle, &p.shape))
+                .collect(),
+            other => vec![(Vector2::zeros(), 0.0, other)],
         }
     }
 }
@@ -315,6 +478,28 @@ mod tests {
         let hull = ConvexPolygon::convex_hull(&pts).unwrap();
         assert_eq!(hull.vertices().len(), 4);
         assert!((hull.area() - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_hollow_box_has_the_mass_properties_of_its_walls() {
+        // Inside 2 × 2, walls 1 thick: the outer 4 × 4 square minus the
+        // inner 2 × 2 one. Area 16 − 4 = 12; polar moment about the centre
+        // (4⁴ − 2⁴)/6 = 40 m⁴ (a square of side a has a⁴/6).
+        let c = Compound::hollow_box(2.0, 2.0, 1.0).unwrap();
+        assert!((c.area() - 12.0).abs() < 1e-12);
+        assert!(c.centroid().norm() < 1e-12);
+        assert!((c.polar_moment_about_centroid() - 40.0).abs() < 1e-12);
+        let shape = Shape::Compound(c);
+        assert!((shape.inertia_per_unit_mass() - 40.0 / 12.0).abs() < 1e-12);
+        // Off-centre, it re-centres on its centroid.
+        let part = CompoundPart {
+            offset: Vector2::new(3.0, 1.0),
+            angle: 0.4,
+            shape: Shape::circle(0.5).unwrap(),
+        };
+        let moved = Shape::Compound(Compound::new(vec![part]).unwrap()).centered();
+        let Shape::Compound(m) = &moved else { panic!() };
+        assert!(m.centroid().norm() < 1e-15);
     }
 
     #[test]

@@ -64,6 +64,15 @@ pub fn to_parry_shape(shape: &Shape) -> SharedShape {
             SharedShape::new(polygon)
         }
         Shape::Circle(c) => SharedShape::new(Ball::new(c.radius)),
+        Shape::Compound(c) => SharedShape::compound(
+            c.parts()
+                .iter()
+                .map(|p| {
+                    let pose = Isometry2::new(p.offset, p.angle);
+                    (to_parry_pose(&pose), to_parry_shape(&p.shape))
+                })
+                .collect(),
+        ),
     }
 }
 

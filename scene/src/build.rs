@@ -22,14 +22,15 @@
 use crate::colour::Colour;
 use crate::error::{ErrorKind, FieldPath, Problem};
 use crate::format::{
-    BodyKindSpec, BodySpec, ContactSpec, DEFAULT_TOLERANCE, LinearTestSpec, SceneFile, ShapeSpec,
-    Window, Xy,
+    BodyKindSpec, BodySpec, ContactModelSpec, ContactSpec, DEFAULT_METHOD, DEFAULT_TOLERANCE,
+    LinearTestSpec, SceneFile, ShapeSpec, ToiMethodSpec, Window, Xy,
 };
 use crate::linear_test::LinearTest;
 use engine::forces::{AngularDrag, Gravity, PointForce, QuadraticDrag, Spring, TimeWindow, Torque};
 use engine::{
-    BodyDef, BodyKind, BodyState, Circle, ConvexPolygon, EngineError, EventSpec, Force,
-    MAX_RUN_STEPS, Method, Shape, Tolerance, World,
+    BodyDef, BodyKind, BodyState, Circle, Compound, ContactModel, ContactSettings, ConvexPolygon,
+    EngineError, EventSpec, Force, MAX_RUN_STEPS, Method, Shape, SoftStepSettings, ToiMethod,
+    Tolerance, World,
 };
 use nalgebra::Vector2;
 
@@ -60,7 +61,8 @@ pub(crate) struct WorldPlan {
     pub(crate) colours: Vec<Colour>,
     pub(crate) forces: Vec<PlannedForce>,
     pub(crate) events: Vec<EventSpec>,
-    pub(crate) contact: Option<ContactSpec>,
+    pub(crate) contact: Option<ContactModel>,
+    pub(crate) gravity: Option<Vector2<f64>>,
 }
 
 /// One force with its window and where the file defines it.
@@ -114,7 +116,30 @@ pub(crate) fn plan(file: &SceneFile) -> Checked<Plan> {
         None => DEFAULT_TOLERANCE,
     };
     let tolerance = Tolerance::uniform(tolerance);
-    let method = Method::from_id(&sim_spec.method, tolerance).ok_or_else(|| {
+    let soft_step = matches!(
+        file.contact,
+        Some(ContactSpec {
+            model: ContactModelSpec::SoftStep,
+            ..
+        })
+    ) && file.linear_test.is_none();
+    let method_id = match (&sim_spec.method, soft_step) {
+        (Some(m), true) if m != Method::SemiImplicitEuler.id() => {
+            return Err(Problem::new(
+                &sim.key("method"),
+                ErrorKind::InvalidValue,
+                format!(
+                    "method \"{m}\" does not apply under the soft_step contact model, which \
+                     integrates by semi-implicit Euler per substep: remove `method`, or set \
+                     [contact] model = \"exact\" to integrate with {m}"
+                ),
+            ));
+        }
+        (Some(m), _) => m.as_str(),
+        (None, true) => Method::SemiImplicitEuler.id(),
+        (None, false) => DEFAULT_METHOD,
+    };
+    let method = Method::from_id(method_id, tolerance).ok_or_else(|| {
         let known: Vec<&str> = Method::FIXED_STEP
             .iter()
             .map(Method::id)
@@ -124,8 +149,7 @@ pub(crate) fn plan(file: &SceneFile) -> Checked<Plan> {
             &sim.key("method"),
             ErrorKind::InvalidType,
             format!(
-                "unknown method \"{}\"; expected one of {}",
-                sim_spec.method,
+                "unknown method \"{method_id}\"; expected one of {}",
                 known.join(", ")
             ),
         )
@@ -176,6 +200,7 @@ fn refuse_world_tables(file: &SceneFile) -> Checked<()> {
         ("forces", !file.forces.is_empty()),
         ("events", !file.events.is_empty()),
         ("contact", file.contact.is_some()),
+        ("generate", !file.generate.is_empty()),
     ];
     match present.iter().find(|(_, here)| *here) {
         Some((table, _)) => Err(Problem::new(
@@ -198,13 +223,15 @@ fn linear_test(spec: &LinearTestSpec) -> Checked<LinearTest> {
 }
 
 fn world(file: &SceneFile) -> Checked<WorldPlan> {
-    if file.bodies.is_empty() {
+    if file.bodies.is_empty() && file.generate.is_empty() {
         return Err(Problem::new(
             &FieldPath::root().key("bodies"),
             ErrorKind::MissingField,
-            "the scene defines no [[bodies]] (and no [linear_test]): nothing to simulate",
+            "the scene defines no [[bodies]] or [[generate]] (and no [linear_test]): nothing to simulate",
         ));
     }
+    let contact = file.contact.map(|c| contact(&c)).transpose()?;
+    let model = file.contact.map(|c| c.model);
     let mut bodies = Vec::with_capacity(file.bodies.len());
     let mut colours = Vec::with_capacity(file.bodies.len());
     for (i, spec) in file.bodies.iter().enumerate() {
@@ -216,7 +243,9 @@ fn world(file: &SceneFile) -> Checked<WorldPlan> {
                 format!("body name '{}' is already used by bodies[{j}]", spec.name),
             ));
         }
-        bodies.push(body(&path, spec)?);
+        let def = body(&path, spec)?;
+        model_allows_body(&path, &def, spec, model)?;
+        bodies.push(def);
         colours.push(colour(&path, spec, i)?);
     }
     let names = crate::forces::Bodies {
@@ -235,14 +264,154 @@ fn world(file: &SceneFile) -> Checked<WorldPlan> {
         .enumerate()
         .map(|(i, e)| crate::forces::event(&FieldPath::root().key("events").index(i), e, &names))
         .collect::<Checked<Vec<_>>>()?;
-    let contact = file.contact.map(|c| contact(&c)).transpose()?;
+    generated(file, model, &mut bodies, &mut colours)?;
+    let gravity = file
+        .simulation
+        .gravity
+        .map(|g| xy(&FieldPath::root().key("simulation").key("gravity"), &g))
+        .transpose()?;
     Ok(WorldPlan {
         bodies,
         colours,
         forces,
         events,
         contact,
+        gravity,
     })
+}
+
+/// Appends the bodies of every `[[generate]]` block, with their colours;
+/// names must not clash with any other body's.
+fn generated(
+    file: &SceneFile,
+    model: Option<ContactModelSpec>,
+    bodies: &mut Vec<BodyDef>,
+    colours: &mut Vec<Colour>,
+) -> Checked<()> {
+    for (i, spec) in file.generate.iter().enumerate() {
+        let path = FieldPath::root().key("generate").index(i);
+        if model != Some(ContactModelSpec::SoftStep) {
+            let (field, what) = match spec {
+                crate::generate::GenerateSpec::Pyramid {
+                    friction: Some(_), ..
+                }
+                | crate::generate::GenerateSpec::Stack {
+                    friction: Some(_), ..
+                }
+                | crate::generate::GenerateSpec::Grid {
+                    friction: Some(_), ..
+                } => ("friction", "per-body friction"),
+                crate::generate::GenerateSpec::Pyramid {
+                    restitution: Some(_),
+                    ..
+                }
+                | crate::generate::GenerateSpec::Stack {
+                    restitution: Some(_),
+                    ..
+                }
+                | crate::generate::GenerateSpec::Grid {
+                    restitution: Some(_),
+                    ..
+                } => ("restitution", "per-body restitution"),
+                _ => ("", ""),
+            };
+            if !field.is_empty() {
+                return Err(needs_soft_step(&path.key(field), what, model));
+            }
+        }
+        let prefix = spec.prefix();
+        let clash = |name: &str| name.starts_with(prefix) && name[prefix.len()..].starts_with('_');
+        if let Some(j) = file
+            .bodies
+            .iter()
+            .position(|b| clash(&b.name))
+            .map(|j| format!("bodies[{j}] ('{}')", file.bodies[j].name))
+            .or_else(|| {
+                file.generate[..i]
+                    .iter()
+                    .position(|g| g.prefix() == prefix)
+                    .map(|j| format!("generate[{j}]"))
+            })
+        {
+            return Err(Problem::new(
+                &path.key("name"),
+                ErrorKind::DuplicateName,
+                format!(
+                    "the bodies of this generator are named {prefix}_0, {prefix}_1, ... and {j} uses that prefix: give it another `name`"
+                ),
+            ));
+        }
+        let colour = match spec.colour() {
+            None => Colour::default_for(i + file.bodies.len()),
+            Some(text) => Colour::parse_hex(text).ok_or_else(|| {
+                Problem::new(
+                    &path.key("colour"),
+                    ErrorKind::InvalidValue,
+                    format!("colour must be \"#rrggbb\" (hex), got \"{text}\""),
+                )
+            })?,
+        };
+        let more = crate::generate::expand(&path, spec, bodies.len())?;
+        colours.extend(std::iter::repeat_n(colour, more.len()));
+        bodies.extend(more);
+    }
+    Ok(())
+}
+
+/// The error of a body feature the scene's contact model cannot simulate.
+fn needs_soft_step(path: &FieldPath, what: &str, model: Option<ContactModelSpec>) -> Problem {
+    let now = match model {
+        Some(ContactModelSpec::Exact) => "this scene uses [contact] model = \"exact\"",
+        _ => "this scene has no [contact] table (contacts are off)",
+    };
+    Problem::new(
+        path,
+        ErrorKind::InvalidValue,
+        format!(
+            "{what} needs the soft_step contact model, and {now}: add [contact] (model = \"soft_step\" is the default)"
+        ),
+    )
+}
+
+/// Refuses what the scene's contact model cannot simulate, at its field.
+fn model_allows_body(
+    path: &FieldPath,
+    def: &BodyDef,
+    spec: &BodySpec,
+    model: Option<ContactModelSpec>,
+) -> Checked<()> {
+    if model == Some(ContactModelSpec::SoftStep) {
+        return Ok(());
+    }
+    if def.kind == BodyKind::Kinematic {
+        return Err(needs_soft_step(
+            &path.key("kind"),
+            "a kinematic body",
+            model,
+        ));
+    }
+    if let Some(ShapeSpec::HollowBox { .. }) = spec.shape {
+        return Err(needs_soft_step(
+            &path.key("shape"),
+            "a hollow_box shape",
+            model,
+        ));
+    }
+    if spec.friction.is_some() {
+        return Err(needs_soft_step(
+            &path.key("friction"),
+            "per-body friction",
+            model,
+        ));
+    }
+    if spec.restitution.is_some() {
+        return Err(needs_soft_step(
+            &path.key("restitution"),
+            "per-body restitution",
+            model,
+        ));
+    }
+    Ok(())
 }
 
 // ---------------------------------------------------------------- numbers
@@ -289,6 +458,18 @@ pub(crate) fn non_negative(path: &FieldPath, value: f64, what: &str, unit: &str)
             format!("{what} must be >= 0, got {}", with_unit(value, unit)),
         ))
     }
+}
+
+pub(crate) fn unit_interval(path: &FieldPath, value: f64, what: &str) -> Checked<f64> {
+    let v = finite(path, value)?;
+    if !(0.0..=1.0).contains(&v) {
+        return Err(Problem::new(
+            path,
+            ErrorKind::InvalidValue,
+            format!("{what} must be in [0, 1], got {v}"),
+        ));
+    }
+    Ok(v)
 }
 
 pub(crate) fn xy(path: &FieldPath, value: &Xy) -> Checked<Vector2<f64>> {
@@ -340,6 +521,10 @@ fn body(path: &FieldPath, spec: &BodySpec) -> Checked<BodyDef> {
             static_body_has_no_dynamics(path, spec)?;
             (BodyKind::Static, None, None, None)
         }
+        BodyKindSpec::Kinematic => {
+            kinematic_body_has_no_mass(path, spec)?;
+            (BodyKind::Kinematic, None, None, None)
+        }
         BodyKindSpec::Dynamic => {
             let (mass, density) = mass_or_density(path, spec)?;
             let inertia = spec
@@ -372,6 +557,27 @@ fn body(path: &FieldPath, spec: &BodySpec) -> Checked<BodyDef> {
             (BodyKind::Dynamic, mass, density, inertia)
         }
     };
+    let friction = spec
+        .friction
+        .map(|f| {
+            non_negative(
+                &path.key("friction"),
+                f,
+                &format!("friction of body '{name}'"),
+                "",
+            )
+        })
+        .transpose()?;
+    let restitution = spec
+        .restitution
+        .map(|e| {
+            unit_interval(
+                &path.key("restitution"),
+                e,
+                &format!("restitution of body '{name}'"),
+            )
+        })
+        .transpose()?;
     let def = BodyDef {
         name: name.clone(),
         kind,
@@ -380,6 +586,8 @@ fn body(path: &FieldPath, spec: &BodySpec) -> Checked<BodyDef> {
         inertia,
         shape,
         state,
+        friction,
+        restitution,
     };
     // The engine's own check, so that building the world cannot fail.
     engine::Body::from_def(&def).map_err(|e| Problem::engine(path, e))?;
@@ -400,6 +608,25 @@ fn static_body_has_no_dynamics(path: &FieldPath, spec: &BodySpec) -> Checked<()>
             ErrorKind::InvalidValue,
             format!(
                 "body '{}' is static and never moves: remove `{field}`, or make it kind = \"dynamic\"",
+                spec.name
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
+fn kinematic_body_has_no_mass(path: &FieldPath, spec: &BodySpec) -> Checked<()> {
+    let offending = [
+        ("mass", spec.mass.is_some()),
+        ("density", spec.density.is_some()),
+        ("inertia", spec.inertia.is_some()),
+    ];
+    match offending.iter().find(|(_, present)| *present) {
+        Some((field, _)) => Err(Problem::new(
+            &path.key(field),
+            ErrorKind::InvalidValue,
+            format!(
+                "body '{}' is kinematic: it moves at its velocity whatever pushes it, so it takes no `{field}`",
                 spec.name
             ),
         )),
@@ -478,6 +705,33 @@ fn shape(path: &FieldPath, spec: &ShapeSpec, body: &str) -> Checked<Shape> {
                 Circle::new(r).map_err(|e| Problem::engine(path, e))?,
             ))
         }
+        ShapeSpec::HollowBox {
+            width,
+            height,
+            wall,
+        } => {
+            let w = positive(
+                &path.key("width"),
+                *width,
+                &format!("inside width of body '{body}'"),
+                "m",
+            )?;
+            let h = positive(
+                &path.key("height"),
+                *height,
+                &format!("inside height of body '{body}'"),
+                "m",
+            )?;
+            let t = positive(
+                &path.key("wall"),
+                *wall,
+                &format!("wall of body '{body}'"),
+                "m",
+            )?;
+            Ok(Shape::Compound(
+                Compound::hollow_box(w, h, t).map_err(|e| Problem::engine(path, e))?,
+            ))
+        }
         ShapeSpec::Polygon { vertices } => {
             let vpath = path.key("vertices");
             let points = vertices
@@ -525,21 +779,124 @@ fn colour(path: &FieldPath, spec: &BodySpec, index: usize) -> Checked<Colour> {
 
 // ---------------------------------------------------------------- contact
 
-fn contact(spec: &ContactSpec) -> Checked<ContactSpec> {
+fn contact(spec: &ContactSpec) -> Checked<ContactModel> {
     let path = FieldPath::root().key("contact");
-    let e = finite(&path.key("restitution"), spec.restitution)?;
-    if !(0.0..=1.0).contains(&e) {
-        return Err(Problem::new(
-            &path.key("restitution"),
-            ErrorKind::InvalidValue,
-            format!("restitution must be in [0, 1], got {e}"),
-        ));
+    let restitution = spec
+        .restitution
+        .map(|e| unit_interval(&path.key("restitution"), e, "restitution"))
+        .transpose()?;
+    let friction = spec
+        .friction
+        .map(|f| non_negative(&path.key("friction"), f, "friction", ""))
+        .transpose()?;
+    let soft_keys = [
+        ("substeps", spec.substeps.is_some()),
+        ("contact_hertz", spec.contact_hertz.is_some()),
+        ("damping_ratio", spec.damping_ratio.is_some()),
+        ("push_out_speed", spec.push_out_speed.is_some()),
+        (
+            "restitution_threshold",
+            spec.restitution_threshold.is_some(),
+        ),
+        ("speculative_distance", spec.speculative_distance.is_some()),
+        ("aabb_margin", spec.aabb_margin.is_some()),
+        ("recycle_distance", spec.recycle_distance.is_some()),
+        ("continuous", spec.continuous.is_some()),
+        ("sleeping", spec.sleeping.is_some()),
+    ];
+    match spec.model {
+        ContactModelSpec::Exact => {
+            if let Some((key, _)) = soft_keys.iter().find(|(_, given)| *given) {
+                return Err(Problem::new(
+                    &path.key(key),
+                    ErrorKind::InvalidValue,
+                    format!(
+                        "`{key}` is a setting of the soft_step contact model; this [contact] has model = \"exact\": remove it or change the model"
+                    ),
+                ));
+            }
+            let d = ContactSettings::default();
+            Ok(ContactModel::Exact(ContactSettings {
+                restitution: restitution.unwrap_or(d.restitution),
+                friction: friction.unwrap_or(d.friction),
+                toi_method: match spec.toi_method {
+                    None => d.toi_method,
+                    Some(ToiMethodSpec::Bisection) => ToiMethod::Bisection,
+                    Some(ToiMethodSpec::ConservativeAdvancement) => {
+                        ToiMethod::ConservativeAdvancement
+                    }
+                },
+                ..d
+            }))
+        }
+        ContactModelSpec::SoftStep => {
+            if spec.toi_method.is_some() {
+                return Err(Problem::new(
+                    &path.key("toi_method"),
+                    ErrorKind::InvalidValue,
+                    "`toi_method` is a setting of the exact contact model (the soft step sweeps fast bodies by itself, see `continuous`): remove it or set model = \"exact\"",
+                ));
+            }
+            let d = SoftStepSettings::default();
+            let substeps = match spec.substeps {
+                None => d.substeps,
+                Some(n) if (1..=1024).contains(&n) => n as usize,
+                Some(n) => {
+                    return Err(Problem::new(
+                        &path.key("substeps"),
+                        ErrorKind::InvalidValue,
+                        format!("substeps must be between 1 and 1024, got {n}"),
+                    ));
+                }
+            };
+            let pos = |key: &str, v: Option<f64>, default: f64, unit: &str| -> Checked<f64> {
+                v.map_or(Ok(default), |v| positive(&path.key(key), v, key, unit))
+            };
+            let nonneg = |key: &str, v: Option<f64>, default: f64, unit: &str| -> Checked<f64> {
+                v.map_or(Ok(default), |v| non_negative(&path.key(key), v, key, unit))
+            };
+            Ok(ContactModel::SoftStep(SoftStepSettings {
+                substeps,
+                contact_hertz: pos("contact_hertz", spec.contact_hertz, d.contact_hertz, "Hz")?,
+                contact_damping_ratio: nonneg(
+                    "damping_ratio",
+                    spec.damping_ratio,
+                    d.contact_damping_ratio,
+                    "",
+                )?,
+                push_out_speed: pos(
+                    "push_out_speed",
+                    spec.push_out_speed,
+                    d.push_out_speed,
+                    "m/s",
+                )?,
+                restitution_threshold: nonneg(
+                    "restitution_threshold",
+                    spec.restitution_threshold,
+                    d.restitution_threshold,
+                    "m/s",
+                )?,
+                speculative_distance: nonneg(
+                    "speculative_distance",
+                    spec.speculative_distance,
+                    d.speculative_distance,
+                    "m",
+                )?,
+                aabb_margin: pos("aabb_margin", spec.aabb_margin, d.aabb_margin, "m")?,
+                recycle_distance: nonneg(
+                    "recycle_distance",
+                    spec.recycle_distance,
+                    d.recycle_distance,
+                    "m",
+                )?,
+                continuous: spec.continuous.unwrap_or(d.continuous),
+                sleeping: spec.sleeping.unwrap_or(d.sleeping),
+                friction: friction.unwrap_or(d.friction),
+                restitution: restitution.unwrap_or(d.restitution),
+                ..d
+            }))
+        }
     }
-    let friction = non_negative(&path.key("friction"), spec.friction, "friction", "")?;
-    Ok(ContactSpec {
-        restitution: e,
-        friction,
-    })
 }
 
 // ---------------------------------------------------------------- world
@@ -553,6 +910,19 @@ pub(crate) fn build_world(
     method_path: &FieldPath,
 ) -> Checked<World> {
     let mut world = World::new(method).map_err(|e| Problem::engine(method_path, e))?;
+    if let Some(model) = plan.contact {
+        // A [contact] table turns contact handling on, under its model,
+        // before any body is added (the soft step inserts each body's
+        // shapes into its broad phase as it comes).
+        world
+            .set_contact_model(model)
+            .map_err(|e| Problem::engine(&FieldPath::root().key("contact"), e))?;
+    }
+    if let Some(g) = plan.gravity {
+        world
+            .set_gravity(g)
+            .map_err(|e| Problem::engine(&FieldPath::root().key("simulation").key("gravity"), e))?;
+    }
     for (i, def) in plan.bodies.iter().enumerate() {
         world
             .add_body(def.clone())
@@ -567,13 +937,6 @@ pub(crate) fn build_world(
         world
             .add_event(event.clone())
             .map_err(|e| Problem::engine(&FieldPath::root().key("events").index(i), e))?;
-    }
-    if let Some(c) = &plan.contact {
-        // A [contact] table turns contact handling on (the engine's other
-        // contact settings keep their defaults).
-        world
-            .set_contact_settings(engine::ContactSettings::new(c.restitution, c.friction))
-            .map_err(|e| Problem::engine(&FieldPath::root().key("contact"), e))?;
     }
     Ok(world)
 }

@@ -34,6 +34,11 @@ pub struct SceneFile {
     pub events: Vec<EventEntry>,
     /// `[contact]`: collision response settings. Optional.
     pub contact: Option<ContactSpec>,
+    /// `[[generate]]` blocks: many bodies from a few numbers (a pyramid, a
+    /// stack, a grid or rain of shapes), appended after `[[bodies]]` in
+    /// order. Default: none.
+    #[serde(default)]
+    pub generate: Vec<crate::generate::GenerateSpec>,
     /// `[linear_test]`: the scalar stiff test instead of bodies. Optional;
     /// excludes bodies, forces, events and contact.
     pub linear_test: Option<LinearTestSpec>,
@@ -46,9 +51,10 @@ pub struct SimulationSpec {
     /// Integration method, an [`engine::Method::id`]: `"explicit_euler"`,
     /// `"semi_implicit_euler"`, `"rk2_midpoint"`, `"rk4"`,
     /// `"velocity_verlet"`, `"implicit_euler"` or `"dormand_prince"`.
-    /// Default `"rk4"` (the seed's method, §4.3).
-    #[serde(default = "default_method")]
-    pub method: String,
+    /// Default `"rk4"` (the seed's method, §4.3), or
+    /// `"semi_implicit_euler"` under the soft-step contact model, which
+    /// integrates by itself and accepts no other.
+    pub method: Option<String>,
     /// Time step h (s), > 0. Required. For `dormand_prince` it is the output
     /// interval, the largest step the controller may take.
     pub dt: f64,
@@ -60,11 +66,14 @@ pub struct SimulationSpec {
     /// (dimensionless / state units), > 0. Default 1e-9; ignored by the
     /// fixed-step methods.
     pub tolerance: Option<f64>,
+    /// Uniform gravity on every dynamic body (m/s²), the world's setting
+    /// (`[[forces]] type = "gravity"` also works, with a window). Default:
+    /// none.
+    pub gravity: Option<Xy>,
 }
 
-fn default_method() -> String {
-    "rk4".into()
-}
+/// The default method of a scene without the soft-step contact model.
+pub const DEFAULT_METHOD: &str = "rk4";
 
 /// Default tolerance of `dormand_prince` when `[simulation]` gives none.
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
@@ -78,6 +87,10 @@ pub enum BodyKindSpec {
     Dynamic,
     /// Never moves (an anchor, the ground); takes no mass or velocity.
     Static,
+    /// Moves at its `velocity` and `angular_velocity` forever, pushed by
+    /// nothing (a conveyor, a stirring paddle, a turning container); takes
+    /// no mass. Soft-step contact model only.
+    Kinematic,
 }
 
 /// `[[bodies]]`: one body.
@@ -115,6 +128,14 @@ pub struct BodySpec {
     /// Initial angular velocity (rad/s), counter-clockwise. Default 0.
     #[serde(default)]
     pub angular_velocity: f64,
+    /// Coulomb friction coefficient of this body (≥ 0), combined with the
+    /// other body's as √(μa μb). Default: `[contact] friction`. Soft-step
+    /// contact model only.
+    pub friction: Option<f64>,
+    /// Restitution of this body (in [0, 1]); a pair bounces with the
+    /// larger of its two. Default: `[contact] restitution`. Soft-step
+    /// contact model only.
+    pub restitution: Option<f64>,
     /// Colour for pictures, `"#rrggbb"` (also accepted as `color`).
     /// Default: the next colour of the matplotlib "tab10" cycle
     /// ([`crate::Colour::PALETTE`]) by body index. The engine ignores it.
@@ -145,6 +166,18 @@ pub enum ShapeSpec {
     Circle {
         /// Radius (m), > 0.
         radius: f64,
+    },
+    /// `{ type = "hollow_box", width, height, wall }`: four walls of
+    /// thickness `wall` around an inside of `width × height` (m), centred
+    /// on the body (a container, a tumbler). One rigid body of four
+    /// shapes; soft-step contact model only.
+    HollowBox {
+        /// Inside extent along the body's x axis (m), > 0.
+        width: f64,
+        /// Inside extent along the body's y axis (m), > 0.
+        height: f64,
+        /// Wall thickness (m), > 0.
+        wall: f64,
     },
 }
 
@@ -260,24 +293,81 @@ pub enum EventEntry {
     },
 }
 
-/// `[contact]`: collision response (CASES.md case III). Its presence turns
-/// the world's contact handling on ([`engine::World::set_contact_settings`]):
-/// without it, shapes pass through each other. A world with fewer than two
-/// shapes, or none on a dynamic body, runs no collision code either way.
+/// `[contact]`: collision response. Its presence turns the world's
+/// contacts on; without it, shapes pass through each other. Two models
+/// (`docs/design.md#contact-models`):
+///
+/// - `model = "soft_step"` (the default): Box2D v3's soft step, for many
+///   bodies; it integrates by itself (semi-implicit Euler per substep), so
+///   `[simulation] method` must be absent or `"semi_implicit_euler"`;
+/// - `model = "exact"`: the event-driven model after Baraff, exact to
+///   round-off on a few bodies, integrated by `[simulation] method`.
+///
+/// Keys of the other model are refused, with the reason.
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSpec {
-    /// Coefficient of restitution e, in [0, 1] (seed eq. 7.1–7.16).
-    /// Default 1: perfectly elastic, no loss the scene did not ask for.
-    #[serde(default = "one")]
-    pub restitution: f64,
-    /// Coulomb friction coefficient μ, ≥ 0. Default 0.
+    /// `"soft_step"` (default) or `"exact"`.
     #[serde(default)]
-    pub friction: f64,
+    pub model: ContactModelSpec,
+    /// Coefficient of restitution e, in [0, 1] (seed eq. 7.1–7.16): the
+    /// whole world's under the exact model, the default of bodies without
+    /// their own under the soft step. Default: 1 under the exact model (no
+    /// loss the scene did not ask for), 0 under the soft step (Box2D's).
+    pub restitution: Option<f64>,
+    /// Coulomb friction coefficient μ, ≥ 0, in the same way. Default: 0
+    /// under the exact model, 0.6 under the soft step (Box2D's).
+    pub friction: Option<f64>,
+    /// Soft step: substeps per step, 1 to 1024. Default 4.
+    pub substeps: Option<i64>,
+    /// Soft step: contact stiffness as a natural frequency (Hz, > 0).
+    /// Default 30.
+    pub contact_hertz: Option<f64>,
+    /// Soft step: damping ratio of the contact spring (≥ 0). Default 10.
+    pub damping_ratio: Option<f64>,
+    /// Soft step: largest push-out speed of overlapping bodies (m/s, > 0).
+    /// Default 3.
+    pub push_out_speed: Option<f64>,
+    /// Soft step: approach speed below which nothing bounces (m/s, ≥ 0).
+    /// Default 1.
+    pub restitution_threshold: Option<f64>,
+    /// Soft step: distance within which contacts are speculative (m, ≥ 0).
+    /// Default 0.02.
+    pub speculative_distance: Option<f64>,
+    /// Soft step: margin of the broad phase's boxes (m, > 0). Default 0.1.
+    pub aabb_margin: Option<f64>,
+    /// Soft step: relative motion under which a manifold is recycled (m,
+    /// ≥ 0; 0 recomputes every manifold every step). Default 0.05.
+    pub recycle_distance: Option<f64>,
+    /// Soft step: sweep fast bodies against static ones. Default true.
+    pub continuous: Option<bool>,
+    /// Soft step: islands at rest fall asleep. Default false.
+    pub sleeping: Option<bool>,
+    /// Exact model: how the first contact inside a step is found,
+    /// `"bisection"` (the seed's, default) or `"conservative_advancement"`
+    /// (never misses a thin body).
+    pub toi_method: Option<ToiMethodSpec>,
 }
 
-fn one() -> f64 {
-    1.0
+/// `[contact] model`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactModelSpec {
+    /// Box2D v3's soft step.
+    #[default]
+    SoftStep,
+    /// The exact, event-driven model.
+    Exact,
+}
+
+/// `[contact] toi_method`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ToiMethodSpec {
+    /// The seed's bisection of the step.
+    Bisection,
+    /// Conservative advancement.
+    ConservativeAdvancement,
 }
 
 /// `[linear_test]`: Hoffman's scalar stiff test (seed §4.3), generalised to a
@@ -300,6 +390,10 @@ pub struct LinearTestSpec {
     /// g'(t), the forcing's slope (s⁻¹). Default 1.
     #[serde(default = "one")]
     pub forcing_slope: f64,
+}
+
+fn one() -> f64 {
+    1.0
 }
 
 fn two() -> f64 {

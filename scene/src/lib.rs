@@ -100,6 +100,7 @@
 //! body = "box"
 //!
 //! [contact]               # turns contacts on (shapes collide)
+//! model = "exact"         # few bodies, any method; default "soft_step"
 //! restitution = 0.5
 //! friction = 0.2
 //! "##;
@@ -140,6 +141,7 @@ mod colour;
 pub mod error;
 mod forces;
 pub mod format;
+pub mod generate;
 mod linear_test;
 mod load;
 mod location;

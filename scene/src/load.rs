@@ -13,7 +13,7 @@
 use crate::build::{self, Content, Plan};
 use crate::colour::Colour;
 use crate::error::{ErrorKind, FieldPath, Problem, SceneError, Segment};
-use crate::format::{ContactSpec, SceneFile};
+use crate::format::SceneFile;
 use crate::linear_test::LinearTest;
 use crate::location::{line_column, path_at, position_of};
 use engine::{BodyDef, BodyId, Method, Tolerance, World};
@@ -180,11 +180,19 @@ impl Scene {
         self.body_id(name).map(|i| self.colours()[i])
     }
 
-    /// The `[contact]` settings, validated (they turn contacts on in the
-    /// built world).
-    pub fn contact(&self) -> Option<ContactSpec> {
+    /// The contact model and its settings from `[contact]`, validated and
+    /// with every default filled in; `None` when contacts are off.
+    pub fn contact(&self) -> Option<engine::ContactModel> {
         match &self.plan.content {
             Content::World(w) => w.contact,
+            Content::LinearTest(_) => None,
+        }
+    }
+
+    /// The world's gravity setting from `[simulation] gravity` (m/s²).
+    pub fn gravity(&self) -> Option<nalgebra::Vector2<f64>> {
+        match &self.plan.content {
+            Content::World(w) => w.gravity,
             Content::LinearTest(_) => None,
         }
     }

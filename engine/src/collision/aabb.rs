@@ -52,6 +52,12 @@ impl Aabb {
         match shape {
             Shape::Polygon(p) => Self::of_polygon(p, pose),
             Shape::Circle(c) => Self::of_circle(c, pose),
+            Shape::Compound(c) => c
+                .parts()
+                .iter()
+                .map(|p| Self::of_shape(&p.shape, &(pose * Isometry2::new(p.offset, p.angle))))
+                .reduce(|a, b| a.merged(&b))
+                .expect("a compound has at least one part"),
         }
     }
 

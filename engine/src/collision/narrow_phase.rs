@@ -26,6 +26,17 @@ pub fn collide(
     pose_b: &Isometry2<f64>,
     margin: f64,
 ) -> Option<Manifold> {
+    if let Shape::Compound(c) = a {
+        // The part with the deepest contact speaks for the compound.
+        return c
+            .parts()
+            .iter()
+            .filter_map(|p| collide(&p.shape, &part_pose(pose_a, p), b, pose_b, margin))
+            .max_by(|x, y| x.max_depth().total_cmp(&y.max_depth()));
+    }
+    if let Shape::Compound(_) = b {
+        return collide(b, pose_b, a, pose_a, margin).map(|m| m.flipped());
+    }
     match (a, b) {
         (Shape::Polygon(pa), Shape::Polygon(pb)) => {
             collide_polygon_polygon_with_margin(pa, pose_a, pb, pose_b, margin)
@@ -39,7 +50,13 @@ pub fn collide(
         (Shape::Circle(ca), Shape::Circle(cb)) => {
             collide_circle_circle_with_margin(ca, pose_a, cb, pose_b, margin)
         }
+        (Shape::Compound(_), _) | (_, Shape::Compound(_)) => unreachable!("handled above"),
     }
+}
+
+/// The pose of a compound's part, given the compound's.
+fn part_pose(pose: &Isometry2<f64>, part: &crate::shape::CompoundPart) -> Isometry2<f64> {
+    pose * Isometry2::new(part.offset, part.angle)
 }
 
 /// The exact signed distance of two shapes (m): the gap when apart, 0 when
@@ -51,6 +68,18 @@ pub fn proximity(
     b: &Shape,
     pose_b: &Isometry2<f64>,
 ) -> Proximity {
+    if let Shape::Compound(c) = a {
+        // The nearest (or deepest) part.
+        return c
+            .parts()
+            .iter()
+            .map(|p| proximity(&p.shape, &part_pose(pose_a, p), b, pose_b))
+            .min_by(|x, y| x.distance.total_cmp(&y.distance))
+            .expect("a compound has at least one part");
+    }
+    if let Shape::Compound(_) = b {
+        return proximity(b, pose_b, a, pose_a).flipped();
+    }
     match (a, b) {
         (Shape::Polygon(pa), Shape::Polygon(pb)) => {
             distance_polygon_polygon(pa, pose_a, pb, pose_b)
@@ -60,6 +89,7 @@ pub fn proximity(
             distance_polygon_circle(p, pose_b, c, pose_a).flipped()
         }
         (Shape::Circle(ca), Shape::Circle(cb)) => distance_circle_circle(ca, pose_a, cb, pose_b),
+        (Shape::Compound(_), _) | (_, Shape::Compound(_)) => unreachable!("handled above"),
     }
 }
 
@@ -72,6 +102,20 @@ pub fn rotation_radius(shape: &Shape) -> f64 {
     match shape {
         Shape::Polygon(p) => p.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max),
         Shape::Circle(_) => 0.0,
+        // A part turns about the body origin: its farthest point is at most
+        // its offset plus its own extent (a circle's radius counts here,
+        // since its centre moves).
+        Shape::Compound(c) => c
+            .parts()
+            .iter()
+            .map(|p| {
+                p.offset.norm()
+                    + match &p.shape {
+                        Shape::Circle(circle) => circle.radius,
+                        other => rotation_radius(other),
+                    }
+            })
+            .fold(0.0, f64::max),
     }
 }
 

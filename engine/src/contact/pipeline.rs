@@ -70,6 +70,16 @@ pub(crate) enum Phase {
     Narrow,
     Toi,
     Respond,
+    Pairs,
+    Collide,
+    Prepare,
+    WarmStart,
+    Solve,
+    Relax,
+    Restitution,
+    Store,
+    Continuous,
+    Sleep,
 }
 
 impl Profiler {
@@ -86,6 +96,16 @@ impl Profiler {
                 Phase::Narrow => &mut self.profile.narrow_phase,
                 Phase::Toi => &mut self.profile.toi,
                 Phase::Respond => &mut self.profile.respond,
+                Phase::Pairs => &mut self.profile.pairs,
+                Phase::Collide => &mut self.profile.collide,
+                Phase::Prepare => &mut self.profile.prepare,
+                Phase::WarmStart => &mut self.profile.warm_start,
+                Phase::Solve => &mut self.profile.solve,
+                Phase::Relax => &mut self.profile.relax,
+                Phase::Restitution => &mut self.profile.restitution,
+                Phase::Store => &mut self.profile.store,
+                Phase::Continuous => &mut self.profile.continuous,
+                Phase::Sleep => &mut self.profile.sleep,
             };
             *slot += d;
         }
@@ -150,12 +170,19 @@ pub(crate) struct ContactPipeline {
 impl ContactPipeline {
     /// The pipeline of `bodies`, or `None` when fewer than two bodies have
     /// a shape or none of those moves.
+    /// Whether a world of `bodies` needs collision code: at least two
+    /// shapes, one of them on a dynamic body.
+    pub(crate) fn applies_to(bodies: &[Body]) -> bool {
+        let mut shapes = bodies.iter().filter(|b| b.shape.is_some());
+        let count = shapes.clone().count();
+        count >= 2 && shapes.any(|b| b.is_dynamic())
+    }
+
     pub(crate) fn new(bodies: &[Body], settings: ContactSettings) -> Option<Self> {
         let collidable: Vec<usize> = (0..bodies.len())
             .filter(|&i| bodies[i].shape.is_some())
             .collect();
-        let moving = collidable.iter().any(|&i| bodies[i].is_dynamic());
-        (collidable.len() >= 2 && moving).then(|| Self {
+        Self::applies_to(bodies).then(|| Self {
             settings,
             events: Vec::new(),
             broad: SweepAndPrune::new(),

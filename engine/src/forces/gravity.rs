@@ -32,6 +32,9 @@ impl Force for Gravity {
             }
         }
     }
+    fn uniform_acceleration(&self) -> Option<Vector2<f64>> {
+        Some(self.g)
+    }
     /// `U = −Σ m g·x` (J), zero at the origin.
     fn potential_energy(&self, ctx: &ForceContext<'_>) -> Option<f64> {
         Some(

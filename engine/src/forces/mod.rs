@@ -62,6 +62,13 @@ pub trait Force: std::fmt::Debug + Send + Sync {
     /// Adds this force's wrench on each body to `wrenches[body]`.
     fn apply(&self, ctx: &ForceContext<'_>, wrenches: &mut [Wrench]);
 
+    /// The acceleration (m/s²) this force gives every dynamic body alike,
+    /// whatever its state, when it is such a uniform field (gravity); `None`
+    /// otherwise. A solver may apply it without evaluating [`Force::apply`].
+    fn uniform_acceleration(&self) -> Option<Vector2<f64>> {
+        None
+    }
+
     /// The potential energy (J) when the force derives from one.
     fn potential_energy(&self, _ctx: &ForceContext<'_>) -> Option<f64> {
         None

@@ -120,6 +120,11 @@ pub fn rapier_scene(scene: &Scene) -> Result<RapierContactScene> {
                 },
                 shape,
             },
+            BodyKind::Kinematic => bail!(
+                "{}: kinematic body '{}' has no counterpart in the rapier collision scenes",
+                scene.origin(),
+                body.name
+            ),
         });
     }
     let mut gravity = [0.0, 0.0];
@@ -135,15 +140,26 @@ pub fn rapier_scene(scene: &Scene) -> Result<RapierContactScene> {
             ),
         }
     }
-    let contact = scene
-        .contact()
-        .with_context(|| format!("{}: no [contact] table", scene.origin()))?;
+    let contact = exact_contact(scene)?;
     Ok(RapierContactScene {
         bodies,
         gravity,
         restitution: contact.restitution,
         friction: contact.friction,
     })
+}
+
+/// The exact model's settings of a collision scene's `[contact]` table.
+pub fn exact_contact(scene: &Scene) -> Result<engine::ContactSettings> {
+    match scene.contact() {
+        Some(engine::ContactModel::Exact(settings)) => Ok(settings),
+        Some(other) => bail!(
+            "{}: [contact] model = \"{}\", expected \"exact\"",
+            scene.origin(),
+            other.id()
+        ),
+        None => bail!("{}: no [contact] table", scene.origin()),
+    }
 }
 
 /// rapier's step for a scene: the scene's dt, rapier's default 4 substeps.

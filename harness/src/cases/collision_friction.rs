@@ -33,7 +33,7 @@ fn gravity(run: &EngineRun) -> Result<f64> {
 }
 
 fn friction(run: &EngineRun) -> Result<f64> {
-    Ok(run.scene.contact().context("no [contact]")?.friction)
+    Ok(crate::cases::collision_common::exact_contact(&run.scene)?.friction)
 }
 
 /// Largest distance (m) of the body from where it was at `t_from` over the

@@ -349,7 +349,8 @@ fn draw_spring<DB: DrawingBackend>(
     Ok(())
 }
 
-/// The outline of `shape` in the body frame, scaled by `enlarge` (m).
+/// The outline of a polygon or circle in its own frame, scaled by
+/// `enlarge` (m); a compound has one per part (see [`Shape::pieces`]).
 fn outline(shape: &Shape, enlarge: f64) -> Vec<Vector2<f64>> {
     match shape {
         Shape::Polygon(p) => p.vertices().iter().map(|v| v * enlarge).collect(),
@@ -359,6 +360,7 @@ fn outline(shape: &Shape, enlarge: f64) -> Vec<Vector2<f64>> {
                 Vector2::new(a.cos(), a.sin()) * c.radius * enlarge
             })
             .collect(),
+        Shape::Compound(_) => Vec::new(),
     }
 }
 
@@ -394,36 +396,47 @@ fn draw_body<DB: DrawingBackend>(
     };
     let enlarge = view.enlarge.get(i).copied().unwrap_or(1.0);
     let rotation = Rotation2::new(state.angle);
-    let local = outline(shape, enlarge);
     let fill = rgb(look.colour).filled();
-    let corners: Vec<(f64, f64)> = local
-        .iter()
-        .map(|v| view.to_px_f(state.position + rotation * v))
-        .collect();
-    let clipped = view.clip(&corners);
-    let whole = clipped.len() == corners.len() && clipped == corners;
-    match shape {
-        // A circle wholly inside the plot is drawn as one (exact in SVG).
-        Shape::Circle(c) if whole => {
-            let radius = (c.radius * enlarge * view.scale()).round().max(1.0) as i32;
-            area.draw(&Circle::new(centre, radius, fill))
-                .map_err(plot_err)?;
-            area.draw(&Circle::new(centre, radius, edge.stroke_width(1)))
-                .map_err(plot_err)?;
+    let mut reach: f64 = 0.0;
+    for (offset, angle, piece) in shape.pieces() {
+        let piece_rotation = rotation * Rotation2::new(angle);
+        let origin = state.position + rotation * (offset * enlarge);
+        let local = outline(piece, enlarge);
+        reach = reach.max(
+            local
+                .iter()
+                .map(|v| (offset * enlarge + Rotation2::new(angle) * v).x)
+                .fold(0.0, f64::max),
+        );
+        let corners: Vec<(f64, f64)> = local
+            .iter()
+            .map(|v| view.to_px_f(origin + piece_rotation * v))
+            .collect();
+        let clipped = view.clip(&corners);
+        let whole = clipped.len() == corners.len() && clipped == corners;
+        match piece {
+            // A circle wholly inside the plot is drawn as one (exact in SVG).
+            Shape::Circle(c) if whole => {
+                let at = view.to_px(origin);
+                let radius = (c.radius * enlarge * view.scale()).round().max(1.0) as i32;
+                area.draw(&Circle::new(at, radius, fill))
+                    .map_err(plot_err)?;
+                area.draw(&Circle::new(at, radius, edge.stroke_width(1)))
+                    .map_err(plot_err)?;
+            }
+            _ if clipped.len() >= 3 => {
+                let pixels: Vec<(i32, i32)> = clipped.into_iter().map(round_px).collect();
+                area.draw(&Polygon::new(pixels.clone(), fill))
+                    .map_err(plot_err)?;
+                let mut closed = pixels;
+                closed.push(closed[0]);
+                area.draw(&PathElement::new(closed, edge.stroke_width(1)))
+                    .map_err(plot_err)?;
+            }
+            _ => {}
         }
-        _ if clipped.len() >= 3 => {
-            let pixels: Vec<(i32, i32)> = clipped.into_iter().map(round_px).collect();
-            area.draw(&Polygon::new(pixels.clone(), fill))
-                .map_err(plot_err)?;
-            let mut closed = pixels;
-            closed.push(closed[0]);
-            area.draw(&PathElement::new(closed, edge.stroke_width(1)))
-                .map_err(plot_err)?;
-        }
-        _ => return Ok(()),
     }
     if look.rotates {
-        let reach = local.iter().map(|v| v.x).fold(0.0, f64::max);
         let tip = view.to_px(state.position + rotation * Vector2::new(reach, 0.0));
         area.draw(&PathElement::new(vec![centre, tip], edge.stroke_width(2)))
             .map_err(plot_err)?;

@@ -32,6 +32,9 @@ impl BodyLook {
             None => 0.0,
             Some(Shape::Circle(c)) => c.radius,
             Some(Shape::Polygon(p)) => p.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max),
+            Some(shape @ Shape::Compound(_)) => {
+                engine::collision::narrow_phase::rotation_radius(shape)
+            }
         }
     }
 }

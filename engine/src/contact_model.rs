@@ -1,0 +1,150 @@
+//! The seam between a [`crate::World`] and the way it handles contacts: a
+//! world runs one contact model, chosen per world (a scene's
+//! `[contact] model`), and the model owns everything that differs between
+//! them: how bodies are integrated, how contacts are found and answered.
+//!
+//! - [`ContactModel::Exact`] (seed §7.1 after Baraff): the world is one ODE
+//!   integrated by the chosen [`crate::Method`]; impacts are located inside
+//!   the step by time of impact and answered by the impulses of seed
+//!   eq. 7.15, resting contacts by contact forces inside the right-hand
+//!   side. Exact to round-off on the validation cases; meant for a few
+//!   bodies. Module `exact_model`. A world without contacts runs this
+//!   model's integration with collisions off.
+//! - [`ContactModel::SoftStep`] (seed §7.1 after Mirtich and Canny's series
+//!   of impulses; Box2D v3's soft step): persistent contact manifolds with
+//!   warm starting, substeps of soft constraints, relax and restitution
+//!   passes, speculative contacts. Meant for thousands of bodies (seed
+//!   §2.2). Module [`crate::soft_step`].
+//!
+//! A third model is a module plus a variant here and in `Dynamics`.
+
+use crate::body::{Body, BodyId};
+use crate::contact::{ContactEvent, ContactSettings};
+use crate::error::Result;
+use crate::events::EventRecord;
+use crate::exact_model::ExactModel;
+use crate::integrators::{Method, Stats};
+use crate::soft_step::{SoftStep, SoftStepSettings};
+use crate::world_core::WorldCore;
+
+/// How a world handles contacts, with the model's settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ContactModel {
+    /// The exact, event-driven model (seed §7.1 after Baraff).
+    Exact(ContactSettings),
+    /// The soft-step solver (Box2D v3's soft step) for many bodies.
+    SoftStep(SoftStepSettings),
+}
+
+impl ContactModel {
+    /// The model's id in scene files and reports: `"exact"` or
+    /// `"soft_step"`.
+    pub fn id(&self) -> &'static str {
+        match self {
+            ContactModel::Exact(_) => "exact",
+            ContactModel::SoftStep(_) => "soft_step",
+        }
+    }
+
+    /// Checks every setting's domain.
+    pub fn validate(&self) -> Result<()> {
+        match self {
+            ContactModel::Exact(s) => s.validate(),
+            ContactModel::SoftStep(s) => s.validate(),
+        }
+    }
+}
+
+/// The model a world runs, with its state.
+#[derive(Debug)]
+pub(crate) enum Dynamics {
+    /// The exact model; also a world without contacts.
+    Exact(Box<ExactModel>),
+    /// The soft step.
+    SoftStep(Box<SoftStep>),
+}
+
+impl Dynamics {
+    /// Refuses a body the model cannot simulate.
+    pub(crate) fn check_body(&self, body: &Body) -> Result<()> {
+        match self {
+            Dynamics::Exact(_) => ExactModel::check_body(body),
+            Dynamics::SoftStep(_) => Ok(()),
+        }
+    }
+
+    /// A body was added to `core` (it is the last one).
+    pub(crate) fn body_added(&mut self, core: &WorldCore, id: BodyId) {
+        match self {
+            Dynamics::Exact(m) => m.bodies_changed(),
+            Dynamics::SoftStep(s) => s.body_added(core, id),
+        }
+    }
+
+    /// Body `id` of `core` was removed (made inert).
+    pub(crate) fn body_removed(&mut self, core: &WorldCore, id: BodyId) {
+        match self {
+            Dynamics::Exact(m) => m.bodies_changed(),
+            Dynamics::SoftStep(s) => s.body_removed(core, id),
+        }
+    }
+
+    /// Whether body `id` sleeps (soft step with sleeping on).
+    pub(crate) fn is_asleep(&self, id: BodyId) -> bool {
+        match self {
+            Dynamics::Exact(_) => false,
+            Dynamics::SoftStep(s) => s.is_asleep(id),
+        }
+    }
+
+    /// Advances `core` over the force segments ending at `edges`.
+    pub(crate) fn advance(
+        &mut self,
+        core: &mut WorldCore,
+        edges: &[f64],
+        found: &mut Vec<EventRecord>,
+    ) -> Result<()> {
+        match self {
+            Dynamics::Exact(m) => m.advance(core, edges, found),
+            Dynamics::SoftStep(s) => s.advance(core, edges, found),
+        }
+    }
+
+    /// The model and its settings; `None` for a world without contacts.
+    pub(crate) fn model(&self) -> Option<ContactModel> {
+        match self {
+            Dynamics::Exact(m) => m
+                .contacts_enabled()
+                .then_some(ContactModel::Exact(m.settings)),
+            Dynamics::SoftStep(s) => Some(ContactModel::SoftStep(*s.settings())),
+        }
+    }
+
+    pub(crate) fn has_contacts(&self, bodies: &[Body]) -> bool {
+        match self {
+            Dynamics::Exact(m) => m.has_contacts(bodies),
+            Dynamics::SoftStep(_) => true,
+        }
+    }
+
+    pub(crate) fn contact_events(&self) -> Vec<ContactEvent> {
+        match self {
+            Dynamics::Exact(m) => m.contact_events(),
+            Dynamics::SoftStep(_) => Vec::new(),
+        }
+    }
+
+    pub(crate) fn stats(&self) -> Stats {
+        match self {
+            Dynamics::Exact(m) => m.stats(),
+            Dynamics::SoftStep(s) => s.stats(),
+        }
+    }
+
+    pub(crate) fn method(&self) -> Method {
+        match self {
+            Dynamics::Exact(m) => m.method(),
+            Dynamics::SoftStep(_) => Method::SemiImplicitEuler,
+        }
+    }
+}

@@ -1,0 +1,533 @@
+//! The exact contact model (seed §7.1 after Baraff; `docs/design.md`): the
+//! world is one ODE integrated by the chosen [`Method`], contacts are found
+//! by time of impact inside the step, impacts get the impulses of seed
+//! eq. 7.15, and resting pairs are held by contact forces inside the
+//! right-hand side ([`crate::contact`]). Exact to round-off on the
+//! validation cases; meant for a few bodies. With contacts off it is the
+//! plain ODE integration of the seed's cases I and II.
+//!
+//! One step, in order:
+//! 1. **split** the interval at every force-window edge inside it (done by
+//!    the world), so no integrator stage straddles a switch-on or
+//!    switch-off;
+//! 2. **integrate** each segment with the forces active at its midpoint
+//!    (the adaptive method takes as many controlled steps as it needs);
+//! 3. **locate events** inside every accepted step by root finding
+//!    ([`crate::events`]); a terminal event ends the run at its exact time;
+//! 4. **guard**: a non-finite state, or an energy past the optional bound,
+//!    is a typed [`EngineError::BlowUp`] naming the time and the step.
+//!
+//! A world with contacts on and at least two shapes, one of them on a
+//! moving body, also handles contacts; each piece of step is then, in
+//! order, one flat list of named phases, each timed into a
+//! [`crate::StepProfile`] when profiling is on:
+//! 1. **respond** (settle): at the piece's start, impulses for the touching
+//!    pairs that approach (seed eq. 7.15 with restitution), projection of
+//!    pairs that sank, and the choice of the resting pairs whose contact
+//!    forces enter the right-hand side (seed §7.1 after Baraff); the
+//!    integrator's cached derivative is dropped when anything changed;
+//! 2. **integrate** a trial step to the end of the step (or segment);
+//! 3. **broad phase** (sort-and-sweep of bounding boxes) and **narrow
+//!    phase** (exact distances) at the trial step's end;
+//! 4. **time of impact**: the first contact inside the trial step, by the
+//!    seed's bisection (Fig. 7.7–7.8) or conservative advancement, and the
+//!    first stop of a sliding contact, by root finding; the step is cut
+//!    there, events are located in the piece kept, and the next piece
+//!    starts with a settle. Several contacts in one step are so handled in
+//!    time order.
+
+use crate::body::{Body, BodyKind, BodyState};
+use crate::contact::pipeline::{ContactPipeline, Phase, Profiler};
+use crate::contact::resting::RestingContacts;
+use crate::contact::{ContactEvent, ContactSettings};
+use crate::error::{EngineError, Result};
+use crate::events::{EventRecord, EventSpec};
+use crate::integrators::{Integrator, Method, Stats};
+use crate::root_finding::illinois;
+use crate::world_core::{ForceEntry, WorldCore, check_energy_value, total_energy};
+use crate::world_ode::{ActiveForce, Layout, WorldOde};
+
+/// Relative width (of the step) to which event times are located: a few
+/// ulps of the time, far below any tolerance the harness applies.
+const EVENT_TIME_TOLERANCE: f64 = 1e-15;
+
+/// The exact model's state: the integrator, the state-vector layout, and
+/// the contact pipeline when contacts are on.
+#[derive(Debug)]
+pub(crate) struct ExactModel {
+    integrator: Integrator,
+    layout: Layout,
+    /// Bodies were added since the layout and pipeline were built: they are
+    /// rebuilt at the next step, so adding n bodies costs O(n) in all.
+    stale: bool,
+    pub(crate) settings: ContactSettings,
+    /// Whether contacts were asked for.
+    contacts_enabled: bool,
+    /// Present iff contacts are enabled and the world has two collidable
+    /// shapes (one moving).
+    contacts: Option<ContactPipeline>,
+    /// The resting pairs, read by the right-hand side.
+    resting: RestingContacts,
+    /// Contact events of pipelines replaced when bodies were added.
+    earlier_contact_events: Vec<ContactEvent>,
+    // Scratch buffers reused by every step.
+    y: Vec<f64>,
+    y_start: Vec<f64>,
+    y_probe: Vec<f64>,
+    scratch_states: Vec<BodyState>,
+    scratch_wrenches: Vec<crate::forces::Wrench>,
+}
+
+impl ExactModel {
+    /// A model integrating with `method`, contacts off.
+    pub(crate) fn new(method: Method) -> Result<Self> {
+        Ok(Self {
+            integrator: Integrator::new(method)?,
+            layout: Layout::default(),
+            stale: true,
+            settings: ContactSettings::default(),
+            contacts_enabled: false,
+            contacts: None,
+            resting: RestingContacts::default(),
+            earlier_contact_events: Vec::new(),
+            y: Vec::new(),
+            y_start: Vec::new(),
+            y_probe: Vec::new(),
+            scratch_states: Vec::new(),
+            scratch_wrenches: Vec::new(),
+        })
+    }
+
+    /// Refuses a body this model cannot simulate.
+    pub(crate) fn check_body(body: &Body) -> Result<()> {
+        let refuse = |what: String, reason| Err(EngineError::Unsupported { what, reason });
+        if body.kind == BodyKind::Kinematic {
+            return refuse(
+                format!("kinematic body '{}'", body.name),
+                "the exact contact model integrates dynamic and static bodies only; \
+                 use the soft_step contact model",
+            );
+        }
+        if let Some(crate::shape::Shape::Compound(_)) = body.shape {
+            return refuse(
+                format!("the compound shape of body '{}'", body.name),
+                "the exact contact model collides single polygons and circles; \
+                 use the soft_step contact model",
+            );
+        }
+        if body.friction.is_some() || body.restitution.is_some() {
+            return refuse(
+                format!("the friction or restitution of body '{}'", body.name),
+                "the exact contact model takes one friction and one restitution for the \
+                 whole world (its contact settings); use the soft_step contact model for \
+                 per-body materials",
+            );
+        }
+        Ok(())
+    }
+
+    /// Bodies changed: rebuild the layout and the pipeline before the next
+    /// step.
+    pub(crate) fn bodies_changed(&mut self) {
+        self.stale = true;
+    }
+
+    fn rebuild(&mut self, bodies: &[Body]) {
+        self.layout = Layout::new(bodies);
+        if let Some(old) = self.contacts.take() {
+            self.earlier_contact_events.extend(old.events);
+        }
+        self.contacts = if self.contacts_enabled {
+            ContactPipeline::new(bodies, self.settings)
+        } else {
+            None
+        };
+        self.resting.pairs.clear();
+        self.resting.friction = self.settings.friction;
+        self.resting.tolerance = self.settings.tolerance;
+        self.stale = false;
+    }
+
+    /// Turns contacts on with `settings` (validated by the caller).
+    pub(crate) fn set_contact_settings(&mut self, settings: ContactSettings) {
+        self.settings = settings;
+        if self.contacts_enabled {
+            if let Some(p) = self.contacts.as_mut() {
+                p.settings = settings;
+            }
+        } else {
+            self.contacts_enabled = true;
+            self.stale = true;
+        }
+        self.resting.friction = settings.friction;
+        self.resting.tolerance = settings.tolerance;
+    }
+
+    /// Turns contacts off.
+    pub(crate) fn disable_contacts(&mut self) {
+        self.contacts_enabled = false;
+        self.stale = true;
+    }
+
+    /// Whether contacts are on.
+    pub(crate) fn contacts_enabled(&self) -> bool {
+        self.contacts_enabled
+    }
+
+    /// Whether collision code runs: contacts on, two shapes, one moving.
+    pub(crate) fn has_contacts(&self, bodies: &[Body]) -> bool {
+        self.contacts_enabled && ContactPipeline::applies_to(bodies)
+    }
+
+    /// The contact events so far, in time order.
+    pub(crate) fn contact_events(&self) -> Vec<ContactEvent> {
+        let mut all = self.earlier_contact_events.clone();
+        if let Some(p) = &self.contacts {
+            all.extend(p.events.iter().copied());
+        }
+        all
+    }
+
+    /// Work done by the integrator.
+    pub(crate) fn stats(&self) -> Stats {
+        self.integrator.stats()
+    }
+
+    /// The integration method.
+    pub(crate) fn method(&self) -> Method {
+        self.integrator.method()
+    }
+
+    /// Advances `core` over the force segments ending at `edges` (the last
+    /// is the step's end), recording located events in `found`.
+    pub(crate) fn advance(
+        &mut self,
+        core: &mut WorldCore,
+        edges: &[f64],
+        found: &mut Vec<EventRecord>,
+    ) -> Result<()> {
+        if self.stale {
+            self.rebuild(&core.bodies);
+        }
+        let mut y = std::mem::take(&mut self.y);
+        self.layout.pack(&core.states, &mut y);
+        let result = self.integrate_segments(core, edges, &mut y, found);
+        self.y = y;
+        result
+    }
+
+    fn integrate_segments(
+        &mut self,
+        core: &mut WorldCore,
+        edges: &[f64],
+        y: &mut Vec<f64>,
+        found: &mut Vec<EventRecord>,
+    ) -> Result<()> {
+        let mut t = core.time;
+        for &segment_end in edges {
+            let middle = 0.5 * (t + segment_end);
+            let mut pipeline = self.contacts.take();
+            let mut sys = WorldOde {
+                bodies: &core.bodies,
+                forces: core
+                    .forces
+                    .iter()
+                    .map(|f| ActiveForce {
+                        force: f.force.as_ref(),
+                        active: f.window.contains(middle),
+                    })
+                    .collect(),
+                layout: &self.layout,
+                states: &mut self.scratch_states,
+                wrenches: &mut self.scratch_wrenches,
+                contacts: pipeline.is_some().then_some(&mut self.resting),
+            };
+            sys.states.clone_from(&core.states);
+            // The right-hand side may differ from the last segment's.
+            self.integrator.invalidate_cache();
+            if let Some(p) = pipeline.as_mut() {
+                let outcome = contact_segment(
+                    SegmentParts {
+                        integrator: &mut self.integrator,
+                        events: &core.events,
+                        forces: &core.forces,
+                        template: &core.states,
+                        energy_limit: core.energy_limit,
+                        y_start: &mut self.y_start,
+                        y_probe: &mut self.y_probe,
+                        profiler: &mut core.profiler,
+                    },
+                    p,
+                    &mut sys,
+                    (t, segment_end),
+                    y,
+                    found,
+                );
+                self.contacts = pipeline;
+                match outcome? {
+                    Segment::Reached(t_end) => t = t_end,
+                    Segment::Stopped(t_stop) => {
+                        self.layout.unpack(y, &mut core.states);
+                        core.time = t_stop;
+                        core.stopped = true;
+                        return Ok(());
+                    }
+                }
+                continue;
+            }
+            while t < segment_end {
+                // Event location restarts from the step's start state.
+                if !core.events.is_empty() {
+                    self.y_start.clone_from(y);
+                }
+                let started = core.profiler.start();
+                let h = self.integrator.advance(&mut sys, t, y, segment_end - t)?;
+                core.profiler.stop(Phase::Integrate, started);
+                core.profiler.profile.steps += 1;
+                // A step that used all the room left lands exactly on the edge.
+                let t_next = if h == segment_end - t {
+                    segment_end
+                } else {
+                    t + h
+                };
+                if !core.events.is_empty() {
+                    let stop = locate_events(
+                        &core.events,
+                        &mut self.integrator,
+                        &mut sys,
+                        &core.states,
+                        (t, &self.y_start),
+                        (t_next, y),
+                        &mut self.y_probe,
+                        found,
+                    )?;
+                    if let Some(t_stop) = stop {
+                        y.clone_from(&self.y_probe);
+                        self.layout.unpack(y, &mut core.states);
+                        core.time = t_stop;
+                        core.stopped = true;
+                        return Ok(());
+                    }
+                }
+                if let Some(limit) = core.energy_limit {
+                    check_energy(
+                        &core.bodies,
+                        &core.forces,
+                        &self.layout,
+                        &mut sys,
+                        y,
+                        (t, t_next),
+                        self.integrator.stats().steps - 1,
+                        limit,
+                    )?;
+                }
+                t = t_next;
+            }
+        }
+        self.layout.unpack(y, &mut core.states);
+        core.time = t;
+        Ok(())
+    }
+}
+
+/// The energy guard after the step `(t, t_next)` of the exact model: a NaN
+/// energy or one beyond `limit` (J) is a blow-up naming the step (its start
+/// time and 0-based index), as the non-finite check does.
+#[allow(clippy::too_many_arguments)]
+fn check_energy(
+    bodies: &[Body],
+    forces: &[ForceEntry],
+    layout: &Layout,
+    sys: &mut WorldOde<'_>,
+    y: &[f64],
+    (t, t_next): (f64, f64),
+    step: u64,
+    limit: f64,
+) -> Result<()> {
+    layout.unpack(y, sys.states);
+    let energy = total_energy(bodies, forces, t_next, sys.states);
+    check_energy_value(energy, (t, t_next), step, limit)
+}
+
+/// The parts of a world a contact segment works with, besides the
+/// right-hand side (which borrows the bodies and scratch states).
+struct SegmentParts<'w> {
+    integrator: &'w mut Integrator,
+    events: &'w [EventSpec],
+    forces: &'w [ForceEntry],
+    template: &'w [BodyState],
+    energy_limit: Option<f64>,
+    y_start: &'w mut Vec<f64>,
+    y_probe: &'w mut Vec<f64>,
+    profiler: &'w mut Profiler,
+}
+
+/// How a contact segment ended.
+enum Segment {
+    /// At the segment's end (s).
+    Reached(f64),
+    /// At a terminal event (s); its state is in `y`.
+    Stopped(f64),
+}
+
+/// Integrates one force segment `(t, segment_end)` of a world with
+/// contacts: settle, trial step, cut at the first contact event, locate
+/// events in the piece kept, settle again, and so on (see the module docs).
+fn contact_segment(
+    parts: SegmentParts<'_>,
+    pipeline: &mut ContactPipeline,
+    sys: &mut WorldOde<'_>,
+    (mut t, segment_end): (f64, f64),
+    y: &mut Vec<f64>,
+    found: &mut Vec<EventRecord>,
+) -> Result<Segment> {
+    let SegmentParts {
+        integrator,
+        events,
+        forces,
+        template,
+        energy_limit,
+        y_start,
+        y_probe,
+        profiler,
+    } = parts;
+    let limit = pipeline.settings.max_events_per_step;
+    let events_before = pipeline.events.len();
+    let mut pieces = 0usize;
+    if pipeline.settle(sys, t, y, profiler) {
+        integrator.invalidate_cache();
+    }
+    while t < segment_end {
+        pieces += 1;
+        if pieces > limit.saturating_add(1) {
+            return Err(EngineError::Contact {
+                t,
+                reason: format!(
+                    "more than {limit} contact events in one step ({} recorded): \
+                     an endless sequence of impacts?",
+                    pipeline.events.len() - events_before
+                ),
+            });
+        }
+        y_start.clone_from(y);
+        let started = profiler.start();
+        let h = integrator.advance(sys, t, y, segment_end - t)?;
+        profiler.stop(Phase::Integrate, started);
+        profiler.profile.steps += 1;
+        let t_next = if h == segment_end - t {
+            segment_end
+        } else {
+            t + h
+        };
+        let cut = pipeline.first_event(sys, integrator, t, y_start, y, h, y_probe, profiler)?;
+        let t_kept = match cut {
+            Some(s) if s < h => {
+                let started = profiler.start();
+                integrator.single_step(sys, t, y_start, s, y)?;
+                profiler.stop(Phase::Integrate, started);
+                t + s
+            }
+            _ => t_next,
+        };
+        if !events.is_empty() {
+            let stop = locate_events(
+                events,
+                integrator,
+                sys,
+                template,
+                (t, y_start),
+                (t_kept, y),
+                y_probe,
+                found,
+            )?;
+            if let Some(t_stop) = stop {
+                y.clone_from(y_probe);
+                return Ok(Segment::Stopped(t_stop));
+            }
+        }
+        if let Some(limit) = energy_limit {
+            let step = integrator.stats().steps - 1;
+            check_energy(
+                sys.bodies,
+                forces,
+                sys.layout,
+                sys,
+                y,
+                (t, t_kept),
+                step,
+                limit,
+            )?;
+        }
+        t = t_kept;
+        if pipeline.settle(sys, t, y, profiler) {
+            integrator.invalidate_cache();
+        }
+    }
+    profiler.profile.events = pipeline.events.len() as u64;
+    Ok(Segment::Reached(t))
+}
+
+/// Looks for every event crossing inside the accepted step `start → end`,
+/// records them in time order, and returns the time of the first terminal
+/// one (its state left in `probe`), if any.
+#[allow(clippy::too_many_arguments)]
+fn locate_events(
+    specs: &[EventSpec],
+    integrator: &mut Integrator,
+    sys: &mut WorldOde<'_>,
+    template: &[BodyState],
+    (t_a, y_a): (f64, &[f64]),
+    (t_b, y_b): (f64, &[f64]),
+    probe: &mut Vec<f64>,
+    found: &mut Vec<EventRecord>,
+) -> Result<Option<f64>> {
+    let layout = sys.layout;
+    // g of one event at a state vector: only the watched body is read.
+    let value = |spec: &EventSpec, y: &[f64]| {
+        spec.quantity.of(&layout.state_of(y, template, spec.body)) - spec.level
+    };
+    let h = t_b - t_a;
+    let mut hits: Vec<(f64, usize, Vec<BodyState>, Vec<f64>)> = Vec::new();
+    for (index, spec) in specs.iter().enumerate() {
+        let (ga, gb) = (value(spec, y_a), value(spec, y_b));
+        if !spec.crossing.detects(ga, gb) {
+            continue;
+        }
+        let mut g_at = |s: f64, probe: &mut Vec<f64>| -> Result<f64> {
+            probe.resize(y_a.len(), 0.0);
+            integrator.single_step(sys, t_a, y_a, s, probe)?;
+            Ok(value(spec, probe))
+        };
+        let s = illinois(
+            |s| g_at(s, probe),
+            0.0,
+            ga,
+            h,
+            gb,
+            EVENT_TIME_TOLERANCE * h.max(t_b.abs()),
+        )?;
+        let y_event = if s == h {
+            y_b.to_vec()
+        } else {
+            g_at(s, probe)?;
+            probe.clone()
+        };
+        let mut event_states = template.to_vec();
+        layout.unpack(&y_event, &mut event_states);
+        let t_event = if s == h { t_b } else { t_a + s };
+        hits.push((t_event, index, event_states, y_event));
+    }
+    hits.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    for (t, index, states, y) in hits {
+        found.push(EventRecord {
+            name: specs[index].name.clone(),
+            t,
+            states,
+        });
+        if specs[index].terminal {
+            *probe = y;
+            return Ok(Some(t));
+        }
+    }
+    Ok(None)
+}

@@ -1,0 +1,71 @@
+//! Continuous collision for fast bodies (after Box2D v3's
+//! `b2SolveContinuous`): a dynamic body that moved more than half its
+//! smallest extent in a step could have jumped over a thin static body, so
+//! its motion over the step (constant velocities from its start pose to its
+//! end pose) is swept against every static shape its path's box touches,
+//! by conservative advancement ([`crate::collision::toi_conservative_advancement`]).
+//! At the first time of impact the body is put back there, velocities
+//! unchanged: the next step's speculative contact then stops it at the
+//! surface, with its restitution.
+//!
+//! Pairs already within the linear slop at the start of the step are left
+//! to the speculative contacts (sweeping them would freeze the body where
+//! it is); moving bodies are not swept against each other.
+
+use super::broad_phase::BroadPhase;
+use super::manifold::LINEAR_SLOP;
+use crate::body::{Body, BodyState};
+use crate::collision::{Aabb, Motion, ToiOptions, toi_conservative_advancement};
+use nalgebra::{Isometry2, Vector2};
+
+/// Fraction of its smallest extent a body must move in a step to be swept
+/// (Box2D's safety factor).
+pub(crate) const FAST_FRACTION: f64 = 0.5;
+
+/// Most distance evaluations of one sweep; a sweep that needs more is
+/// abandoned (the speculative contacts still act).
+const MAX_ITERATIONS: usize = 50;
+
+/// A fast body's motion over the step of `dt` (s), from `start` (position
+/// in m, angle in rad) to `end`.
+pub(crate) struct Sweep {
+    pub start: (Vector2<f64>, f64),
+    pub end: (Vector2<f64>, f64),
+    pub dt: f64,
+}
+
+/// The earliest time of impact in [0, dt] (s) of `body` moving along
+/// `sweep` with any static shape its swept box overlaps, if any.
+pub(crate) fn first_impact(
+    body: &Body,
+    sweep: &Sweep,
+    swept_box: &Aabb,
+    broad: &BroadPhase,
+    bodies: &[Body],
+    states: &[BodyState],
+) -> Option<f64> {
+    let shape = body.shape.as_ref()?;
+    let motion = Motion::new(
+        Isometry2::new(sweep.start.0, sweep.start.1),
+        (sweep.end.0 - sweep.start.0) / sweep.dt,
+        (sweep.end.1 - sweep.start.1) / sweep.dt,
+    );
+    let options = ToiOptions {
+        tolerance: LINEAR_SLOP,
+        max_iterations: MAX_ITERATIONS,
+    };
+    let mut first: Option<f64> = None;
+    broad.query_static(swept_box, |other| {
+        let Some(other_shape) = bodies[other].shape.as_ref() else {
+            return;
+        };
+        let s = &states[other];
+        let fixed = Motion::fixed(Isometry2::new(s.position, s.angle));
+        let limit = first.unwrap_or(sweep.dt);
+        match toi_conservative_advancement(shape, &motion, other_shape, &fixed, limit, &options) {
+            Ok(Some(impact)) if impact.time > 0.0 => first = Some(impact.time),
+            _ => {}
+        }
+    });
+    first
+}

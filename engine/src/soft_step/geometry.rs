@@ -1,0 +1,170 @@
+//! Shapes as the soft step's narrow phase reads them: a polygon with its
+//! outward edge normals computed once, or a circle; their bounding boxes
+//! and extents; and the [`Collider`]s that place them on bodies (one per
+//! shape, or one per part of a compound shape).
+//!
+//! A collider's shape is in its own frame (m); the collider's offset places
+//! that frame in its body's frame, whose origin is the body's centre of
+//! mass.
+
+use crate::body::BodyId;
+use crate::collision::Aabb;
+use crate::shape::Shape;
+use nalgebra::{Isometry2, Vector2};
+
+/// A convex polygon with its outward unit edge normals: `normals[i]` is the
+/// normal of the edge from `vertices[i]` to `vertices[i + 1]`.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Polygon {
+    pub vertices: Vec<Vector2<f64>>,
+    pub normals: Vec<Vector2<f64>>,
+}
+
+/// A shape ready for the narrow phase.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum SolverShape {
+    Polygon(Polygon),
+    Circle { radius: f64 },
+}
+
+/// A convex shape fixed to a body.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Collider {
+    pub body: BodyId,
+    /// The shape's frame in the body frame; `None` when it is the body
+    /// frame itself (a body with one shape).
+    pub offset: Option<Isometry2<f64>>,
+    pub shape: SolverShape,
+    /// Largest distance from the collider's origin to its shape (m).
+    pub max_extent: f64,
+}
+
+impl Collider {
+    /// One collider per convex piece of `shape` (its parts for a
+    /// compound), all on `body`.
+    pub(crate) fn of(body: BodyId, shape: &Shape) -> Vec<Collider> {
+        shape
+            .pieces()
+            .into_iter()
+            .map(|(offset, angle, piece)| {
+                let shape = SolverShape::new(piece);
+                Collider {
+                    body,
+                    offset: (offset != Vector2::zeros() || angle != 0.0)
+                        .then(|| Isometry2::new(offset, angle)),
+                    max_extent: shape.max_extent(),
+                    shape,
+                }
+            })
+            .collect()
+    }
+
+    /// The collider's pose given its body's.
+    #[inline]
+    pub(crate) fn pose(&self, body: &Isometry2<f64>) -> Isometry2<f64> {
+        match &self.offset {
+            None => *body,
+            Some(offset) => body * offset,
+        }
+    }
+}
+
+impl SolverShape {
+    /// The solver form of a polygon or circle (its own frame).
+    ///
+    /// # Panics
+    /// On a compound: split it into [`Collider`]s first.
+    pub(crate) fn new(shape: &Shape) -> Self {
+        match shape {
+            Shape::Compound(_) => unreachable!("compounds are split into colliders"),
+            Shape::Circle(c) => SolverShape::Circle { radius: c.radius },
+            Shape::Polygon(p) => {
+                let vertices = p.vertices().to_vec();
+                let n = vertices.len();
+                let normals = (0..n)
+                    .map(|i| {
+                        let e = vertices[(i + 1) % n] - vertices[i];
+                        Vector2::new(e.y, -e.x).normalize()
+                    })
+                    .collect();
+                SolverShape::Polygon(Polygon { vertices, normals })
+            }
+        }
+    }
+
+    /// The largest distance from the body origin to a point of the shape
+    /// (m): bounds how far a point moves when the body turns.
+    pub(crate) fn max_extent(&self) -> f64 {
+        match self {
+            SolverShape::Circle { radius } => *radius,
+            SolverShape::Polygon(p) => p.vertices.iter().map(|v| v.norm()).fold(0.0, f64::max),
+        }
+    }
+
+    /// The smallest distance from the body origin to the shape's boundary
+    /// (m): a body that moves less than a fraction of this in a step cannot
+    /// jump over anything thicker than itself.
+    pub(crate) fn min_extent(&self) -> f64 {
+        match self {
+            SolverShape::Circle { radius } => *radius,
+            SolverShape::Polygon(p) => p
+                .vertices
+                .iter()
+                .zip(&p.normals)
+                .map(|(v, n)| n.dot(v))
+                .fold(f64::INFINITY, f64::min),
+        }
+    }
+
+    /// The bounding box of the shape at `pose`.
+    pub(crate) fn aabb_at(&self, pose: &Isometry2<f64>) -> Aabb {
+        let (c, s) = (pose.rotation.re, pose.rotation.im);
+        self.aabb(pose.translation.vector, (c, s))
+    }
+
+    /// The bounding box of the shape at position `p` (m) and rotation
+    /// `(cos θ, sin θ)`.
+    pub(crate) fn aabb(&self, p: Vector2<f64>, (c, s): (f64, f64)) -> Aabb {
+        match self {
+            SolverShape::Circle { radius } => {
+                let r = Vector2::repeat(*radius);
+                Aabb::new(p - r, p + r)
+            }
+            SolverShape::Polygon(poly) => {
+                let mut min = Vector2::repeat(f64::INFINITY);
+                let mut max = Vector2::repeat(f64::NEG_INFINITY);
+                for v in &poly.vertices {
+                    let w = Vector2::new(c * v.x - s * v.y + p.x, s * v.x + c * v.y + p.y);
+                    min = min.inf(&w);
+                    max = max.sup(&w);
+                }
+                Aabb::new(min, max)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn box_normals_extents_and_box() {
+        let s = SolverShape::new(&Shape::rectangle(2.0, 1.0).unwrap());
+        let SolverShape::Polygon(p) = &s else {
+            panic!()
+        };
+        // CCW from (-1, -0.5): bottom, right, top, left edges.
+        let expected = [(0.0, -1.0), (1.0, 0.0), (0.0, 1.0), (-1.0, 0.0)];
+        for (n, e) in p.normals.iter().zip(expected) {
+            assert!((n - Vector2::new(e.0, e.1)).norm() < 1e-15, "{n}");
+        }
+        assert!((s.max_extent() - 1.25f64.sqrt()).abs() < 1e-15);
+        assert!((s.min_extent() - 0.5).abs() < 1e-15);
+        let (c, sn) = std::f64::consts::FRAC_PI_2.sin_cos();
+        // Turned by 90°: 1 wide, 2 high.
+        let b = s.aabb(Vector2::new(3.0, 4.0), (sn, c));
+        assert!((b.min - Vector2::new(2.5, 3.0)).norm() < 1e-12);
+        assert!((b.max - Vector2::new(3.5, 5.0)).norm() < 1e-12);
+    }
+}

@@ -1,0 +1,91 @@
+//! What every contact model of a [`crate::World`] works on: the bodies and
+//! their states, the force generators with their windows, the events to
+//! locate, the clock, and the per-phase profiler. The world owns one
+//! [`WorldCore`] and hands it to its model ([`crate::ContactModel`]) at
+//! every step; the models never see each other.
+
+use crate::body::{Body, BodyState};
+use crate::contact::pipeline::Profiler;
+use crate::error::{EngineError, Result};
+use crate::events::EventSpec;
+use crate::forces::{Force, ForceContext, TimeWindow};
+
+/// A force generator with the window in which it acts.
+pub(crate) struct ForceEntry {
+    pub force: Box<dyn Force>,
+    pub window: TimeWindow,
+    /// Whether this entry is the world's gravity setting
+    /// ([`crate::World::set_gravity`]) rather than a force the user added.
+    pub world_gravity: bool,
+}
+
+impl std::fmt::Debug for ForceEntry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} during {:?}", self.force.name(), self.window)
+    }
+}
+
+/// The state a contact model advances.
+#[derive(Debug, Default)]
+pub(crate) struct WorldCore {
+    pub bodies: Vec<Body>,
+    pub states: Vec<BodyState>,
+    pub forces: Vec<ForceEntry>,
+    pub events: Vec<EventSpec>,
+    /// Current time (s).
+    pub time: f64,
+    /// Whether a terminal event stopped the run.
+    pub stopped: bool,
+    /// Bound on |total energy| (J) past which a step is a blow-up.
+    pub energy_limit: Option<f64>,
+    pub profiler: Profiler,
+    /// Per body: whether it was removed ([`crate::World::remove_body`]).
+    pub removed: Vec<bool>,
+}
+
+impl WorldCore {
+    /// Total energy at `t` for `states` (J).
+    pub(crate) fn energy_of(&self, t: f64, states: &[BodyState]) -> f64 {
+        total_energy(&self.bodies, &self.forces, t, states)
+    }
+}
+
+/// Kinetic energy plus the potentials of the forces active at `t` (J).
+pub(crate) fn total_energy(
+    bodies: &[Body],
+    forces: &[ForceEntry],
+    t: f64,
+    states: &[BodyState],
+) -> f64 {
+    let ctx = ForceContext { t, bodies, states };
+    let kinetic: f64 = bodies
+        .iter()
+        .zip(states)
+        .map(|(b, s)| b.kinetic_energy(s))
+        .sum();
+    let potential: f64 = forces
+        .iter()
+        .filter(|f| f.window.contains(t))
+        .filter_map(|f| f.force.potential_energy(&ctx))
+        .sum();
+    kinetic + potential
+}
+
+/// The energy guard after the step `(t, t_next)`: a NaN energy or one
+/// beyond `limit` (J) is a blow-up naming the step (its start time and
+/// 0-based index), as the non-finite check does.
+pub(crate) fn check_energy_value(
+    energy: f64,
+    (t, t_next): (f64, f64),
+    step: u64,
+    limit: f64,
+) -> Result<()> {
+    if energy.is_nan() || energy.abs() > limit {
+        return Err(EngineError::BlowUp {
+            t,
+            step,
+            reason: format!("energy {energy:e} J at t = {t_next} s beyond the bound {limit:e} J"),
+        });
+    }
+    Ok(())
+}

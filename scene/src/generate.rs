@@ -1,0 +1,531 @@
+//! `[[generate]]`: many bodies from a few numbers, so that a scene of
+//! thousands of bodies is a short file a user can read.
+//!
+//! ```toml
+//! [[generate]]
+//! type = "pyramid"        # rows of boxes side by side, each row offset by half a box
+//! base = 20               # boxes in the bottom row (210 in all)
+//! box_size = 1.0          # m, the side of each box
+//! spacing = 0.0           # m, the gap between neighbours in a row
+//! origin = [0.0, 0.0]     # m, the middle of the bottom row's bottom edge
+//! density = 1.0           # kg/m²
+//!
+//! [[generate]]
+//! type = "stack"          # a vertical column of boxes
+//! count = 15
+//! box_size = 1.0
+//! origin = [10.0, 0.0]    # m, the middle of the bottom box's bottom edge
+//! jitter = 0.01           # m: each box moved sideways by a uniform random amount in ±jitter
+//! seed = 7                # the random draws are the same on every machine
+//!
+//! [[generate]]
+//! type = "grid"           # a rain of mixed shapes
+//! rows = 10
+//! columns = 100
+//! origin = [-50.0, 20.0]  # m, the centre of the first (lower-left) body
+//! spacing = [1.0, 1.0]    # m between centres
+//! shapes = ["box", "circle", "polygon"]   # each body takes one at random
+//! size = [0.3, 0.8]       # m, its size (side, diameter, span) drawn in this range
+//! velocity = [0.0, -5.0]  # m/s
+//! seed = 1
+//! ```
+//!
+//! Every generator also takes `density` (kg/m², default 1), `friction` and
+//! `restitution` (default: `[contact]`'s), `name` (the bodies are called
+//! `name_0`, `name_1`, ... in the order built; default the generator's
+//! type) and `colour` (one colour for the whole group; default the next in
+//! the palette). The top box of a pyramid or stack is the last one built.
+//!
+//! Random draws come from SplitMix64 seeded by `seed`, written here rather
+//! than taken from a crate so that a seed gives the same scene forever,
+//! whatever crate versions a build resolves.
+
+use crate::build::{Checked, finite, non_negative, positive};
+use crate::error::{ErrorKind, FieldPath, Problem};
+use crate::format::Xy;
+use engine::{BodyDef, BodyKind, BodyState, Shape};
+use nalgebra::Vector2;
+use serde::Deserialize;
+
+fn one() -> f64 {
+    1.0
+}
+
+fn default_seed() -> i64 {
+    1
+}
+
+/// Most bodies one scene may generate: beyond this a typo (a base of 1e6)
+/// would exhaust memory rather than give an error.
+pub const MAX_GENERATED: usize = 1_000_000;
+
+/// A `[[generate]]` block.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum GenerateSpec {
+    /// Rows of square boxes, `base` in the bottom row, one fewer in each
+    /// row above, each row offset by half a box (Box2D's benchmark
+    /// pyramid).
+    Pyramid {
+        /// Boxes in the bottom row, ≥ 1.
+        base: i64,
+        /// Side of each box (m), > 0. Default 1.
+        #[serde(default = "one")]
+        box_size: f64,
+        /// Gap between neighbours in a row (m), ≥ 0. Default 0.
+        #[serde(default)]
+        spacing: f64,
+        /// Middle of the bottom row's bottom edge (m). Default `[0, 0]`.
+        #[serde(default)]
+        origin: Xy,
+        /// Density (kg/m²), > 0. Default 1.
+        #[serde(default = "one")]
+        density: f64,
+        /// Friction of each box. Default: `[contact] friction`.
+        friction: Option<f64>,
+        /// Restitution of each box. Default: `[contact] restitution`.
+        restitution: Option<f64>,
+        /// Name prefix. Default `"pyramid"`.
+        name: Option<String>,
+        /// Colour of the group, `"#rrggbb"`.
+        colour: Option<String>,
+    },
+    /// A vertical column of square boxes, each shifted sideways by a random
+    /// amount in ±`jitter`.
+    Stack {
+        /// Boxes, ≥ 1.
+        count: i64,
+        /// Side of each box (m), > 0. Default 1.
+        #[serde(default = "one")]
+        box_size: f64,
+        /// Gap between boxes (m), ≥ 0. Default 0.
+        #[serde(default)]
+        spacing: f64,
+        /// Middle of the bottom box's bottom edge (m). Default `[0, 0]`.
+        #[serde(default)]
+        origin: Xy,
+        /// Largest sideways shift (m), ≥ 0. Default 0.
+        #[serde(default)]
+        jitter: f64,
+        /// Seed of the random shifts. Default 1.
+        #[serde(default = "default_seed")]
+        seed: i64,
+        /// Density (kg/m²), > 0. Default 1.
+        #[serde(default = "one")]
+        density: f64,
+        /// Friction of each box. Default: `[contact] friction`.
+        friction: Option<f64>,
+        /// Restitution of each box. Default: `[contact] restitution`.
+        restitution: Option<f64>,
+        /// Name prefix. Default `"stack"`.
+        name: Option<String>,
+        /// Colour of the group, `"#rrggbb"`.
+        colour: Option<String>,
+    },
+    /// `rows × columns` bodies on a regular grid, each a shape drawn at
+    /// random from `shapes`, of a size drawn in `size`, turned by a random
+    /// angle.
+    Grid {
+        /// Rows, ≥ 1.
+        rows: i64,
+        /// Columns, ≥ 1.
+        columns: i64,
+        /// Centre of the first (lower-left) body (m). Default `[0, 0]`.
+        #[serde(default)]
+        origin: Xy,
+        /// Distance between centres along x and y (m), each > 0.
+        spacing: Xy,
+        /// Shapes to draw from: `"box"`, `"circle"`, `"polygon"` (a regular
+        /// polygon of 3 to 8 sides). Default `["box"]`.
+        #[serde(default = "default_shapes")]
+        shapes: Vec<GridShape>,
+        /// Size range `[min, max]` (m): a box's side, a circle's diameter,
+        /// a polygon's circumscribed diameter; 0 < min ≤ max. Default
+        /// `[1, 1]`.
+        size: Option<Xy>,
+        /// Initial velocity of every body (m/s). Default `[0, 0]`.
+        #[serde(default)]
+        velocity: Xy,
+        /// Seed of the random draws. Default 1.
+        #[serde(default = "default_seed")]
+        seed: i64,
+        /// Density (kg/m²), > 0. Default 1.
+        #[serde(default = "one")]
+        density: f64,
+        /// Friction of each body. Default: `[contact] friction`.
+        friction: Option<f64>,
+        /// Restitution of each body. Default: `[contact] restitution`.
+        restitution: Option<f64>,
+        /// Name prefix. Default `"grid"`.
+        name: Option<String>,
+        /// Colour of the group, `"#rrggbb"`.
+        colour: Option<String>,
+    },
+}
+
+/// A shape a `grid` generator can draw.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GridShape {
+    /// A square box.
+    Box,
+    /// A circle.
+    Circle,
+    /// A regular polygon of 3 to 8 sides.
+    Polygon,
+}
+
+fn default_shapes() -> Vec<GridShape> {
+    vec![GridShape::Box]
+}
+
+impl GenerateSpec {
+    /// The generator's type, its default name prefix.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            GenerateSpec::Pyramid { .. } => "pyramid",
+            GenerateSpec::Stack { .. } => "stack",
+            GenerateSpec::Grid { .. } => "grid",
+        }
+    }
+
+    /// The name prefix of the generated bodies.
+    pub fn prefix(&self) -> &str {
+        let name = match self {
+            GenerateSpec::Pyramid { name, .. }
+            | GenerateSpec::Stack { name, .. }
+            | GenerateSpec::Grid { name, .. } => name,
+        };
+        name.as_deref().unwrap_or(self.kind())
+    }
+
+    /// The group's colour as written, if any.
+    pub fn colour(&self) -> Option<&str> {
+        match self {
+            GenerateSpec::Pyramid { colour, .. }
+            | GenerateSpec::Stack { colour, .. }
+            | GenerateSpec::Grid { colour, .. } => colour.as_deref(),
+        }
+    }
+
+    fn material(&self) -> (f64, Option<f64>, Option<f64>) {
+        match self {
+            GenerateSpec::Pyramid {
+                density,
+                friction,
+                restitution,
+                ..
+            }
+            | GenerateSpec::Stack {
+                density,
+                friction,
+                restitution,
+                ..
+            }
+            | GenerateSpec::Grid {
+                density,
+                friction,
+                restitution,
+                ..
+            } => (*density, *friction, *restitution),
+        }
+    }
+}
+
+/// SplitMix64 (Steele, Lea and Flood, 2014): 64 random bits per call.
+struct SplitMix64(u64);
+
+impl SplitMix64 {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [0, 1).
+    fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Uniform in [lo, hi].
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+}
+
+fn count(path: &FieldPath, value: i64, what: &str) -> Checked<usize> {
+    if value < 1 || value as u64 > MAX_GENERATED as u64 {
+        return Err(Problem::new(
+            path,
+            ErrorKind::InvalidValue,
+            format!("{what} must be between 1 and {MAX_GENERATED}, got {value}"),
+        ));
+    }
+    Ok(value as usize)
+}
+
+/// The bodies of generator `spec` at `path` (`generate[i]`), before
+/// materials and colours are applied; their count is checked against what
+/// the scene already holds (`so_far`).
+pub(crate) fn expand(
+    path: &FieldPath,
+    spec: &GenerateSpec,
+    so_far: usize,
+) -> Checked<Vec<BodyDef>> {
+    let (density, friction, restitution) = spec.material();
+    let density = positive(&path.key("density"), density, "density", "kg/m²")?;
+    let friction = friction
+        .map(|f| non_negative(&path.key("friction"), f, "friction", ""))
+        .transpose()?;
+    let restitution = restitution
+        .map(|e| crate::build::unit_interval(&path.key("restitution"), e, "restitution"))
+        .transpose()?;
+    let prefix = spec.prefix();
+    if prefix.trim().is_empty() {
+        return Err(Problem::new(
+            &path.key("name"),
+            ErrorKind::InvalidValue,
+            "a generator's name must not be empty",
+        ));
+    }
+    let placed = match spec {
+        GenerateSpec::Pyramid {
+            base,
+            box_size,
+            spacing,
+            origin,
+            ..
+        } => {
+            let base = count(&path.key("base"), *base, "base")?;
+            let total = base * (base + 1) / 2;
+            check_total(path, so_far, total)?;
+            let size = positive(&path.key("box_size"), *box_size, "box_size", "m")?;
+            let gap = non_negative(&path.key("spacing"), *spacing, "spacing", "m")?;
+            let origin = crate::build::xy(&path.key("origin"), origin)?;
+            let square = Shape::rectangle(size, size).map_err(|e| Problem::engine(path, e))?;
+            let pitch = size + gap;
+            let mut out = Vec::with_capacity(total);
+            for row in 0..base {
+                let n = base - row;
+                for column in 0..n {
+                    let x = (column as f64 - 0.5 * (n as f64 - 1.0)) * pitch;
+                    let y = (row as f64 + 0.5) * size;
+                    out.push((square.clone(), origin + Vector2::new(x, y), 0.0));
+                }
+            }
+            out
+        }
+        GenerateSpec::Stack {
+            count: n,
+            box_size,
+            spacing,
+            origin,
+            jitter,
+            seed,
+            ..
+        } => {
+            let n = count(&path.key("count"), *n, "count")?;
+            check_total(path, so_far, n)?;
+            let size = positive(&path.key("box_size"), *box_size, "box_size", "m")?;
+            let gap = non_negative(&path.key("spacing"), *spacing, "spacing", "m")?;
+            let jitter = non_negative(&path.key("jitter"), *jitter, "jitter", "m")?;
+            let origin = crate::build::xy(&path.key("origin"), origin)?;
+            let square = Shape::rectangle(size, size).map_err(|e| Problem::engine(path, e))?;
+            let mut rng = SplitMix64(*seed as u64);
+            (0..n)
+                .map(|i| {
+                    let dx = if jitter > 0.0 {
+                        rng.range(-jitter, jitter)
+                    } else {
+                        0.0
+                    };
+                    let y = (i as f64 + 0.5) * size + i as f64 * gap;
+                    (square.clone(), origin + Vector2::new(dx, y), 0.0)
+                })
+                .collect()
+        }
+        GenerateSpec::Grid {
+            rows,
+            columns,
+            origin,
+            spacing,
+            shapes,
+            size,
+            seed,
+            ..
+        } => {
+            let rows = count(&path.key("rows"), *rows, "rows")?;
+            let columns = count(&path.key("columns"), *columns, "columns")?;
+            let total = rows.saturating_mul(columns);
+            check_total(path, so_far, total)?;
+            let origin = crate::build::xy(&path.key("origin"), origin)?;
+            let sp = path.key("spacing");
+            let dx = positive(&sp.index(0), spacing.x, "spacing along x", "m")?;
+            let dy = positive(&sp.index(1), spacing.y, "spacing along y", "m")?;
+            if shapes.is_empty() {
+                return Err(Problem::new(
+                    &path.key("shapes"),
+                    ErrorKind::InvalidValue,
+                    "name at least one shape: \"box\", \"circle\" or \"polygon\"",
+                ));
+            }
+            let size = size.unwrap_or(Xy { x: 1.0, y: 1.0 });
+            let zp = path.key("size");
+            let lo = positive(&zp.index(0), size.x, "smallest size", "m")?;
+            let hi = positive(&zp.index(1), size.y, "largest size", "m")?;
+            if hi < lo {
+                return Err(Problem::new(
+                    &zp,
+                    ErrorKind::InvalidValue,
+                    format!("size [{lo}, {hi}] m must be [smallest, largest]"),
+                ));
+            }
+            let mut rng = SplitMix64(*seed as u64);
+            let mut out = Vec::with_capacity(total);
+            for row in 0..rows {
+                for column in 0..columns {
+                    let kind = shapes[(rng.next() % shapes.len() as u64) as usize];
+                    let d = rng.range(lo, hi);
+                    let angle = rng.range(-std::f64::consts::PI, std::f64::consts::PI);
+                    let shape =
+                        grid_shape(kind, d, &mut rng).map_err(|e| Problem::engine(path, e))?;
+                    let at = origin + Vector2::new(column as f64 * dx, row as f64 * dy);
+                    out.push((shape, at, angle));
+                }
+            }
+            out
+        }
+    };
+    let velocity = match spec {
+        GenerateSpec::Grid { velocity, .. } => crate::build::xy(&path.key("velocity"), velocity)?,
+        _ => Vector2::zeros(),
+    };
+    let bodies = placed
+        .into_iter()
+        .enumerate()
+        .map(|(k, (shape, position, angle))| BodyDef {
+            name: format!("{prefix}_{k}"),
+            kind: BodyKind::Dynamic,
+            mass: None,
+            density: Some(density),
+            inertia: None,
+            shape: Some(shape),
+            state: BodyState {
+                position,
+                angle,
+                velocity,
+                angular_velocity: 0.0,
+            },
+            friction,
+            restitution,
+        })
+        .collect::<Vec<_>>();
+    for def in &bodies {
+        engine::Body::from_def(def).map_err(|e| Problem::engine(path, e))?;
+    }
+    // A check that the last body's numbers are finite (huge origins).
+    if let Some(last) = bodies.last() {
+        finite(
+            &path.key("origin"),
+            last.state.position.x + last.state.position.y,
+        )?;
+    }
+    Ok(bodies)
+}
+
+fn check_total(path: &FieldPath, so_far: usize, more: usize) -> Checked<()> {
+    if so_far.saturating_add(more) > MAX_GENERATED {
+        return Err(Problem::new(
+            path,
+            ErrorKind::InvalidValue,
+            format!(
+                "this generator makes {more} bodies and the scene already has {so_far}: at most {MAX_GENERATED} in all"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// A shape of kind `kind` and size `d` (m).
+fn grid_shape(kind: GridShape, d: f64, rng: &mut SplitMix64) -> engine::Result<Shape> {
+    match kind {
+        GridShape::Box => Shape::rectangle(d, d),
+        GridShape::Circle => Shape::circle(0.5 * d),
+        GridShape::Polygon => {
+            let sides = 3 + (rng.next() % 6) as usize;
+            let r = 0.5 * d;
+            let vertices = (0..sides)
+                .map(|i| {
+                    let a = 2.0 * std::f64::consts::PI * i as f64 / sides as f64;
+                    Vector2::new(r * a.cos(), r * a.sin())
+                })
+                .collect();
+            Shape::polygon(vertices)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pyramid(base: i64) -> GenerateSpec {
+        GenerateSpec::Pyramid {
+            base,
+            box_size: 1.0,
+            spacing: 0.0,
+            origin: Xy { x: 0.0, y: 0.0 },
+            density: 1.0,
+            friction: None,
+            restitution: None,
+            name: None,
+            colour: None,
+        }
+    }
+
+    #[test]
+    fn a_pyramid_has_its_triangle_number_of_boxes_touching_side_by_side() {
+        let bodies = expand(&FieldPath::root().key("generate").index(0), &pyramid(4), 0).unwrap();
+        assert_eq!(bodies.len(), 10);
+        let xs: Vec<f64> = bodies[..4].iter().map(|b| b.state.position.x).collect();
+        assert_eq!(xs, [-1.5, -0.5, 0.5, 1.5]);
+        let top = bodies.last().unwrap();
+        assert_eq!((top.state.position.x, top.state.position.y), (0.0, 3.5));
+        assert_eq!(top.name, "pyramid_9");
+    }
+
+    #[test]
+    fn the_same_seed_gives_the_same_grid() {
+        let grid = |seed| GenerateSpec::Grid {
+            rows: 3,
+            columns: 4,
+            origin: Xy::default(),
+            spacing: Xy { x: 1.0, y: 1.0 },
+            shapes: vec![GridShape::Box, GridShape::Circle, GridShape::Polygon],
+            size: Some(Xy { x: 0.3, y: 0.8 }),
+            velocity: Xy::default(),
+            seed,
+            density: 1.0,
+            friction: None,
+            restitution: None,
+            name: None,
+            colour: None,
+        };
+        let path = FieldPath::root().key("generate").index(0);
+        let a = expand(&path, &grid(5), 0).unwrap();
+        assert_eq!(a, expand(&path, &grid(5), 0).unwrap());
+        assert_ne!(a, expand(&path, &grid(6), 0).unwrap());
+        assert_eq!(a.len(), 12);
+    }
+
+    #[test]
+    fn out_of_range_counts_are_refused_at_their_field() {
+        let path = FieldPath::root().key("generate").index(2);
+        let err = expand(&path, &pyramid(0), 0).unwrap_err();
+        assert_eq!(err.path.to_string(), "generate[2].base");
+        let err = expand(&path, &pyramid(2000), 0).unwrap_err();
+        assert!(err.message.contains("at most"), "{}", err.message);
+    }
+}
