@@ -124,6 +124,20 @@ fn to_f32(body: usize, field: &'static str, x: f64) -> Result<f32, ManyBodyError
     }
 }
 
+/// A scene-wide `x` rounded to f32, refused if it does not fit.
+fn scene_f32(field: &'static str, x: f64) -> Result<f32, ManyBodyError> {
+    let y = x as f32;
+    if y.is_finite() {
+        Ok(y)
+    } else {
+        Err(ManyBodyError::scene(
+            field,
+            x,
+            "is beyond Box2D's single-precision range",
+        ))
+    }
+}
+
 /// A [`ManyBodyScene`] in a Box2D world.
 pub struct Box2dWorld {
     world: World,
@@ -143,9 +157,17 @@ impl Box2dWorld {
         scene.validate()?;
         let foundation = Foundation::initialize_default().map_err(engine_error)?;
         let gravity = [
-            to_f32(0, "gravity x", scene.gravity[0])?,
-            to_f32(0, "gravity y", scene.gravity[1])?,
+            scene_f32("gravity x", scene.gravity[0])?,
+            scene_f32("gravity y", scene.gravity[1])?,
         ];
+        let dt = scene_f32("dt", scene.dt)?;
+        if dt <= 0.0 {
+            return Err(ManyBodyError::scene(
+                "dt",
+                scene.dt,
+                "rounds to 0 in Box2D's single precision",
+            ));
+        }
         let def = foundation
             .world_builder()
             .gravity(gravity)
@@ -182,6 +204,20 @@ impl Box2dWorld {
             let id = world
                 .create_body(def)
                 .map_err(|e| refused(i, e.to_string()))?;
+            if b.kind == BodyKind::Dynamic {
+                let (mass, inertia) = (b.mass() as f32, b.inertia() as f32);
+                if !(mass.is_normal() && inertia.is_normal()) {
+                    return Err(refused(
+                        i,
+                        format!(
+                            "its mass {} kg or moment of inertia {} kg·m² is outside \
+                             Box2D's single-precision range",
+                            b.mass(),
+                            b.inertia()
+                        ),
+                    ));
+                }
+            }
             let restitution = to_f32(i, "restitution", b.restitution)?;
             let material = SurfaceMaterial::default()
                 .with_friction(to_f32(i, "friction", b.friction)?)
@@ -209,7 +245,7 @@ impl Box2dWorld {
             world,
             bodies,
             shapes: shape_ids,
-            dt: scene.dt as f32,
+            dt,
             substeps: scene.substeps as i32,
             steps: 0,
         })

@@ -229,6 +229,14 @@ fn validate_body(i: usize, b: &SceneBody) -> Result<(), ManyBodyError> {
                     "must be finite and > 0 for a dynamic body",
                 ));
             }
+            for (field, v) in [
+                ("mass (density × area)", b.mass()),
+                ("moment of inertia", b.inertia()),
+            ] {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(ManyBodyError::body(i, field, v, "must be finite and > 0"));
+                }
+            }
             if let Shape::Polygon(p) = &b.shape {
                 let c = p.centroid();
                 let size = p

@@ -140,4 +140,26 @@ fn values_beyond_f32_are_refused() {
     scene.bodies[1].position[0] = 1e39;
     let e = Box2dWorld::new(&scene).err().unwrap();
     assert!(e.to_string().contains("body 1: position x"), "{e}");
+    scene.bodies[1].position[0] = 0.0;
+    scene.bodies[1].density = 1e39;
+    let e = Box2dWorld::new(&scene).err().unwrap();
+    assert!(
+        e.to_string().contains("body 1") && e.to_string().contains("mass"),
+        "{e}"
+    );
+}
+
+#[test]
+fn scene_values_beyond_f32_are_refused_as_scene_values() {
+    let mut scene = pyramid(1);
+    scene.dt = 1e-50;
+    let e = Box2dWorld::new(&scene).err().unwrap();
+    assert!(e.to_string().starts_with("many-body scene: dt = "), "{e}");
+    scene.dt = 1.0 / 60.0;
+    scene.gravity[1] = -1e40;
+    let e = Box2dWorld::new(&scene).err().unwrap();
+    assert!(
+        e.to_string().starts_with("many-body scene: gravity y"),
+        "{e}"
+    );
 }

@@ -199,6 +199,32 @@ fn base_5_pyramid_stands_for_120_steps() {
 }
 
 #[test]
+fn stack_of_5_stands_for_120_steps() {
+    // Solver2D's vertical stack, shortened: μ 0.3, boxes offset ±1 cm.
+    // Box k from the top carries k boxes: the bound of
+    // pyramid_sink_bound with loads k m g instead of k(k + 1)/2 m g.
+    let scene = scenes::vertical_stack(5, 0.3, 0.01);
+    let (m, g) = (1.0, 10.0);
+    let bound: f64 = (1..5)
+        .map(|k| soft_overlap(k as f64 * m * g, m / 5.0, OMEGA_DYNAMIC))
+        .sum::<f64>()
+        + soft_overlap(5.0 * m * g, m / 2.5, OMEGA_STATIC); // 0.0079 m
+    for (mut e, _) in engines(&scene) {
+        let s = run(e.as_mut(), 120);
+        for (i, (b, q)) in scene.bodies.iter().zip(&s).enumerate().skip(1) {
+            let dx = (q.position[0] - b.position[0]).abs();
+            let dy = b.position[1] - q.position[1];
+            assert!(
+                dx < bound && dy > 0.0 && dy < bound,
+                "{} box {i}: {q:?}",
+                e.name()
+            );
+            assert!(q.speed() < 1e-3, "{} box {i}: {q:?}", e.name());
+        }
+    }
+}
+
+#[test]
 fn kinematic_body_moves_at_its_velocity() {
     let mut scene = pyramid(0);
     let (v, w) = ([1.5, -0.5], 0.7);
@@ -354,6 +380,15 @@ fn invalid_scenes_are_refused_with_the_body_and_field() {
                 .collect();
             s.bodies[1].shape = Shape::Polygon(ConvexPolygon::new(moved).unwrap());
             (s, "body 1: shape centroid distance from the origin = 0.2")
+        },
+        {
+            let mut s = good.clone();
+            s.bodies[1].shape = Shape::rectangle(2.0, 2.0).unwrap();
+            s.bodies[1].density = f64::MAX;
+            (
+                s,
+                "body 1: mass (density × area) = inf must be finite and > 0",
+            )
         },
         {
             let mut s = good.clone();
