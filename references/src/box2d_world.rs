@@ -16,7 +16,8 @@
 //! - contact hertz 30 Hz, damping ratio 10 (`contactHertz`,
 //!   `contactDampingRatio`). The hertz used is min(30, 0.125/h) with
 //!   h = dt/substeps (30 Hz at 4 substeps of 1/60 s); contacts with a static
-//!   body use twice that (`staticSoftness`, 60 Hz);
+//!   body use twice that (`staticSoftness`, 60 Hz), contacts with a
+//!   kinematic body do not (it is in the awake set: 30 Hz);
 //! - push-out speed at most 3 m/s (`contactSpeed`);
 //! - restitution threshold 1 m/s (`restitutionThreshold`: a contact bounces
 //!   only if it approached faster than that);
@@ -401,7 +402,8 @@ impl ManyBodyEngine for Box2dWorld {
             "{ENGINE}, single precision (f32 positions, velocities and impulses), \
              serial (one worker, no task system). dt = {dt} s with {s} substeps \
              (h = {h:.6} s). Soft contacts: {hertz:.3} Hz (min of contactHertz \
-             {CONTACT_HERTZ} and 0.125/h), {shz:.3} Hz against static bodies, damping ratio \
+             {CONTACT_HERTZ} and 0.125/h; also against kinematic bodies), {shz:.3} Hz against \
+             static bodies, damping ratio \
              {CONTACT_DAMPING_RATIO}; push-out speed at most {CONTACT_SPEED} m/s; no \
              slop in the bias; speculative contacts within {SPECULATIVE_DISTANCE} m; \
              friction solved in the relax pass only; restitution threshold \

@@ -36,7 +36,7 @@ pub mod scenes;
 mod tests;
 
 pub use overlap::{Overlap, deepest_overlap};
-pub use scenes::{pyramid, vertical_stack};
+pub use scenes::{pyramid, smash, tumbler, vertical_stack};
 
 /// How a body moves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -480,8 +480,9 @@ pub const ENGINE_DIFFERENCES: &[&str] = &[
      rapier 0.36 does the same by default (friction_in_bias_pass = false)",
     "contact softness: both 30 Hz with damping ratio 10, 60 Hz against static \
      bodies (Box2D doubles the contact hertz, rapier has its own 60 Hz \
-     static_contact_softness); Box2D caps the contact hertz at a quarter of the \
-     substep Nyquist rate (0.125/h = 30 Hz at 4 substeps of 1/60 s)",
+     static_contact_softness), 30 Hz against kinematic ones in both; Box2D caps \
+     the contact hertz at a quarter of the substep Nyquist rate (0.125/h = 30 Hz \
+     at 4 substeps of 1/60 s), rapier does not cap it",
     "penetration: Box2D has no slop in the contact bias (it pushes out to zero \
      separation); rapier neither (allowed_linear_error is only the CCD standoff)",
     "restitution: Box2D applies it when the pre-solve approach speed exceeds 1 m/s \

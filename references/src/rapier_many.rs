@@ -18,7 +18,8 @@
 //!   `num_internal_stabilization_iterations`, both 1 by default);
 //! - everything else at its default, as read in `integration_parameters.rs`:
 //!   contact softness 30 Hz with damping ratio 10 (`contact_softness`), 60 Hz
-//!   against fixed bodies (`static_contact_softness`), push-out speed at most
+//!   against fixed bodies (`static_contact_softness`; kinematic bodies get
+//!   the 30 Hz, as in Box2D), push-out speed at most
 //!   3 m/s (`normalized_max_corrective_velocity`), speculative contacts
 //!   within 0.02 m (`normalized_prediction_distance`), no penetration slop
 //!   in the bias (`normalized_allowed_linear_error` 0.005 m is only the CCD

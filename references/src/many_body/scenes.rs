@@ -71,6 +71,78 @@ pub fn vertical_stack(count: usize, friction: f64, jitter: f64) -> ManyBodyScene
     benchmark_scene(bodies)
 }
 
+/// Box2D's `CreateTumbler` with a `grid` × `grid` block of boxes of 0.25 m
+/// (the benchmark uses 45: 2025 boxes; density 1 kg/m²) inside a hollow
+/// 20 m square box turning at 25°/s about (0, 10) m.
+///
+/// One difference from Box2D's scene: there the hollow box is a *dynamic*
+/// body of density 50 kg/m² with four shapes, driven through a revolute
+/// joint by a motor of speed 25°/s and maximum torque 1e8 N·m, which this
+/// description (one shape per body, no joints) cannot express. Here its
+/// four walls are four *kinematic* bodies, all with their origin on the
+/// axis (0, 10) m and angular velocity 25°/s, each with one off-centre wall
+/// polygon (walls 1 m thick centred 10 m from the axis): the same rigid
+/// rotation, imposed exactly instead of through a joint the load could
+/// slow by a little. Bodies 0–3 are the walls (right, left, top, bottom).
+pub fn tumbler(grid: usize) -> ManyBodyScene {
+    use nalgebra::Vector2;
+    let omega = 25f64.to_radians();
+    let wall = |cx: f64, cy: f64, hw: f64, hh: f64| {
+        let v = vec![
+            Vector2::new(cx - hw, cy - hh),
+            Vector2::new(cx + hw, cy - hh),
+            Vector2::new(cx + hw, cy + hh),
+            Vector2::new(cx - hw, cy + hh),
+        ];
+        let polygon = engine::ConvexPolygon::new(v).expect("a non-degenerate rectangle");
+        SceneBody::kinematic(Shape::Polygon(polygon), [0.0, 10.0], [0.0, 0.0], omega)
+    };
+    let mut bodies = vec![
+        wall(10.0, 0.0, 0.5, 10.0),
+        wall(-10.0, 0.0, 0.5, 10.0),
+        wall(0.0, 10.0, 10.0, 0.5),
+        wall(0.0, -10.0, 10.0, 0.5),
+    ];
+    let small = Shape::rectangle(0.25, 0.25).expect("positive, finite extents");
+    let mut y = -0.2 * grid as f64 + 10.0;
+    for _ in 0..grid {
+        let mut x = -0.2 * grid as f64;
+        for _ in 0..grid {
+            bodies.push(SceneBody::dynamic(small.clone(), [x, y], 1.0));
+            x += 0.4;
+        }
+        y += 0.4;
+    }
+    benchmark_scene(bodies)
+}
+
+/// Box2D's `CreateSmash`: zero gravity, an 8 m box of density 8 kg/m² at
+/// (−20, 0) m moving at 40 m/s into a block of `columns` × `rows` boxes of
+/// 0.4 m (density 1 kg/m²) at x = 30 + 0.4 i, y = 0.4 (j − rows/2) m (the
+/// benchmark uses 120 × 80). Box2D creates the block asleep; with sleeping
+/// off, as here, it is awake from the start. Body 0 is the big box.
+pub fn smash(columns: usize, rows: usize) -> ManyBodyScene {
+    let mut big = SceneBody::dynamic(
+        Shape::rectangle(8.0, 8.0).expect("positive, finite extents"),
+        [-20.0, 0.0],
+        8.0,
+    );
+    big.velocity = [40.0, 0.0];
+    let mut bodies = vec![big];
+    let d = 0.4;
+    let small = Shape::rectangle(d, d).expect("positive, finite extents");
+    for i in 0..columns {
+        for j in 0..rows {
+            let position = [i as f64 * d + 30.0, (j as f64 - rows as f64 / 2.0) * d];
+            bodies.push(SceneBody::dynamic(small.clone(), position, 1.0));
+        }
+    }
+    ManyBodyScene {
+        gravity: [0.0, 0.0],
+        ..benchmark_scene(bodies)
+    }
+}
+
 fn benchmark_scene(bodies: Vec<SceneBody>) -> ManyBodyScene {
     ManyBodyScene {
         gravity: BENCHMARK_GRAVITY,
@@ -112,6 +184,29 @@ mod tests {
         assert_eq!(dynamic_indices(&s).len(), 10);
         // Mass: 10 boxes of 1 m² at 1 kg/m².
         assert_eq!(s.dynamic_mass(), 10.0);
+    }
+
+    #[test]
+    fn tumbler_and_smash_layouts() {
+        let t = tumbler(3);
+        t.validate().unwrap();
+        assert_eq!(t.bodies.len(), 4 + 9);
+        assert!(t.bodies[..4].iter().all(|b| b.kind == BodyKind::Kinematic
+            && b.position == [0.0, 10.0]
+            && b.angular_velocity == 25f64.to_radians()));
+        // The block sits inside the walls' inner faces (±9.5 m about the axis).
+        assert!(
+            t.bodies[4..]
+                .iter()
+                .all(|b| b.position[0].abs() < 9.0 && (b.position[1] - 10.0).abs() < 9.0)
+        );
+        let s = smash(3, 2);
+        s.validate().unwrap();
+        assert_eq!(s.gravity, [0.0, 0.0]);
+        assert_eq!(s.bodies.len(), 1 + 6);
+        assert_eq!(s.bodies[0].mass(), 8.0 * 64.0);
+        assert_eq!(s.bodies[1].position, [30.0, -0.4]);
+        assert_eq!(s.bodies[6].position[0], 30.8);
     }
 
     #[test]
