@@ -318,9 +318,14 @@ pub struct BodyMass {
 /// by default) in their manifolds, so `touching_pairs` and `points` include
 /// pairs about to touch. Separations are those of the engine's last
 /// collision pass, which runs at the *start* of a step (before the solver
-/// moves the bodies), and with contact recycling a pair that moved little
-/// keeps older data (see each adapter). For a comparison on equal terms
-/// use [`deepest_overlap`], computed from the poses.
+/// moves the bodies). With contact recycling (on by default in both), a
+/// pair that moved little skips that pass: Box2D then updates its
+/// separations from the bodies' motion, rapier keeps the `dist` of the
+/// pair's last full update, possibly from the impact that created it, so
+/// rapier's `penetrating_points` and `deepest_penetration` are stale (see
+/// [`crate::rapier_many::RapierManyWorld::disable_contact_recycling`]).
+/// For a comparison on equal terms use [`deepest_overlap`], computed from
+/// the poses.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ContactCounts {
     /// Shape pairs with at least one manifold point.
