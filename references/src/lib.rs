@@ -21,16 +21,25 @@
 //! [`drag_reference_values`] holds the 40-digit values `CASES.md` quotes, which
 //! the DOP853 solve is tested against.
 //!
+//! Other engines, run on the same scenes for comparison: rapier2d-f64
+//! ([`rapier_world`] single bodies, [`rapier_contacts`] collision scenes),
+//! parry2d-f64 shape queries ([`parry_queries`]), and for the many-body
+//! benchmark an engine-agnostic scene description ([`many_body`]) with
+//! adapters to Box2D v3.2 through boxdd ([`box2d_world`]) and to rapier at
+//! its defaults ([`rapier_many`]).
+//!
 //! Units are SI throughout (m, s, kg, N, rad) and every quantity is `f64`.
 //! "Seed" means the 2006 report `seed/000_03ad6f8b5a3a5bfa.txt`; its numbers
 //! are used as `CASES.md` corrects them.
 #![warn(missing_docs)]
 
 pub mod angular_drag;
+pub mod box2d_world;
 pub mod drag_projectile;
 pub mod drag_reference_values;
 pub mod hoffman;
 pub mod linear_stability;
+pub mod many_body;
 pub mod parry_queries;
 pub mod projectile;
 pub mod spring;
@@ -46,4 +55,5 @@ pub use projectile::{Projectile, SEED_GRAVITY};
 pub use spring::SpringOscillator;
 pub use torque::TorquePulse;
 pub mod rapier_contacts;
+pub mod rapier_many;
 pub mod rapier_world;
