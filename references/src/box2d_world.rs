@@ -230,17 +230,40 @@ impl Box2dWorld {
                 .build()
                 .map_err(|e| refused(i, e.to_string()))?;
             let mut body = world.body(id).map_err(engine_error)?;
-            let shape = match &b.shape {
-                Shape::Circle(c) => {
-                    let circle = shapes::circle([0.0_f32, 0.0], to_f32(i, "radius", c.radius)?)
-                        .map_err(|e| refused(i, e.to_string()))?;
-                    body.create_circle(&shape_def, &circle)
+            // A compound becomes one Box2D shape per part, each placed in
+            // the body frame (Box2D bodies take several shapes).
+            let mut first = None;
+            for (offset, angle, piece) in b.shape.pieces() {
+                let place = |v: nalgebra::Vector2<f64>| {
+                    let (s, c) = angle.sin_cos();
+                    offset + nalgebra::Vector2::new(c * v.x - s * v.y, s * v.x + c * v.y)
+                };
+                let shape = match piece {
+                    Shape::Circle(c) => {
+                        let centre = [
+                            to_f32(i, "circle x", offset.x)?,
+                            to_f32(i, "circle y", offset.y)?,
+                        ];
+                        let circle = shapes::circle(centre, to_f32(i, "radius", c.radius)?)
+                            .map_err(|e| refused(i, e.to_string()))?;
+                        body.create_circle(&shape_def, &circle)
+                    }
+                    Shape::Polygon(p) => {
+                        let placed = if offset == nalgebra::Vector2::zeros() && angle == 0.0 {
+                            p.clone()
+                        } else {
+                            ConvexPolygon::new(p.vertices().iter().map(|&v| place(v)).collect())
+                                .map_err(|e| refused(i, e.to_string()))?
+                        };
+                        body.create_polygon(&shape_def, &polygon(i, &placed)?)
+                    }
+                    Shape::Compound(_) => unreachable!("a compound's pieces are not compounds"),
                 }
-                Shape::Polygon(p) => body.create_polygon(&shape_def, &polygon(i, p)?),
+                .map_err(|e| refused(i, e.to_string()))?;
+                first.get_or_insert(shape);
             }
-            .map_err(|e| refused(i, e.to_string()))?;
             bodies.push(id);
-            shape_ids.push(shape);
+            shape_ids.push(first.expect("every shape has at least one piece"));
         }
         Ok(Self {
             world,

@@ -51,6 +51,17 @@ fn bounds(shape: &Shape, pose: &Isometry2<f64>) -> ([f64; 2], [f64; 2]) {
             }
             (lo, hi)
         }
+        Shape::Compound(c) => c
+            .parts()
+            .iter()
+            .map(|p| bounds(&p.shape, &(pose * Isometry2::new(p.offset, p.angle))))
+            .reduce(|(lo1, hi1), (lo2, hi2)| {
+                (
+                    [lo1[0].min(lo2[0]), lo1[1].min(lo2[1])],
+                    [hi1[0].max(hi2[0]), hi1[1].max(hi2[1])],
+                )
+            })
+            .expect("a compound has at least one part"),
     }
 }
 
