@@ -1,37 +1,67 @@
 //! A validated 2D rigid-body physics engine, after the 2006 design report
-//! in `shared/seed/` (cited as "seed §N" and "seed eq. N").
+//! by J. Schmaltz, « Développement d'un moteur physique permettant la
+//! simulation du comportement dynamique des corps rigides » (ÉTS), cited as
+//! "seed §N" and "seed eq. N" (an English guide to it: `docs/seed.md`).
 //!
-//! - [`integrators`]: explicit and semi-implicit Euler, midpoint RK2, RK4,
-//!   velocity Verlet, implicit Euler, adaptive Dormand–Prince 5(4), all on
-//!   the generic [`OdeSystem`] (seed §4.3);
-//! - [`body`], [`shape`]: particles, rigid and static bodies, convex
-//!   polygons, boxes and circles with mass properties from the geometry;
-//! - [`forces`]: gravity, springs, quadratic and angular drag, point forces,
-//!   torques, each with an optional time window; the [`Force`] trait;
-//! - [`collision`], [`contact`]: detection (broad phase, separating axes,
-//!   time of impact) and response (impulses with restitution, resting
-//!   contact, Coulomb friction) of seed §7;
-//! - [`World`]: steps them, splits steps at force switches, locates events
-//!   (landing, apex) by root finding, cuts steps at contacts, and reports
-//!   blow-ups as typed errors.
+//! Start with the [`prelude`]. A box dropped on the ground, with the
+//! soft-step contact model (the one for piles of bodies):
 //!
 //! ```
-//! use engine::{BodyDef, World, Method, forces::{Spring, Attachment}};
-//! use nalgebra::Vector2;
-//! // The seed's mass-spring (CASES.md case I), RK4 at h = 0.2 s.
-//! let mut world = World::new(Method::Rk4).unwrap();
-//! let mass = world.add_body(BodyDef::particle("mass", 20.0, Vector2::new(100.0, 0.0))).unwrap();
+//! use engine::prelude::*;
+//! let mut world = World::with_model(
+//!     Method::SemiImplicitEuler,
+//!     ContactModel::SoftStep(SoftStepSettings::default()),
+//! )?;
+//! world.set_gravity(Vector2::new(0.0, -9.81))?;
+//! world.add_body(BodyDef::fixed("ground", Vector2::new(0.0, -0.5), Some(Shape::rectangle(20.0, 1.0)?)))?;
+//! let boxed = world.add_body(
+//!     BodyDef::rigid("box", 1.0, Shape::rectangle(1.0, 1.0)?).with_position(Vector2::new(0.0, 3.0)),
+//! )?;
+//! let trace = world.run(2.0, 1.0 / 60.0)?; // until t = 2 s, in steps of 1/60 s
+//! let y = trace.last().unwrap().states[boxed].position.y;
+//! assert!((y - 0.5).abs() < 1e-3); // resting on the ground (its soft contact sinks < 0.1 mm)
+//! # Ok::<(), EngineError>(())
+//! ```
+//!
+//! And the seed's mass-spring (case I, `docs/cases.md#spring`) integrated by
+//! RK4 at h = 0.2 s, no contacts:
+//!
+//! ```
+//! use engine::prelude::*;
+//! let mut world = World::new(Method::Rk4)?;
+//! let mass = world.add_body(BodyDef::particle("mass", 20.0, Vector2::new(100.0, 0.0)))?;
 //! world.add_force(Spring {
 //!     a: Attachment::World(Vector2::zeros()),
 //!     b: Attachment::center_of(mass),
 //!     stiffness: 50.0,
 //!     rest_length: 50.0,
 //!     axis: Some(Vector2::x()),
-//! }).unwrap();
-//! let trace = world.run(57.2, 0.2).unwrap();
+//! })?;
+//! let trace = world.run(57.2, 0.2)?;
 //! let x = trace.last().unwrap().states[mass].position.x;
 //! assert!((x - 10.95756).abs() < 1e-4);
+//! # Ok::<(), EngineError>(())
 //! ```
+//!
+//! The parts:
+//!
+//! - [`World`]: bodies, forces, events and a contact model
+//!   ([`ContactModel`]): the **exact** model (seed §7.1 after Baraff,
+//!   event-driven, exact to round-off on a few bodies, integrated by any of
+//!   the seven [`Method`]s) or the **soft step** ([`soft_step`], Box2D v3's
+//!   solver, for thousands of bodies); without contacts, shapes pass
+//!   through each other;
+//! - [`integrators`]: explicit and semi-implicit Euler, midpoint RK2, RK4,
+//!   velocity Verlet, implicit Euler, adaptive Dormand–Prince 5(4), all on
+//!   the generic [`OdeSystem`] (seed §4.3);
+//! - [`body`], [`shape`]: particles, rigid, static and kinematic bodies;
+//!   convex polygons, boxes, circles and compounds, with mass properties
+//!   from the geometry;
+//! - [`forces`]: gravity, springs, quadratic and angular drag, point forces,
+//!   torques, each with an optional time window; the [`Force`] trait;
+//! - [`collision`], [`contact`]: detection (broad phase, separating axes,
+//!   time of impact) and the exact model's response (impulses with
+//!   restitution, resting contact, Coulomb friction), seed §7.
 
 #![warn(missing_docs)]
 
@@ -45,6 +75,7 @@ mod exact_model;
 pub mod forces;
 pub mod integrators;
 pub mod ode;
+pub mod prelude;
 pub mod root_finding;
 pub mod shape;
 pub mod soft_step;

@@ -402,8 +402,19 @@ impl World {
     /// times `t0 + i·dt` (an integer count, not `t += dt`; the last step is
     /// shortened if `dt` does not divide the span), sampling after every
     /// step. Stops early at a terminal event.
+    ///
+    /// A step longer than the whole run is refused: `run(0.01, 2.0)` is
+    /// almost always `run(until, dt)` with its arguments swapped.
     pub fn run(&mut self, until: f64, dt: f64) -> Result<Trace> {
         let t0 = self.core.time;
+        if dt > until - t0 && (until - t0).is_finite() {
+            return Err(EngineError::InvalidParameter {
+                what: format!("step dt = {dt:e} s for a run from t = {t0:e} s to {until:e} s"),
+                value: dt,
+                reason: "the step is longer than the run: call run(until, dt) with the end \
+                         time first and the step second (were they swapped?)",
+            });
+        }
         let steps = step_count(until - t0, dt)?;
         let mut trace = Trace::default();
         trace.samples.push(self.sample());
