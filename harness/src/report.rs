@@ -164,47 +164,6 @@ pub fn write(
     Ok(())
 }
 
-/// The rows shown in the top-level README's headline table, as
-/// (case, check, method, dt).
-/// `dt` is matched only when given (study rows have no single step).
-const HEADLINE: [(&str, &str, &str, Option<f64>); 20] = [
-    ("spring", "x_end_seed", "rk4", Some(0.2)),
-    ("spring", "max_error", "rk4", Some(0.2)),
-    ("spring", "amplitude_growth", "explicit_euler", Some(0.2)),
-    ("projectile", "landing_time", "rk4", Some(0.01)),
-    (
-        "projectile_drag",
-        "landing_time",
-        "dormand_prince",
-        Some(0.01),
-    ),
-    ("projectile_drag", "position_error_t5", "rk4", Some(0.2)),
-    ("torque", "theta_8.7", "rk4", Some(0.01)),
-    ("angular_drag", "omega_0.7", "rk4", Some(0.01)),
-    ("hoffman", "error_end", "explicit_euler", Some(0.0021)),
-    ("projectile_drag", "order", "rk4", None),
-    ("spring", "order", "velocity_verlet", None),
-    ("spring", "stability_limit", "rk4", None),
-    ("hoffman", "stability_limit", "explicit_euler", None),
-    ("hoffman", "stability_limit", "rk4", None),
-    (
-        "collision_parry",
-        "verdict_agreement_rate",
-        "engine_vs_parry2d",
-        None,
-    ),
-    ("collision_toi", "toi_world_bisection_rotating", "rk4", None),
-    ("collision_head_on", "v1_after_e0.5", "rk4", None),
-    ("collision_bounce", "apex_drift_per_bounce_e1", "rk4", None),
-    (
-        "collision_bounce",
-        "apex_loss_per_bounce_e1",
-        "rapier2d",
-        None,
-    ),
-    ("collision_slide", "stopping_distance", "rk4", None),
-];
-
 /// Marker lines between which the harness writes the README's headline table.
 pub const README_MARKERS: (&str, &str) = ("<!-- headline:start -->", "<!-- headline:end -->");
 
@@ -218,16 +177,11 @@ pub fn update_readme(readme: &Path, all_rows: &[&Row]) -> Result<bool> {
     let (Some(a), Some(b)) = (text.find(start), text.find(end)) else {
         return Ok(false);
     };
-    let rows = HEADLINE.iter().filter_map(|(case, check, method, dt)| {
-        all_rows
+    // The rows each case declares (`Case::headline`), in registry order.
+    let rows = CASES.iter().flat_map(|case| {
+        case.headline
             .iter()
-            .find(|r| {
-                r.case == *case
-                    && r.check == *check
-                    && r.method == *method
-                    && dt.is_none_or(|d| r.dt == d)
-            })
-            .copied()
+            .filter_map(move |h| all_rows.iter().find(|r| h.matches(case.id, r)).copied())
     });
     let table = table(rows, true);
     let new = format!("{}{start}\n{table}{}", &text[..a], &text[b..]);

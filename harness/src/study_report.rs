@@ -3,16 +3,16 @@
 
 use crate::report::{fmt_num, markdown_table};
 use crate::stability::Axis;
-use crate::study::{StudyResults, TARGET_ERROR};
+use crate::study::{Section, SpeedComparison, StudyResults};
 use references::rapier_world::{RapierSettings, configuration_summary};
 use std::fmt::Write as _;
 
-fn figures(study: &StudyResults, section: &str) -> String {
+fn figures(study: &StudyResults, section: Section) -> String {
     study
         .figures
         .iter()
-        .filter(|(s, _)| s == section)
-        .map(|(_, f)| format!("![{f}]({f})\n"))
+        .filter(|f| f.section == section)
+        .map(|f| format!("![{}]({})\n", f.file, f.file))
         .collect::<Vec<_>>()
         .join("\n")
 }
@@ -40,54 +40,10 @@ pub fn markdown(study: &StudyResults) -> String {
         "rapier2d-f64 configuration: {}\n",
         configuration_summary(&RapierSettings::new(0.01))
     );
-    let _ = writeln!(
-        md,
-        "**Speed to reach {TARGET_ERROR:e} m on `projectile_drag`** (max position error over 0-5 s):"
-    );
-    match (&study.engine_best, &study.rapier_best) {
-        (Some(e), Some(r)) => {
-            let _ = writeln!(
-                md,
-                "the engine's cheapest run is {} at h = {} s ({} s); rapier2d-f64's cheapest is {} at dt = {} s ({} s): rapier2d-f64 takes {:.1}x the engine's CPU time.\n",
-                e.method,
-                fmt_num(e.h),
-                fmt_num(e.cpu_seconds),
-                r.method,
-                fmt_num(r.h),
-                fmt_num(r.cpu_seconds),
-                r.cpu_seconds / e.cpu_seconds
-            );
-        }
-        (Some(e), None) => {
-            let best = study.rapier_most_accurate.as_ref();
-            // The observed order of rapier's most accurate setting, from the
-            // same sweep, says how far its step would have to shrink.
-            let order = best
-                .and_then(|b| {
-                    let sweep = study.sweeps.iter().find(|s| s.case == "projectile_drag")?;
-                    Some(crate::convergence::observed_order(sweep, &b.method).order)
-                })
-                .unwrap_or(f64::NAN);
-            let factor = best.map_or(f64::NAN, |b| (b.error / TARGET_ERROR).powf(1.0 / order));
-            let _ = writeln!(
-                md,
-                "the engine's cheapest run is {} at h = {} s ({} s CPU); **rapier2d-f64 did not reach it within the sweep**: its most accurate run, {} at dt = {} s, errs by {} m ({} s CPU). Its observed order there is {:.2}, so reaching {TARGET_ERROR:e} m would take about {:.1e} times more steps.\n",
-                e.method,
-                fmt_num(e.h),
-                fmt_num(e.cpu_seconds),
-                best.map_or("-".into(), |b| b.method.clone()),
-                best.map_or("-".into(), |b| fmt_num(b.h)),
-                best.map_or("-".into(), |b| fmt_num(b.error)),
-                best.map_or("-".into(), |b| fmt_num(b.cpu_seconds)),
-                order,
-                factor,
-            );
-        }
-        _ => {
-            let _ = writeln!(md, "no engine run reached it within the sweep.\n");
-        }
+    for speed in &study.speed {
+        md.push_str(&speed_paragraph(study, speed));
     }
-    md.push_str(&figures(study, "work_precision"));
+    md.push_str(&figures(study, Section::WorkPrecision));
     md.push('\n');
     let _ = writeln!(
         md,
@@ -135,7 +91,7 @@ pub fn markdown(study: &StudyResults) -> String {
         "Dormand-Prince's error against its tolerance (slope of log error on log tol, informational): {}.\n",
         slopes.join(", ")
     );
-    md.push_str(&figures(study, "convergence"));
+    md.push_str(&figures(study, Section::Convergence));
     let _ = writeln!(md, "\n## stability\n");
     md.push_str(
         "The largest stable step of each method, found by bisection on h with the engine's blow-up detection (a typed `BlowUp` error: \
@@ -182,7 +138,7 @@ pub fn markdown(study: &StudyResults) -> String {
         "\nThe seed's figures 4.2 and 4.3 recreated (explicit Euler on Hoffman's test just inside and outside |1 + h lambda| = 1), \
          and the spring just inside and outside the limits of velocity Verlet (hw = 2) and RK4 (hw = 2 sqrt 2):\n\n",
     );
-    md.push_str(&figures(study, "failures"));
+    md.push_str(&figures(study, Section::Failures));
     let _ = writeln!(md, "\n## energy\n");
     md.push_str(
         "The seed spring at h = 0.2 s over 5720 s: the symplectic methods' energy error stays in a band, RK4's decays as |R(i h w)|^(2n). \
@@ -190,14 +146,69 @@ pub fn markdown(study: &StudyResults) -> String {
     );
     md.push_str(&markdown_table(&rows_with(study, "energy")));
     md.push('\n');
-    md.push_str(&figures(study, "energy"));
+    md.push_str(&figures(study, Section::Energy));
     let _ = writeln!(md, "\n## trajectories\n");
     md.push_str(
         "The seed's figures 5.2 and 6.2-6.5 recreated: the reference, the engine (each scene's own method and step) and rapier2d-f64 \
          (4 substeps, same step), with the error against time below. rapier2d-f64 holds external forces over its substeps, so the spring \
          grows at 4 substeps (its step matrix has determinant 1 + 3/8 (h w)^2 > 1).\n\n",
     );
-    md.push_str(&figures(study, "trajectories"));
+    md.push_str(&figures(study, Section::Trajectories));
     let _ = writeln!(md, "\nStudies took {:.1} s.", study.seconds);
+    md
+}
+
+/// The paragraph of one speed comparison.
+fn speed_paragraph(study: &StudyResults, speed: &SpeedComparison) -> String {
+    let target = speed.target;
+    let mut md = String::new();
+    let _ = writeln!(
+        md,
+        "**Speed to reach {target:e} on `{}`** (max {}):",
+        speed.case, speed.error_label
+    );
+    match (&speed.engine_best, &speed.rapier_best) {
+        (Some(e), Some(r)) => {
+            let _ = writeln!(
+                md,
+                "the engine's cheapest run is {} at h = {} s ({} s); rapier2d-f64's cheapest is {} at dt = {} s ({} s): rapier2d-f64 takes {:.1}x the engine's CPU time.\n",
+                e.method,
+                fmt_num(e.h),
+                fmt_num(e.cpu_seconds),
+                r.method,
+                fmt_num(r.h),
+                fmt_num(r.cpu_seconds),
+                r.cpu_seconds / e.cpu_seconds
+            );
+        }
+        (Some(e), None) => {
+            let best = speed.rapier_most_accurate.as_ref();
+            // The observed order of rapier's most accurate setting, from the
+            // same sweep, says how far its step would have to shrink.
+            let order = best
+                .and_then(|b| {
+                    let sweep = study.sweeps.iter().find(|s| s.case == speed.case)?;
+                    Some(crate::convergence::observed_order(sweep, &b.method).order)
+                })
+                .unwrap_or(f64::NAN);
+            let factor = best.map_or(f64::NAN, |b| (b.error / target).powf(1.0 / order));
+            let _ = writeln!(
+                md,
+                "the engine's cheapest run is {} at h = {} s ({} s CPU); **rapier2d-f64 did not reach it within the sweep**: its most accurate run, {} at dt = {} s, errs by {} ({} s CPU). Its observed order there is {:.2}, so reaching {target:e} would take about {:.1e} times more steps.\n",
+                e.method,
+                fmt_num(e.h),
+                fmt_num(e.cpu_seconds),
+                best.map_or("-".into(), |b| b.method.clone()),
+                best.map_or("-".into(), |b| fmt_num(b.h)),
+                best.map_or("-".into(), |b| fmt_num(b.error)),
+                best.map_or("-".into(), |b| fmt_num(b.cpu_seconds)),
+                order,
+                factor,
+            );
+        }
+        _ => {
+            let _ = writeln!(md, "no engine run reached it within the sweep.\n");
+        }
+    }
     md
 }

@@ -14,7 +14,7 @@
 //!   within 1e-12 count for the engine); parry's witness points are also
 //!   checked to lie on the boundaries.
 
-use super::CaseReport;
+use super::{Case, CaseReport, Headline, Snapshots};
 use crate::row::RowSink;
 use anyhow::Result;
 use engine::collision::{collide, distance_polygon_polygon, separation_polygon_polygon};
@@ -25,6 +25,19 @@ use references::parry_queries::exact::{
 };
 use references::parry_queries::{parry_contact, parry_distance, parry_intersects};
 use std::time::Instant;
+
+/// Detection against parry2d-f64 on random convex pairs.
+pub const CASE: Case = Case {
+    snapshots: Snapshots::HarnessOnly(
+        "120 000 pairs; `tests/collision_snapshots.rs` checks its rows on 2 000 + 2 000",
+    ),
+    headline: &[Headline::new("verdict_agreement_rate", "engine_vs_parry2d")],
+    ..Case::new(
+        "collision_parry",
+        "Case III: detection against parry2d on 100 000 random convex pairs and 20 000 near-touching ones",
+        run,
+    )
+};
 
 /// CASES.md: verdicts compared outside 1e-9 of touching; depth and normal
 /// within 1e-9.

@@ -6,7 +6,7 @@
 //! same motions, by parry2d-f64's `cast_shapes` / `cast_shapes_nonlinear`,
 //! and in rapier2d-f64 (which sees contacts a step at a time).
 
-use super::CaseReport;
+use super::{Case, CaseReport, Headline, Snapshots};
 use super::collision_common::{RAPIER, rapier_settings, run_rapier};
 use crate::row::RowSink;
 use crate::scenes;
@@ -15,6 +15,18 @@ use engine::collision::{Motion, ToiOptions, toi_bisection, toi_conservative_adva
 use engine::{ContactEvent, ContactEventKind, ContactSettings, Shape, ToiMethod};
 use nalgebra::{Isometry2, Vector2};
 use references::parry_queries::{ParryMotion, parry_time_of_impact};
+
+/// The time of impact of a box on a box, without and with rotation.
+pub const CASE: Case = Case {
+    scenes: &["collision_toi", "collision_toi_rotating"],
+    snapshots: Snapshots::ContactEvents,
+    headline: &[Headline::new("toi_world_bisection_rotating", "rk4")],
+    ..Case::new(
+        "collision_toi",
+        "Case III: time of impact, 2.0 s and 1.8736370117 s with rotation (seed Fig. 7.7-7.8), against parry2d",
+        run,
+    )
+};
 
 /// CASES.md's value with rotation, to its 10 decimals.
 const ROTATING_TOI: f64 = 1.8736370117;

@@ -3,6 +3,7 @@
 //! and RK4 — bounded against drifting — with rows for CASES.md's bands.
 
 use super::{Chart, Series, method_color, save_svg};
+use crate::cases::FigureOutput;
 use crate::row::{Comparison, Row};
 use crate::scenes;
 use crate::tolerance::{ROUND_OFF_RELATIVE, half_unit};
@@ -17,10 +18,10 @@ pub const DT: f64 = 0.2;
 /// 100 times the seed's 57.2 s.
 pub const DURATION: f64 = 5720.0;
 
-/// Runs the three methods, writes `<dir>/energy_spring.svg` and returns the
-/// band rows.
-pub fn write(dir: &Path) -> Result<(String, Vec<Row>)> {
-    let file = "energy_spring.svg".to_string();
+/// Runs the three methods on the seed spring (scene and case `id`), writes
+/// `<dir>/energy_<id>.svg` and returns the band rows.
+pub fn write(dir: &Path, id: &str) -> Result<FigureOutput> {
+    let file = format!("energy_{id}.svg");
     let exact = SpringOscillator::seed();
     let e0 = exact.energy();
     let mut series = Vec::new();
@@ -33,7 +34,7 @@ pub fn write(dir: &Path) -> Result<(String, Vec<Row>)> {
                    cmp: Comparison,
                    reason: &str| {
         rows.push(Row::new(
-            "spring",
+            id,
             check,
             method.id(),
             DT,
@@ -49,7 +50,7 @@ pub fn write(dir: &Path) -> Result<(String, Vec<Row>)> {
         Method::VelocityVerlet,
         Method::Rk4,
     ] {
-        let trace = scenes::world("spring", method)?.run(DURATION, DT)?;
+        let trace = scenes::world(id, method)?.run(DURATION, DT)?;
         let rel: Vec<(f64, f64)> = trace
             .samples
             .iter()
@@ -130,5 +131,5 @@ pub fn write(dir: &Path) -> Result<(String, Vec<Row>)> {
         ..Chart::default()
     };
     save_svg(&dir.join(&file), &[chart], 1, (900, 480))?;
-    Ok((file, rows))
+    Ok(FigureOutput { file, rows })
 }
