@@ -5,6 +5,7 @@
 
 pub mod cases;
 pub mod convergence;
+pub mod links;
 pub mod pictures;
 pub mod plots;
 pub mod progress;
@@ -21,3 +22,4 @@ pub mod study_report;
 pub mod sweep;
 pub mod timing;
 pub mod tolerance;
+pub mod workspace;

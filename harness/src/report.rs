@@ -154,6 +154,14 @@ pub fn write(
         if !report.notes.is_empty() {
             md.push('\n');
         }
+        for figure in &report.figures {
+            figure.save(dir)?;
+            let _ = writeln!(
+                md,
+                "![{}]({})\n\n{}\n",
+                figure.alt, figure.file, figure.caption
+            );
+        }
         md.push_str(&markdown_table(&report.rows));
         md.push('\n');
     }

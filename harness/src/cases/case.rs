@@ -9,6 +9,7 @@
 //! study figures drawn from it, and whether the benches time it. Nothing
 //! outside the case's file branches on its id.
 
+use crate::plots::{Chart, save_svg};
 use crate::row::Row;
 use crate::stability::Axis;
 use crate::sweep::SweepCase;
@@ -181,6 +182,35 @@ pub struct MethodTrace {
     pub samples: Vec<Vec<f64>>,
 }
 
+/// A chart a case draws. The case only describes it; the report writer
+/// saves it into the report folder the user asked for (a run without a
+/// report folder writes nothing).
+#[derive(Debug, Clone)]
+pub struct CaseFigure {
+    /// File name (`.svg`) inside the report folder.
+    pub file: String,
+    /// What it shows: the image's alternative text.
+    pub alt: String,
+    /// What to read in it, printed under it.
+    pub caption: String,
+    /// Panels, side by side.
+    pub panels: Vec<Chart>,
+    /// Width and height of one panel (px).
+    pub panel_size: (u32, u32),
+}
+
+impl CaseFigure {
+    /// Saves the chart as `dir/<file>`.
+    pub fn save(&self, dir: &Path) -> Result<()> {
+        save_svg(
+            &dir.join(&self.file),
+            &self.panels,
+            self.panels.len(),
+            self.panel_size,
+        )
+    }
+}
+
 /// What a case produces.
 #[derive(Debug, Clone, Default)]
 pub struct CaseReport {
@@ -190,4 +220,6 @@ pub struct CaseReport {
     pub traces: Vec<MethodTrace>,
     /// Remarks for the report (methods not applicable, ...).
     pub notes: Vec<String>,
+    /// Charts for the report.
+    pub figures: Vec<CaseFigure>,
 }

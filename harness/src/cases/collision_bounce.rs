@@ -5,7 +5,7 @@
 
 use super::{Case, CaseReport, Headline, Snapshots};
 use super::collision_common::{EngineRun, rapier_row, rapier_settings, run_engine, run_rapier};
-use super::collision_plots::{Series, apex_chart, write_chart};
+use super::collision_plots::{Series, apex_chart, figure};
 use crate::row::RowSink;
 use anyhow::{Context, Result, ensure};
 use engine::collision::Aabb;
@@ -121,14 +121,14 @@ pub fn run() -> Result<CaseReport> {
          before vy turns negative, y + vy²/(2g)."
             .into(),
     );
-    if !cfg!(debug_assertions) {
-        let path = write_chart("collision_bounce_apex.svg", &apex_chart(&elastic, &damped))?;
-        report.notes.push(format!(
-            "![apex per bounce: closed form, engine, rapier2d]({path}) — left: e = 1, apex / h0 \
-             per bounce (the engine stays on 1, rapier2d loses a little at each bounce); right: \
-             e = 0.8, apex per bounce on a log scale against 0.64^n h0."
-        ));
-    }
+    report.figures.push(figure(
+        "collision_bounce_apex.svg",
+        "apex per bounce: closed form, engine, rapier2d",
+        "Left: e = 1, apex / h0 per bounce (the engine stays on 1, rapier2d loses a little at \
+         each bounce); right: e = 0.8, apex per bounce on a log scale against 0.64^n h0."
+            .into(),
+        apex_chart(&elastic, &damped).into(),
+    ));
     Ok(report)
 }
 

@@ -7,7 +7,7 @@ use super::collision_common::{
     CLOSED_FORM_RELATIVE, RAPIER, STILL, engine_motion_after, friction, gravity, rapier_position,
     rapier_settings, run_engine, run_rapier,
 };
-use super::collision_plots::{Series, time_chart, write_chart};
+use super::collision_plots::{Series, figure, time_chart};
 use super::{Case, CaseReport, Headline, Snapshots};
 use crate::row::RowSink;
 use anyhow::Result;
@@ -157,42 +157,43 @@ pub fn run() -> Result<CaseReport> {
         travelled,
     ));
     report.notes.push(run.profile_note(id));
-    if !cfg!(debug_assertions) {
-        let x0 = start.position.x;
-        let closed = (0..=200)
-            .map(|i| {
-                let t = i as f64 * run.scene.duration() / 200.0;
-                let tc = t.min(stop);
-                (t, v0 * tc - 0.5 * mu * g * tc * tc)
-            })
-            .collect();
-        let engine = run
-            .trace
-            .samples
-            .iter()
-            .map(|s| (s.t, s.states[b].position.x - x0))
-            .collect();
-        let rap = rapier
-            .samples
-            .iter()
-            .map(|s| (s[b].t, s[b].position[0] - x0))
-            .collect();
-        let chart = time_chart(
-            "box sliding to a stop: distance travelled",
-            "distance (m)",
-            &[
-                Series::new("closed form v0 t - mu g t²/2, then v0²/(2 mu g)", closed),
-                Series::new("engine (rk4, dt 0.01 s)", engine),
-                Series::new(&format!("rapier2d (dt {rdt} s, 4 substeps)"), rap),
-            ],
-        );
-        let path = write_chart("collision_slide_distance.svg", &[chart])?;
-        report.notes.push(format!(
-            "![distance travelled: closed form, engine, rapier2d]({path}) — the engine lies on \
-             the closed form; rapier2d stops {:.1} mm short.",
+    let x0 = start.position.x;
+    let closed = (0..=200)
+        .map(|i| {
+            let t = i as f64 * run.scene.duration() / 200.0;
+            let tc = t.min(stop);
+            (t, v0 * tc - 0.5 * mu * g * tc * tc)
+        })
+        .collect();
+    let engine = run
+        .trace
+        .samples
+        .iter()
+        .map(|s| (s.t, s.states[b].position.x - x0))
+        .collect();
+    let rap = rapier
+        .samples
+        .iter()
+        .map(|s| (s[b].t, s[b].position[0] - x0))
+        .collect();
+    let chart = time_chart(
+        "box sliding to a stop: distance travelled",
+        "distance (m)",
+        &[
+            Series::new("closed form v0 t - mu g t²/2, then v0²/(2 mu g)", closed),
+            Series::new("engine (rk4, dt 0.01 s)", engine),
+            Series::new(&format!("rapier2d (dt {rdt} s, 4 substeps)"), rap),
+        ],
+    );
+    report.figures.push(figure(
+        "collision_slide_distance.svg",
+        "distance travelled: closed form, engine, rapier2d",
+        format!(
+            "The engine lies on the closed form; rapier2d stops {:.1} mm short.",
             1e3 * (distance - travelled)
-        ));
-    }
+        ),
+        vec![chart],
+    ));
     Ok(report)
 }
 

@@ -26,7 +26,8 @@ pub mod collision_common;
 mod collision_plots;
 
 pub use case::{
-    Case, CaseReport, FigureOutput, FigureSection, Headline, MethodTrace, Snapshots, StudyFigure,
+    Case, CaseFigure, CaseReport, FigureOutput, FigureSection, Headline, MethodTrace, Snapshots,
+    StudyFigure,
 };
 pub use common::{
     DP_TOLERANCE, all_methods, dp_global_bound, dp_reason, failing_rows, sample_at, thin,
