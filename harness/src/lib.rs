@@ -18,7 +18,6 @@ pub mod simulate;
 pub mod snapshot;
 pub mod stability;
 pub mod study;
-pub mod study_report;
 pub mod sweep;
 pub mod timing;
 pub mod tolerance;

@@ -34,6 +34,10 @@ enum Command {
         /// A reduced sweep (for CI and quick checks).
         #[arg(long)]
         quick: bool,
+        /// Print every row's reason under it (by default only the rows
+        /// whose verdict is not obvious from their numbers show theirs).
+        #[arg(long)]
+        reasons: bool,
     },
     /// Runs a scene file of your own.
     Simulate(harness::simulate::SimulateArgs),
@@ -86,8 +90,12 @@ fn real_main() -> Result<bool> {
             harness::simulate::run(&args)?;
             Ok(true)
         }
-        Some(Command::Run { cases, quick }) => run(&cases, quick, cli.out),
-        None => run(&[], false, cli.out),
+        Some(Command::Run {
+            cases,
+            quick,
+            reasons,
+        }) => run(&cases, quick, reasons, cli.out),
+        None => run(&[], false, false, cli.out),
     }
 }
 
@@ -146,7 +154,7 @@ fn select(ids: &[String]) -> Result<Vec<&'static Case>> {
 /// `run`: the selected cases, then, on a full run, the studies; writes the
 /// report into `out` (or the default folder of a full run) and, after a
 /// full run into `reports/`, the README's headline table.
-fn run(ids: &[String], quick: bool, out: Option<PathBuf>) -> Result<bool> {
+fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Result<bool> {
     let settings = if quick {
         SweepSettings::QUICK
     } else {
@@ -169,7 +177,7 @@ fn run(ids: &[String], quick: bool, out: Option<PathBuf>) -> Result<bool> {
     let mut results: Vec<(&str, CaseReport)> = Vec::new();
     for case in selected {
         let report = (case.run)()?;
-        print!("{}", report::console_table(case.id, &report.rows));
+        print!("{}", report::console_table(case.id, &report.rows, reasons));
         results.push((case.id, report));
     }
     // The studies (sweeps, orders, stability, energy, trajectories) run with
@@ -180,8 +188,16 @@ fn run(ids: &[String], quick: bool, out: Option<PathBuf>) -> Result<bool> {
         _ => None,
     };
     if let Some(dir) = &out {
+        // The pictures index has one section per scene drawn: each case's
+        // first scene file (the parry comparison has none).
+        let scenes: Vec<(&str, CaseReport)> = results
+            .iter()
+            .filter_map(|(id, _)| find(id)?.scenes.first())
+            .map(|scene| (*scene, CaseReport::default()))
+            .collect();
+        harness::pictures::write_case_pictures(dir, &scenes)?;
+        // After the pictures, so that the pages can link them.
         report::write(dir, &results, study.as_ref(), &provenance)?;
-        harness::pictures::write_case_pictures(dir, &results)?;
         let broken = harness::links::broken_links(dir)?;
         if !broken.is_empty() {
             bail!(
@@ -206,7 +222,7 @@ fn run(ids: &[String], quick: bool, out: Option<PathBuf>) -> Result<bool> {
     }
     let mut rows: Vec<_> = results.iter().flat_map(|(_, r)| &r.rows).collect();
     if let Some(study) = &study {
-        print!("{}", report::console_table("studies", &study.rows));
+        print!("{}", report::console_table("studies", &study.rows, reasons));
         rows.extend(&study.rows);
     }
     let failed: Vec<_> = rows.iter().filter(|r| !r.pass).collect();
@@ -221,10 +237,27 @@ fn run(ids: &[String], quick: bool, out: Option<PathBuf>) -> Result<bool> {
             d.display()
         ))
     );
+    if !reasons {
+        println!(
+            "Rows whose verdict is not obvious from their numbers show their reason (why:); \
+             --reasons shows every row's."
+        );
+    }
     for r in &failed {
         println!(
-            "FAILED: {} {} {} dt={}: {} vs {}",
-            r.case, r.check, r.method, r.dt, r.value, r.expected
+            "FAILED: {} {}{} {} dt = {} s: {} vs {} {}",
+            r.case,
+            r.check,
+            if r.variant.is_empty() {
+                String::new()
+            } else {
+                format!(" ({})", r.variant)
+            },
+            r.method,
+            report::fmt_dt(r.dt),
+            report::fmt_num(r.value),
+            report::fmt_num(r.expected),
+            report::format::condition(r)
         );
     }
     Ok(failed.is_empty())

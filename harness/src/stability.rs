@@ -51,6 +51,16 @@ pub enum Axis {
     Real,
 }
 
+impl Axis {
+    /// The axis and the unit of its limits, for tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            Axis::Imaginary => "imaginary axis, h w",
+            Axis::Real => "real axis, -h lambda",
+        }
+    }
+}
+
 /// A DP method for the fixed-step runs (its tolerance is not used there).
 fn dormand_prince() -> Method {
     Method::DormandPrince(Tolerance::uniform(1e-9))
@@ -248,17 +258,20 @@ pub fn measure_all(problems: &[Problem]) -> Result<(Vec<Limit>, Vec<Row>)> {
                            tol: f64,
                            cmp: Comparison,
                            reason: String| {
-                rows.push(Row::new(
-                    case,
-                    check,
-                    method.id(),
-                    f64::NAN,
-                    value,
-                    expected,
-                    tol,
-                    cmp,
-                    reason,
-                ));
+                rows.push(
+                    Row::new(
+                        case,
+                        check,
+                        method.id(),
+                        f64::NAN,
+                        value,
+                        expected,
+                        tol,
+                        cmp,
+                        reason,
+                    )
+                    .with_variant(axis.name()),
+                );
             };
             let measured = match theory {
                 Some(limit) if limit.is_finite() => {

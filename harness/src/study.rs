@@ -36,6 +36,8 @@ pub struct SpeedComparison {
     pub case: &'static str,
     /// What the error measures, with its unit.
     pub error_label: &'static str,
+    /// The error's unit.
+    pub unit: &'static str,
     /// The target error (the sweep's unit).
     pub target: f64,
     /// The engine's cheapest run to reach the target.
@@ -53,6 +55,8 @@ pub enum Section {
     WorkPrecision,
     /// Error against step.
     Convergence,
+    /// The largest stable step of each method.
+    Stability,
     /// Where methods fail.
     Failures,
     /// Energy over a long run.
@@ -89,6 +93,8 @@ pub struct StudyResults {
     pub sweeps: Vec<Sweep>,
     /// Rows: observed orders, stability limits, energy bands.
     pub rows: Vec<Row>,
+    /// The section of each row of `rows`.
+    pub row_sections: Vec<Section>,
     /// The measured stability limits.
     pub limits: Vec<Limit>,
     /// Dormand–Prince: slope of log(error) on log(tolerance), per case.
@@ -99,6 +105,26 @@ pub struct StudyResults {
     pub speed: Vec<SpeedComparison>,
     /// Wall time of the studies (s).
     pub seconds: f64,
+}
+
+impl StudyResults {
+    /// Adds `rows` of `section`.
+    fn add_rows(&mut self, section: Section, rows: impl IntoIterator<Item = Row>) {
+        for row in rows {
+            self.rows.push(row);
+            self.row_sections.push(section);
+        }
+    }
+
+    /// The rows of `section`.
+    pub fn rows_of(&self, section: Section) -> Vec<&Row> {
+        self.rows
+            .iter()
+            .zip(&self.row_sections)
+            .filter(|(_, s)| **s == section)
+            .map(|(r, _)| r)
+            .collect()
+    }
 }
 
 impl From<&sweep::SweepPoint> for Cheapest {
@@ -137,6 +163,7 @@ fn speed_comparison(sweep: &Sweep, target: f64) -> SpeedComparison {
     SpeedComparison {
         case: sweep.case,
         error_label: sweep.error_label,
+        unit: sweep.unit,
         target,
         engine_best: cheapest(engine, target),
         rapier_best: cheapest(rapier(), target),
@@ -195,7 +222,7 @@ pub fn run(dir: &Path, settings: SweepSettings) -> Result<StudyResults> {
         let declared = build().with_context(|| format!("sweep of {id}"))?;
         let sweep =
             sweep::run(id, &declared, settings).with_context(|| format!("sweep of {id}"))?;
-        out.rows.extend(order_rows(&sweep));
+        out.add_rows(Section::Convergence, order_rows(&sweep));
         out.dp_slopes
             .push((id.to_string(), tolerance_slope(&sweep)));
         for (section, file) in [
@@ -223,7 +250,7 @@ pub fn run(dir: &Path, settings: SweepSettings) -> Result<StudyResults> {
     progress.set_message("stability");
     let (limits, rows) = stability::measure_all(&stability_problems()?)?;
     out.limits = limits;
-    out.rows.extend(rows);
+    out.add_rows(Section::Stability, rows);
     progress.inc(1);
     for (case, figure) in figures {
         progress.set_message(format!("figures of {}", case.id));
@@ -234,7 +261,7 @@ pub fn run(dir: &Path, settings: SweepSettings) -> Result<StudyResults> {
             case: case.id,
             file: drawn.file,
         });
-        out.rows.extend(drawn.rows);
+        out.add_rows(figure.section.into(), drawn.rows);
         progress.inc(1);
     }
     progress.finish_and_clear();

@@ -42,6 +42,8 @@ pub struct Sweep {
     /// What the error measures, with its unit (points hold its maximum over
     /// the run and its value at the end).
     pub error_label: &'static str,
+    /// The error's unit (`m`, `rad`, `-`).
+    pub unit: &'static str,
     /// The reference the error is measured against.
     pub reference: &'static str,
     /// Size of the solution (same unit): errors above it are "unstable".
@@ -97,6 +99,8 @@ pub type RunFn = Box<dyn Fn(Method, f64, bool) -> Result<Measured>>;
 pub struct SweepCase {
     /// What the error measures, with its unit.
     pub error_label: &'static str,
+    /// The error's unit (`m`, `rad`, `-`).
+    pub unit: &'static str,
     /// The reference the error is measured against.
     pub reference: &'static str,
     /// The coarsest step (s); each level halves it.
@@ -223,6 +227,7 @@ pub fn run(id: &'static str, case: &SweepCase, settings: SweepSettings) -> Resul
     Ok(Sweep {
         case: id,
         error_label: case.error_label,
+        unit: case.unit,
         reference: case.reference,
         scale: case.scale,
         points,

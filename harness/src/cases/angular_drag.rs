@@ -73,6 +73,7 @@ fn sweep() -> Result<SweepCase> {
     })?;
     Ok(SweepCase {
         error_label: "|angle error| over 0-8.7 s (rad)",
+        unit: "rad",
         reference: "the closed form (tanh / ln cosh while driven, hyperbolic decay after)",
         h0: 0.1,
         scale: 1.0,

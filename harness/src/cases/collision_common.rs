@@ -131,8 +131,10 @@ pub fn rapier_scene(scene: &Scene) -> Result<RapierContactScene> {
                 gravity[1] += g.y;
             }
             other => bail!(
-                "{}: {other:?} has no counterpart in the rapier collision scenes",
-                scene.origin()
+                "{}: a force of type '{}' has no counterpart in the rapier collision scenes \
+                 (only gravity without a window has)",
+                scene.origin(),
+                force_type(other)
             ),
         }
     }
@@ -145,6 +147,18 @@ pub fn rapier_scene(scene: &Scene) -> Result<RapierContactScene> {
         restitution: contact.restitution,
         friction: contact.friction,
     })
+}
+
+/// The `type` of a force as the scene file writes it.
+fn force_type(force: &ForceSpec) -> &'static str {
+    match force {
+        ForceSpec::Gravity { .. } => "gravity",
+        ForceSpec::Spring { .. } => "spring",
+        ForceSpec::Drag { .. } => "drag",
+        ForceSpec::AngularDrag { .. } => "angular_drag",
+        ForceSpec::PointForce { .. } => "point_force",
+        ForceSpec::Torque { .. } => "torque",
+    }
 }
 
 /// rapier's step for a scene: the scene's dt, rapier's default 4 substeps.

@@ -7,7 +7,7 @@ use super::collision_common::{
     CLOSED_FORM_RELATIVE, RAPIER, STILL, friction, gravity, rapier_position, rapier_settings,
     run_engine, run_rapier,
 };
-use super::{Case, CaseReport, Snapshots};
+use super::{Case, CaseReport, Headline, Snapshots};
 use crate::row::RowSink;
 use anyhow::Result;
 use nalgebra::Vector2;
@@ -16,6 +16,7 @@ use nalgebra::Vector2;
 pub const CASE: Case = Case {
     scenes: &["collision_incline_slide", "collision_incline_hold"],
     snapshots: Snapshots::ContactEvents,
+    headline: &[Headline::new("acceleration_slide", "rk4")],
     ..Case::new(
         "collision_incline",
         "Case III: a box on an incline on both sides of tan θ = mu",

@@ -6,7 +6,7 @@
 use super::collision_common::{
     EngineRun, IMPULSE_ROUND_OFF, kinetic_energy, rapier_row, rapier_settings, run_rapier,
 };
-use super::{Case, CaseReport, Snapshots};
+use super::{Case, CaseReport, Headline, Snapshots};
 use crate::row::RowSink;
 use crate::scenes;
 use anyhow::{Context, Result, ensure};
@@ -18,6 +18,7 @@ use nalgebra::Vector2;
 pub const CASE: Case = Case {
     scenes: &["collision_off_centre", "collision_off_centre_half"],
     snapshots: Snapshots::ContactEvents,
+    headline: &[Headline::new("omega_a_after_e0.5", "rk4")],
     ..Case::new(
         "collision_off_centre",
         "Case III: off-centre impact of two boxes against eq. 7.15, momentum and energy",
@@ -171,7 +172,11 @@ fn off_centre(report: &mut CaseReport, id: &str, e: f64) -> Result<()> {
     let impacts = run.events(ContactEventKind::Impact);
     ensure!(
         impacts.len() == 1 && impacts[0].points == 1,
-        "{id}: {impacts:?}"
+        "{id}: expected one impact at one point, found {} impact(s){}",
+        impacts.len(),
+        impacts
+            .first()
+            .map_or(String::new(), |i| format!(", the first at {} point(s)", i.points))
     );
     let hit = impacts[0];
     let s = run.world.states();

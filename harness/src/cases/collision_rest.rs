@@ -5,7 +5,7 @@
 use super::collision_common::{
     RAPIER, STILL, rapier_position, rapier_settings, run_engine, run_rapier,
 };
-use super::{Case, CaseReport, Snapshots};
+use super::{Case, CaseReport, Headline, Snapshots};
 use crate::row::RowSink;
 use anyhow::Result;
 
@@ -13,6 +13,7 @@ use anyhow::Result;
 pub const CASE: Case = Case {
     scenes: &["collision_rest"],
     snapshots: Snapshots::ContactEvents,
+    headline: &[Headline::new("motion", "rk4")],
     ..Case::new(
         "collision_rest",
         "Case III: a box resting on the ground for 10 s (seed §7.1, after Baraff)",

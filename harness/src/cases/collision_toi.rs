@@ -50,6 +50,18 @@ pub fn rotating_contact_time() -> f64 {
     lo
 }
 
+/// A variant name in words: `OutOfIterations` → `out of iterations`.
+fn words(name: &str) -> String {
+    let mut out = String::new();
+    for c in name.chars() {
+        if c.is_uppercase() && !out.is_empty() {
+            out.push(' ');
+        }
+        out.extend(c.to_lowercase());
+    }
+    out
+}
+
 /// The first impact of a world run of scene `id` with `method`.
 fn world_impact(id: &str, method: ToiMethod) -> Result<(ContactEvent, f64, f64)> {
     let scene = scenes::load(id)?;
@@ -194,9 +206,10 @@ pub fn run() -> Result<CaseReport> {
             exact,
             1e-9,
             format!(
-                "parry2d-f64 0.31 {} (status {:?}); its GJK-based cast stops within its own \
+                "parry2d-f64 0.31 {} (status: {}); its GJK-based cast stops within its own \
                  distance tolerance (~1e-10 m for these sizes): 1e-9 s at >= 1 m/s",
-                parry.method, parry.status
+                parry.method,
+                words(&format!("{:?}", parry.status))
             ),
         );
         for (name, t) in &world_times {
@@ -233,9 +246,13 @@ pub fn run() -> Result<CaseReport> {
         );
         report.notes.push(format!(
             "`{id}`: exact {exact:.15} s; world bisection {:.15} s, world conservative \
-             advancement {:.15} s; parry2d {} {:.15} s ({:?}); rapier2d's first contact impulse \
+             advancement {:.15} s; parry2d {} {:.15} s (status: {}); rapier2d's first contact impulse \
              in the step ending at {first} s (dt = {rdt} s).",
-            world_times[0].1, world_times[1].1, parry.method, parry.time, parry.status
+            world_times[0].1,
+            world_times[1].1,
+            parry.method,
+            parry.time,
+            words(&format!("{:?}", parry.status))
         ));
     }
     Ok(report)

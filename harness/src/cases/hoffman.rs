@@ -152,6 +152,7 @@ fn sweep() -> Result<SweepCase> {
         .context("scenes/hoffman.toml must hold a [linear_test]")?;
     Ok(SweepCase {
         error_label: "|y error| over 0-1 s (-)",
+        unit: "-",
         reference: "the exact solution t + 2 - e^(-1000 t)",
         h0: 0.1,
         scale: 1.0,

@@ -165,6 +165,7 @@ fn sweep() -> Result<SweepCase> {
     })?;
     Ok(SweepCase {
         error_label: "|position error| over 0-5 s (m)",
+        unit: "m",
         reference: "an independent DOP853 solve (references::DragReference)",
         h0: 0.2,
         scale: 100.0,

@@ -168,8 +168,10 @@ pub fn run() -> Result<CaseReport> {
                 "explicit Euler grows by (1 + (hw)^2)^(n/2) (CASES.md: x8.3e5 at 57.2 s); 1e-9 relative round-off",
             );
         }
-        let band = |lo: f64, hi: f64| {
-            format!("CASES.md energy band [{lo}, {hi}] (quoted to 4 decimals: +/- half a unit)")
+        let band = |lo: f64, hi: f64, decimals: i32| {
+            format!(
+                "CASES.md energy band [{lo}, {hi}] (quoted to {decimals} decimals: +/- half a unit)"
+            )
         };
         match method {
             Method::SemiImplicitEuler => {
@@ -178,18 +180,18 @@ pub fn run() -> Result<CaseReport> {
                     e_min,
                     -0.1365,
                     half_unit(4),
-                    band(-0.1365, 0.1878),
+                    band(-0.1365, 0.1878, 4),
                 );
                 sink.at_most(
                     "energy_max",
                     e_max,
                     0.1878,
                     half_unit(4),
-                    band(-0.1365, 0.1878),
+                    band(-0.1365, 0.1878, 4),
                 );
             }
             Method::VelocityVerlet => {
-                sink.at_least("energy_min", e_min, -0.025, half_unit(3), band(-0.025, 0.0));
+                sink.at_least("energy_min", e_min, -0.025, half_unit(3), band(-0.025, 0.0, 3));
                 sink.at_most(
                     "energy_max",
                     e_max,
@@ -224,6 +226,7 @@ fn sweep() -> Result<SweepCase> {
     })?;
     Ok(SweepCase {
         error_label: "|x error| over 0-57.2 s (m)",
+        unit: "m",
         reference: "the closed form l0 + (x0 - l0) cos(w t)",
         h0: 0.2,
         scale: exact.x0 - exact.rest_length,
