@@ -80,11 +80,14 @@ pub fn markdown(rows: &[&Row], with_case: bool) -> String {
 }
 
 /// The plain-text table printed on the console for `title`: columns as
-/// wide as their contents; under each row whose verdict is not obvious
-/// from its numbers (all rows when `all_reasons`), its reason, indented.
+/// wide as their contents (a `case` column when the rows come from several
+/// cases); under each row whose verdict is not obvious from its numbers
+/// (all rows when `all_reasons`), its reason, indented.
 pub fn console(title: &str, rows: &[Row], all_reasons: bool) -> String {
     let with_variant = rows.iter().any(|r| !r.variant.is_empty());
-    let mut header = vec!["check"];
+    let with_case = rows.iter().any(|r| r.case != rows[0].case);
+    let mut header = if with_case { vec!["case"] } else { vec![] };
+    header.push("check");
     if with_variant {
         header.push("variant");
     }
@@ -97,7 +100,12 @@ pub fn console(title: &str, rows: &[Row], all_reasons: bool) -> String {
     let table: Vec<Vec<String>> = rows
         .iter()
         .map(|r| {
-            let mut cells = vec![r.check.clone()];
+            let mut cells = if with_case {
+                vec![r.case.clone()]
+            } else {
+                vec![]
+            };
+            cells.push(r.check.clone());
             if with_variant {
                 cells.push(r.variant.clone());
             }
@@ -198,6 +206,15 @@ mod tests {
         assert!(lines[3].starts_with("    why: tolerance"), "{text}");
         assert!(lines[4].contains("2.44e-5"), "{text}");
         assert!(console("spring", &rows(), true).contains("why: median"));
+    }
+
+    #[test]
+    fn rows_of_several_cases_get_a_case_column() {
+        let mut r = rows();
+        r[1].case = "hoffman".into();
+        let text = console("studies", &r, false);
+        assert!(text.lines().nth(1).unwrap().starts_with("case "), "{text}");
+        assert!(text.contains("\nhoffman "), "{text}");
     }
 
     #[test]
