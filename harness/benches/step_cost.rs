@@ -1,5 +1,6 @@
-//! Cost of a step per method on the spring (case I) and the drag projectile
-//! (case II), both built from their scene files. Run with
+//! Cost of a step per method on the scene of every case that declares
+//! `bench: true` (the spring of case I and the drag projectile of case II),
+//! built from its scene file. Run with
 //! `cargo bench -p harness`; CI only compiles it. Ratios between methods are
 //! meaningful within one run; absolute times depend on the machine.
 //!
@@ -10,7 +11,7 @@
 //! [`STEPS`]-step batch.
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
-use harness::cases::all_methods;
+use harness::cases::{CASES, all_methods};
 use harness::scenes;
 use std::hint::black_box;
 
@@ -38,12 +39,15 @@ fn bench_scene(c: &mut Criterion, id: &str) {
     group.finish();
 }
 
-fn spring(c: &mut Criterion) {
-    bench_scene(c, "spring");
-}
-
-fn projectile_drag(c: &mut Criterion) {
-    bench_scene(c, "projectile_drag");
+/// Every case that declares a bench, on its first scene.
+fn declared(c: &mut Criterion) {
+    for case in CASES.iter().filter(|case| case.bench) {
+        let scene = case
+            .scenes
+            .first()
+            .unwrap_or_else(|| panic!("case '{}' declares a bench but no scene", case.id));
+        bench_scene(c, scene);
+    }
 }
 
 /// Criterion's own charts go through plotters, which this workspace builds
@@ -57,6 +61,6 @@ fn config() -> Criterion {
 criterion_group! {
     name = benches;
     config = config();
-    targets = spring, projectile_drag
+    targets = declared
 }
 criterion_main!(benches);

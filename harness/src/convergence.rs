@@ -165,6 +165,8 @@ mod tests {
         Sweep {
             case: "synthetic",
             error_label: "e",
+            unit: "-",
+            reference: "e(h) = 0.5 h^p + floor",
             scale: 1.0,
             points,
         }

@@ -5,6 +5,7 @@
 
 pub mod cases;
 pub mod convergence;
+pub mod links;
 pub mod pictures;
 pub mod plots;
 pub mod progress;
@@ -17,7 +18,7 @@ pub mod simulate;
 pub mod snapshot;
 pub mod stability;
 pub mod study;
-pub mod study_report;
 pub mod sweep;
 pub mod timing;
 pub mod tolerance;
+pub mod workspace;

@@ -3,10 +3,10 @@
 
 use anyhow::{Result, bail};
 use clap::{Parser, Subcommand};
-use harness::cases::{CASES, CaseReport, find};
-use harness::report;
+use harness::cases::{CASES, Case, CaseReport, find};
 use harness::sweep::SweepSettings;
-use std::path::PathBuf;
+use harness::{report, workspace};
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Validation harness of the 2D physics engine.
@@ -15,10 +15,11 @@ use std::time::Instant;
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
-    /// Where to write the report. A full run writes `reports/` by default; a
-    /// run of selected cases writes nothing unless this is given, so it never
-    /// replaces the full report with a partial one.
-    #[arg(long)]
+    /// Where `run` writes its report (before or after `run`). A full run
+    /// writes the workspace's `reports/` by default (`target/quick-report/`
+    /// with `--quick`); a run of selected cases writes nothing unless this
+    /// is given, so it never replaces the full report with a partial one.
+    #[arg(long, global = true, value_name = "DIR")]
     out: Option<PathBuf>,
 }
 
@@ -33,6 +34,10 @@ enum Command {
         /// A reduced sweep (for CI and quick checks).
         #[arg(long)]
         quick: bool,
+        /// Print every row's reason under it (by default only the rows
+        /// whose verdict is not obvious from their numbers show theirs).
+        #[arg(long)]
+        reasons: bool,
     },
     /// Runs a scene file of your own.
     Simulate(harness::simulate::SimulateArgs),
@@ -74,81 +79,150 @@ fn error_message(error: &anyhow::Error) -> String {
 
 fn real_main() -> Result<bool> {
     let cli = Cli::parse();
-    let mut settings = SweepSettings::FULL;
-    let selected: Vec<String> = match cli.command {
+    match cli.command {
         Some(Command::List) => {
-            println!("Cases:");
-            for c in CASES {
-                println!("  {:<16} {}", c.id, c.title);
-            }
-            println!("Scene files ({}):", harness::scenes::scenes_dir().display());
-            for path in harness::scenes::list()? {
-                println!("  {}", path.display());
-            }
-            return Ok(true);
+            refuse_out(cli.out.as_deref(), "list")?;
+            list()?;
+            Ok(true)
         }
         Some(Command::Simulate(args)) => {
+            refuse_out(cli.out.as_deref(), "simulate")?;
             harness::simulate::run(&args)?;
-            return Ok(true);
+            Ok(true)
         }
-        Some(Command::Run { cases, quick }) if !cases.is_empty() => {
-            settings = if quick {
-                SweepSettings::QUICK
+        Some(Command::Run {
+            cases,
+            quick,
+            reasons,
+        }) => run(&cases, quick, reasons, cli.out),
+        None => run(&[], false, false, cli.out),
+    }
+}
+
+/// `--out` is `run`'s: refused elsewhere rather than ignored.
+fn refuse_out(out: Option<&Path>, command: &str) -> Result<()> {
+    if let Some(dir) = out {
+        bail!(
+            "--out {}: `{command}` writes no report; --out DIR applies to `run`{}",
+            dir.display(),
+            if command == "simulate" {
+                " (simulate writes where --trace, --svg and --gif say)"
             } else {
-                settings
-            };
-            cases
+                ""
+            }
+        );
+    }
+    Ok(())
+}
+
+/// `list`: the cases with their scene files, then every scene file.
+fn list() -> Result<()> {
+    println!("Cases:");
+    let width = CASES.iter().map(|c| c.id.len()).max().unwrap_or(0);
+    for c in CASES {
+        println!("  {:<width$}  {}", c.id, c.title);
+        if !c.scenes.is_empty() {
+            println!("  {:<width$}  scenes: {}", "", c.scenes.join(", "));
         }
-        Some(Command::Run { quick: true, .. }) => {
-            settings = SweepSettings::QUICK;
-            CASES.iter().map(|c| c.id.to_string()).collect()
+    }
+    println!("Scene files ({}):", harness::scenes::scenes_dir().display());
+    for path in harness::scenes::list()? {
+        println!("  {}", path.display());
+    }
+    Ok(())
+}
+
+/// The cases named, each once, in the order given; every case when none
+/// is. An unknown id is refused before anything runs.
+fn select(ids: &[String]) -> Result<Vec<&'static Case>> {
+    if ids.is_empty() {
+        return Ok(CASES.iter().collect());
+    }
+    let mut selected: Vec<&'static Case> = Vec::new();
+    for id in ids {
+        let Some(case) = find(id) else {
+            let known: Vec<&str> = CASES.iter().map(|c| c.id).collect();
+            bail!("unknown case '{id}'; the cases are: {}", known.join(", "));
+        };
+        if !selected.iter().any(|c| c.id == case.id) {
+            selected.push(case);
         }
-        _ => CASES.iter().map(|c| c.id.to_string()).collect(),
+    }
+    Ok(selected)
+}
+
+/// `run`: the selected cases, then, on a full run, the studies; writes the
+/// report into `out` (or the default folder of a full run) and, after a
+/// full run into `reports/`, the README's headline table.
+fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Result<bool> {
+    let settings = if quick {
+        SweepSettings::QUICK
+    } else {
+        SweepSettings::FULL
     };
+    let selected = select(ids)?;
+    let full = selected.len() == CASES.len();
+    let out = out.or_else(|| {
+        full.then(|| {
+            if quick {
+                workspace::quick_report_dir()
+            } else {
+                workspace::reports_dir()
+            }
+        })
+    });
     // Read before anything is written, so the commit's state is the code's.
     let provenance = harness::provenance::paragraph(settings.timing_runs);
     let started = Instant::now();
     let mut results: Vec<(&str, CaseReport)> = Vec::new();
-    for id in &selected {
-        let Some(case) = find(id) else {
-            bail!("unknown case '{id}' (see `harness list`)");
-        };
+    for case in selected {
         let report = (case.run)()?;
-        print!("{}", report::console_table(case.id, &report.rows));
+        print!("{}", report::console_table(case.id, &report.rows, reasons));
         results.push((case.id, report));
     }
-    let full = results.len() == CASES.len();
-    // A full run writes reports/; a quick one (reduced timing) writes
-    // target/quick-report/ so it never replaces the committed report.
-    let quick = settings == SweepSettings::QUICK;
-    let default_dir = if quick {
-        "target/quick-report"
-    } else {
-        "reports"
-    };
-    let out = cli.out.or_else(|| full.then(|| PathBuf::from(default_dir)));
     // The studies (sweeps, orders, stability, energy, trajectories) run with
-    // every full run; a run of selected cases checks only those.
+    // every full run that writes a report; a run of selected cases checks
+    // only those.
     let study = match (&out, full) {
         (Some(dir), true) => Some(harness::study::run(dir, settings)?),
         _ => None,
     };
     if let Some(dir) = &out {
+        // The pictures index has one section per scene drawn: each case's
+        // first scene file (the parry comparison has none).
+        let scenes: Vec<(&str, CaseReport)> = results
+            .iter()
+            .filter_map(|(id, _)| find(id)?.scenes.first())
+            .map(|scene| (*scene, CaseReport::default()))
+            .collect();
+        harness::pictures::write_case_pictures(dir, &scenes)?;
+        // After the pictures, so that the pages can link them.
         report::write(dir, &results, study.as_ref(), &provenance)?;
-        harness::pictures::write_case_pictures(dir, &results)?;
+        let broken = harness::links::broken_links(dir)?;
+        if !broken.is_empty() {
+            bail!(
+                "the report in {} has broken links:\n  {}",
+                dir.display(),
+                broken.join("\n  ")
+            );
+        }
     }
-    // The README's headline table is printed by the harness too (only on a
-    // full run, so that a partial run never drops rows from it).
-    if full && !quick {
+    // The README's headline table is printed by the harness too: only by a
+    // full run writing the committed report, so that neither a partial run
+    // nor a report written elsewhere changes it.
+    let into_reports = out
+        .as_deref()
+        .is_some_and(|d| workspace::same_dir(d, &workspace::reports_dir()));
+    if full && !quick && into_reports {
         let mut all: Vec<&harness::row::Row> = results.iter().flat_map(|(_, r)| &r.rows).collect();
         if let Some(study) = &study {
             all.extend(&study.rows);
         }
-        report::update_readme(std::path::Path::new("README.md"), &all)?;
+        report::update_readme(&workspace::readme(), &all)?;
     }
     let mut rows: Vec<_> = results.iter().flat_map(|(_, r)| &r.rows).collect();
     if let Some(study) = &study {
-        print!("{}", report::console_table("studies", &study.rows));
+        print!("{}", report::console_table("studies", &study.rows, reasons));
         rows.extend(&study.rows);
     }
     let failed: Vec<_> = rows.iter().filter(|r| !r.pass).collect();
@@ -163,10 +237,27 @@ fn real_main() -> Result<bool> {
             d.display()
         ))
     );
+    if !reasons {
+        println!(
+            "Rows whose verdict is not obvious from their numbers show their reason (why:); \
+             --reasons shows every row's."
+        );
+    }
     for r in &failed {
         println!(
-            "FAILED: {} {} {} dt={}: {} vs {}",
-            r.case, r.check, r.method, r.dt, r.value, r.expected
+            "FAILED: {} {}{} {} dt = {} s: {} vs {} {}",
+            r.case,
+            r.check,
+            if r.variant.is_empty() {
+                String::new()
+            } else {
+                format!(" ({})", r.variant)
+            },
+            r.method,
+            report::fmt_dt(r.dt),
+            report::fmt_num(r.value),
+            report::fmt_num(r.expected),
+            report::format::condition(r)
         );
     }
     Ok(failed.is_empty())

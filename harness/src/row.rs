@@ -25,6 +25,9 @@ pub struct Row {
     pub check: String,
     /// Method id.
     pub method: String,
+    /// What else tells this row from a row of the same case, check, method
+    /// and step (e.g. the stability axis); empty when nothing does.
+    pub variant: String,
     /// Step (s); for Dormand–Prince the output interval.
     pub dt: f64,
     /// What the engine produced.
@@ -65,6 +68,7 @@ impl Row {
             case: case.into(),
             check: check.into(),
             method: method.into(),
+            variant: String::new(),
             dt,
             value,
             expected,
@@ -73,6 +77,14 @@ impl Row {
             comparison,
             reason: reason.into(),
         }
+    }
+}
+
+impl Row {
+    /// The same row told apart from its neighbours by `variant`.
+    pub fn with_variant(mut self, variant: impl Into<String>) -> Self {
+        self.variant = variant.into();
+        self
     }
 }
 

@@ -15,13 +15,7 @@ pub const SCENES_DIR_VAR: &str = "HARNESS_SCENES";
 pub fn scenes_dir() -> PathBuf {
     std::env::var_os(SCENES_DIR_VAR)
         .map(PathBuf::from)
-        .unwrap_or_else(|| {
-            let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-                .join("..")
-                .join("scenes");
-            // Shown to users in `list` and errors: without the `..`.
-            std::fs::canonicalize(&dir).unwrap_or(dir)
-        })
+        .unwrap_or_else(|| crate::workspace::root().join("scenes"))
 }
 
 /// The path of scene `id` (`spring` → `scenes/spring.toml`).

@@ -51,31 +51,57 @@ pub enum Axis {
     Real,
 }
 
+impl Axis {
+    /// The axis and the unit of its limits, for tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            Axis::Imaginary => "imaginary axis, h w",
+            Axis::Real => "real axis, -h lambda",
+        }
+    }
+}
+
 /// A DP method for the fixed-step runs (its tolerance is not used there).
 fn dormand_prince() -> Method {
     Method::DormandPrince(Tolerance::uniform(1e-9))
 }
 
-/// Whether `method` stays stable at step `h` on `axis`.
-pub fn is_stable(method: Method, axis: Axis, h: f64) -> Result<bool> {
+/// A test problem of the stability study: a case's scene on one axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Problem<'a> {
+    /// The case its rows belong to.
+    pub case: &'a str,
+    /// Its scene (`scenes/<scene>.toml`): the seed spring on the imaginary
+    /// axis, a `[linear_test]` on the real axis.
+    pub scene: &'a str,
+    /// The axis.
+    pub axis: Axis,
+}
+
+/// Whether `method` stays stable at step `h` (s) on scene `scene`, the
+/// test problem of `axis`.
+pub fn is_stable(scene: &str, method: Method, axis: Axis, h: f64) -> Result<bool> {
     match axis {
-        Axis::Imaginary => oscillator_stable(method, h),
-        Axis::Real => hoffman_stable(method, h),
+        Axis::Imaginary => oscillator_stable(scene, method, h),
+        Axis::Real => linear_test_stable(scene, method, h),
     }
 }
 
-fn oscillator_stable(method: Method, h: f64) -> Result<bool> {
+fn oscillator_stable(scene: &str, method: Method, h: f64) -> Result<bool> {
     let bound = ENERGY_BOUND;
-    Ok(matches!(oscillator_growth(method, h, bound)?, Some(g) if g <= 1.0 + GROWTH_THRESHOLD))
+    Ok(
+        matches!(oscillator_growth(scene, method, h, bound)?, Some(g) if g <= 1.0 + GROWTH_THRESHOLD),
+    )
 }
 
-/// Amplitude growth per step of `method` on the seed spring at step `h`:
+/// Amplitude growth per step of `method` on the seed spring (scene
+/// `scene`) at step `h`:
 /// `(max E over the second half / max E over the first half)^(1/n)` over
 /// 2 × [`OSCILLATOR_STEPS`] steps, square-rooted (energy is quadratic in
 /// the amplitude). Symplectic methods' bounded oscillation gives 1; a
 /// Runge–Kutta method gives its |R(ihω)|. `None` when the engine reported a
 /// blow-up (energy past `bound` × E0, or a non-finite state).
-fn oscillator_growth(method: Method, h: f64, bound: f64) -> Result<Option<f64>> {
+fn oscillator_growth(scene: &str, method: Method, h: f64, bound: f64) -> Result<Option<f64>> {
     let exact = SpringOscillator::seed();
     let n = OSCILLATOR_STEPS as usize;
     let mut energies = Vec::with_capacity(2 * n);
@@ -98,7 +124,7 @@ fn oscillator_growth(method: Method, h: f64, bound: f64) -> Result<Option<f64>> 
             energies.push(e);
         }
     } else {
-        let mut world = scenes::world("spring", method)?;
+        let mut world = scenes::world(scene, method)?;
         let limit = bound * exact.energy();
         world.set_energy_limit(limit.is_finite().then_some(limit))?;
         for i in 1..=2 * n {
@@ -114,12 +140,12 @@ fn oscillator_growth(method: Method, h: f64, bound: f64) -> Result<Option<f64>> 
     Ok(Some((second / first).powf(0.5 / n as f64)))
 }
 
-fn hoffman_stable(method: Method, h: f64) -> Result<bool> {
-    // The case's own ODE (scenes/hoffman.toml), stepped with fixed steps
+fn linear_test_stable(scene: &str, method: Method, h: f64) -> Result<bool> {
+    // The case's own ODE (its `[linear_test]`), stepped with fixed steps
     // (Dormand–Prince included); e = y − g(t) must not grow past |e0| = 1.
-    let mut sys = scenes::load("hoffman")?
+    let mut sys = scenes::load(scene)?
         .linear_test()
-        .context("scenes/hoffman.toml must hold a [linear_test]")?;
+        .with_context(|| format!("scenes/{scene}.toml must hold a [linear_test]"))?;
     let mut integrator = Integrator::new(method)?;
     let mut y = vec![sys.y0];
     let mut next = y.clone();
@@ -141,14 +167,20 @@ fn hoffman_stable(method: Method, h: f64) -> Result<bool> {
 
 /// The largest stable step between `lo` (stable) and `hi` (unstable),
 /// found by bisection; `None` when `lo` is not stable or `hi` is.
-pub fn largest_stable_step(method: Method, axis: Axis, lo: f64, hi: f64) -> Result<Option<f64>> {
-    if !is_stable(method, axis, lo)? || is_stable(method, axis, hi)? {
+pub fn largest_stable_step(
+    scene: &str,
+    method: Method,
+    axis: Axis,
+    lo: f64,
+    hi: f64,
+) -> Result<Option<f64>> {
+    if !is_stable(scene, method, axis, lo)? || is_stable(scene, method, axis, hi)? {
         return Ok(None);
     }
     let (mut lo, mut hi) = (lo, hi);
     while (hi - lo) > BISECTION_WIDTH * lo {
         let mid = 0.5 * (lo + hi);
-        if is_stable(method, axis, mid)? {
+        if is_stable(scene, method, axis, mid)? {
             lo = mid;
         } else {
             hi = mid;
@@ -197,15 +229,15 @@ pub struct Limit {
     pub theory: Option<f64>,
 }
 
-/// Measures every method's limit on both axes and returns rows comparing
-/// them with CASES.md.
-pub fn measure_all() -> Result<(Vec<Limit>, Vec<Row>)> {
+/// Measures every method's limit on each problem's axis and returns rows
+/// comparing them with CASES.md.
+pub fn measure_all(problems: &[Problem]) -> Result<(Vec<Limit>, Vec<Row>)> {
     let omega = SpringOscillator::seed().omega();
     let lambda = Hoffman::seed().lambda.abs();
     let mut limits = Vec::new();
     let mut rows = Vec::new();
     for method in methods() {
-        for axis in [Axis::Imaginary, Axis::Real] {
+        for &Problem { case, scene, axis } in problems {
             if axis == Axis::Real && method.needs_second_order() {
                 continue;
             }
@@ -213,11 +245,6 @@ pub fn measure_all() -> Result<(Vec<Limit>, Vec<Row>)> {
                 omega
             } else {
                 lambda
-            };
-            let case = if axis == Axis::Imaginary {
-                "spring"
-            } else {
-                "hoffman"
             };
             let unit = if axis == Axis::Imaginary {
                 "h w"
@@ -231,21 +258,25 @@ pub fn measure_all() -> Result<(Vec<Limit>, Vec<Row>)> {
                            tol: f64,
                            cmp: Comparison,
                            reason: String| {
-                rows.push(Row::new(
-                    case,
-                    check,
-                    method.id(),
-                    f64::NAN,
-                    value,
-                    expected,
-                    tol,
-                    cmp,
-                    reason,
-                ));
+                rows.push(
+                    Row::new(
+                        case,
+                        check,
+                        method.id(),
+                        f64::NAN,
+                        value,
+                        expected,
+                        tol,
+                        cmp,
+                        reason,
+                    )
+                    .with_variant(axis.name()),
+                );
             };
             let measured = match theory {
                 Some(limit) if limit.is_finite() => {
                     let found = largest_stable_step(
+                        scene,
                         method,
                         axis,
                         0.5 * limit / scale,
@@ -267,7 +298,7 @@ pub fn measure_all() -> Result<(Vec<Limit>, Vec<Row>)> {
                 Some(_) => {
                     // "Any step": stable far beyond every explicit limit.
                     let h = 1000.0 / scale;
-                    let stable = is_stable(method, axis, h)?;
+                    let stable = is_stable(scene, method, axis, h)?;
                     row(
                         "stable_at_1000",
                         f64::from(u8::from(stable)),
@@ -282,7 +313,7 @@ pub fn measure_all() -> Result<(Vec<Limit>, Vec<Row>)> {
                     // "No step": the amplitude grows at every step, even a
                     // small one; measure that growth against theory.
                     let y = 0.05;
-                    let measured = oscillator_growth(method, y / scale, f64::MAX)?
+                    let measured = oscillator_growth(scene, method, y / scale, f64::MAX)?
                         .map_or(f64::INFINITY, |g| g - 1.0);
                     let expected = references::linear_stability::oscillator_growth_per_step(
                         method,
@@ -323,26 +354,26 @@ mod tests {
         // 1 % either side of hw = 2 sqrt 2 (CASES.md).
         let w = SpringOscillator::seed().omega();
         let limit = 2.0 * 2f64.sqrt() / w;
-        assert!(is_stable(Method::Rk4, Axis::Imaginary, 0.99 * limit).unwrap());
-        assert!(!is_stable(Method::Rk4, Axis::Imaginary, 1.01 * limit).unwrap());
+        assert!(is_stable("spring", Method::Rk4, Axis::Imaginary, 0.99 * limit).unwrap());
+        assert!(!is_stable("spring", Method::Rk4, Axis::Imaginary, 1.01 * limit).unwrap());
     }
 
     #[test]
     fn verlet_is_stable_below_hw_two() {
         let w = SpringOscillator::seed().omega();
-        assert!(is_stable(Method::VelocityVerlet, Axis::Imaginary, 1.99 / w).unwrap());
-        assert!(!is_stable(Method::VelocityVerlet, Axis::Imaginary, 2.01 / w).unwrap());
+        assert!(is_stable("spring", Method::VelocityVerlet, Axis::Imaginary, 1.99 / w).unwrap());
+        assert!(!is_stable("spring", Method::VelocityVerlet, Axis::Imaginary, 2.01 / w).unwrap());
     }
 
     #[test]
     fn explicit_euler_on_hoffman_switches_at_h_0002() {
-        assert!(is_stable(Method::ExplicitEuler, Axis::Real, 0.00198).unwrap());
-        assert!(!is_stable(Method::ExplicitEuler, Axis::Real, 0.00202).unwrap());
+        assert!(is_stable("hoffman", Method::ExplicitEuler, Axis::Real, 0.00198).unwrap());
+        assert!(!is_stable("hoffman", Method::ExplicitEuler, Axis::Real, 0.00202).unwrap());
     }
 
     #[test]
     fn bisection_finds_the_euler_limit_within_one_percent() {
-        let h = largest_stable_step(Method::ExplicitEuler, Axis::Real, 0.001, 0.003)
+        let h = largest_stable_step("hoffman", Method::ExplicitEuler, Axis::Real, 0.001, 0.003)
             .unwrap()
             .unwrap();
         assert!((h * 1000.0 - 2.0).abs() < 0.02, "{h}");

@@ -9,9 +9,8 @@ use crate::scenes;
 use crate::timing::min_time;
 use anyhow::Result;
 use engine::time_grid::grid_time;
-use engine::{EngineError, Method, Tolerance, World, integrate_to, step_count};
+use engine::{EngineError, Method, Tolerance, World, step_count};
 use references::rapier_world::{RapierError, RapierSample, RapierSettings, run_single_body};
-use references::{AngularDrag, DragReference, Hoffman, SpringOscillator};
 use serde::Serialize;
 
 /// One point of a sweep.
@@ -43,6 +42,10 @@ pub struct Sweep {
     /// What the error measures, with its unit (points hold its maximum over
     /// the run and its value at the end).
     pub error_label: &'static str,
+    /// The error's unit (`m`, `rad`, `-`).
+    pub unit: &'static str,
+    /// The reference the error is measured against.
+    pub reference: &'static str,
     /// Size of the solution (same unit): errors above it are "unstable".
     pub scale: f64,
     /// The points, method by method, coarse to fine.
@@ -86,35 +89,49 @@ pub const ROUND_OFF_FLOOR: f64 = 1e-12;
 
 /// What one observed run returns: (|error| at the end, max |error| over the
 /// run, evaluations).
-type Measured = (f64, f64, u64);
+pub type Measured = (f64, f64, u64);
 
 /// Runs a method at a step; `true` asks for the error to be observed.
-type RunFn = Box<dyn Fn(Method, f64, bool) -> Result<Measured>>;
+pub type RunFn = Box<dyn Fn(Method, f64, bool) -> Result<Measured>>;
 
-/// A case that can be swept: its error at step `h`, and the same run
-/// without observation for timing.
-struct SweepCase {
-    id: &'static str,
-    error_label: &'static str,
-    h0: f64,
-    scale: f64,
-    /// (error at end, max error, evaluations), or a blow-up.
-    run: RunFn,
-    /// The same observation of a rapier2d-f64 run: (substeps, dt) → samples.
-    rapier: Option<RapierFn>,
+/// What a case declares to be swept (`Case::sweep`): its error against
+/// its reference at step `h`, and the same run in rapier2d-f64.
+pub struct SweepCase {
+    /// What the error measures, with its unit.
+    pub error_label: &'static str,
+    /// The error's unit (`m`, `rad`, `-`).
+    pub unit: &'static str,
+    /// The reference the error is measured against.
+    pub reference: &'static str,
+    /// The coarsest step (s); each level halves it.
+    pub h0: f64,
+    /// Size of the solution (the error's unit): errors above it are
+    /// "unstable".
+    pub scale: f64,
+    /// The case is a scalar first-order ODE: methods that need a
+    /// (position, velocity) system do not apply.
+    pub first_order: bool,
+    /// An error (the error's unit) at which the report compares the CPU
+    /// time the engine and rapier2d-f64 need to reach it, if any.
+    pub speed_target: Option<f64>,
+    /// Runs a method at step `h`: (error at end, max error, evaluations),
+    /// or a blow-up.
+    pub run: RunFn,
+    /// The same observation of a rapier2d-f64 run: (substeps, dt) → error.
+    pub rapier: Option<RapierFn>,
 }
 
 /// Runs the case's scene in rapier2d-f64 with (substeps, dt) and measures
 /// its error like [`RunFn`]; `evaluations` counts force evaluations (one per
 /// step: rapier holds external forces over the substeps).
-type RapierFn = Box<dyn Fn(usize, f64, bool) -> Result<Measured>>;
+pub type RapierFn = Box<dyn Fn(usize, f64, bool) -> Result<Measured>>;
 
 /// Substep counts of rapier2d swept (its default is 4).
 pub const RAPIER_SUBSTEPS: [usize; 3] = [1, 4, 16];
 
 /// The rapier runner of scene `id`, with `error(t, sample)` giving the error
 /// of one sample (its unit is the case's).
-fn rapier_runner(
+pub fn rapier_runner(
     id: &str,
     duration: f64,
     error: impl Fn(&RapierSample) -> Result<f64> + 'static,
@@ -137,12 +154,10 @@ fn rapier_runner(
     }))
 }
 
-/// Steps a world from 0 to `until` with `steps` equal steps (times i·h),
-/// calling `observe` after each step when asked.
 /// Steps a world from its current time to `until` on the engine's time grid
 /// with step `h` (no sampling, unlike [`World::run`]), calling `observe`
 /// after each step.
-fn step_world(
+pub fn step_world(
     world: &mut World,
     until: f64,
     h: f64,
@@ -157,143 +172,11 @@ fn step_world(
     Ok(())
 }
 
-fn spring_case() -> Result<SweepCase> {
-    let exact = SpringOscillator::seed();
-    let rapier = rapier_runner("spring", 57.2, move |s| {
-        Ok((s.position[0] - exact.position(s.t)).abs())
-    })?;
-    Ok(SweepCase {
-        rapier: Some(rapier),
-        id: "spring",
-        error_label: "|x error| over 0-57.2 s (m)",
-        h0: 0.2,
-        scale: exact.x0 - exact.rest_length,
-        run: Box::new(move |method, h, observe| {
-            let mut world = scenes::world("spring", method)?;
-            let mut max_error: f64 = 0.0;
-            step_world(&mut world, 57.2, h, |w| {
-                if observe {
-                    let e = (w.states()[0].position.x - exact.position(w.time())).abs();
-                    max_error = max_error.max(e);
-                }
-            })?;
-            let end = (world.states()[0].position.x - exact.position(57.2)).abs();
-            Ok((end, max_error, world.stats().evaluations))
-        }),
-    })
-}
-
-fn drag_case(reference: DragReference) -> Result<SweepCase> {
-    let reference = std::rc::Rc::new(reference);
-    let for_rapier = reference.clone();
-    let rapier = rapier_runner("projectile_drag", 5.0, move |s| {
-        let r = for_rapier.state_at(s.t)?;
-        Ok((s.position[0] - r[0]).hypot(s.position[1] - r[1]))
-    })?;
-    Ok(SweepCase {
-        rapier: Some(rapier),
-        id: "projectile_drag",
-        error_label: "|position error| over 0-5 s (m)",
-        h0: 0.2,
-        scale: 100.0,
-        run: Box::new(move |method, h, observe| {
-            let mut world = scenes::world("projectile_drag", method)?;
-            let mut max_error: f64 = 0.0;
-            let mut failure = None;
-            step_world(&mut world, 5.0, h, |w| {
-                if observe {
-                    match reference.state_at(w.time()) {
-                        Ok(r) => {
-                            let p = w.states()[0].position;
-                            max_error = max_error.max((p.x - r[0]).hypot(p.y - r[1]));
-                        }
-                        Err(e) => failure = Some(e),
-                    }
-                }
-            })?;
-            if let Some(e) = failure {
-                return Err(e.into());
-            }
-            let p = world.states()[0].position;
-            let r = reference.state_at(5.0)?;
-            Ok((
-                (p.x - r[0]).hypot(p.y - r[1]),
-                max_error,
-                world.stats().evaluations,
-            ))
-        }),
-    })
-}
-
-fn angular_drag_case() -> Result<SweepCase> {
-    let exact = AngularDrag::seed();
-    let rapier = rapier_runner("angular_drag", 8.7, move |s| {
-        Ok((s.angle - exact.theta(s.t)).abs())
-    })?;
-    Ok(SweepCase {
-        rapier: Some(rapier),
-        id: "angular_drag",
-        error_label: "|angle error| over 0-8.7 s (rad)",
-        h0: 0.1,
-        scale: 1.0,
-        run: Box::new(move |method, h, observe| {
-            let mut world = scenes::world("angular_drag", method)?;
-            let mut max_error: f64 = 0.0;
-            step_world(&mut world, 8.7, h, |w| {
-                if observe {
-                    max_error = max_error.max((w.states()[0].angle - exact.theta(w.time())).abs());
-                }
-            })?;
-            let end = (world.states()[0].angle - exact.theta(8.7)).abs();
-            Ok((end, max_error, world.stats().evaluations))
-        }),
-    })
-}
-
-fn hoffman_case() -> Result<SweepCase> {
-    let exact = Hoffman::seed();
-    let scene = scenes::load("hoffman")?;
-    let duration = scene.duration();
-    let ode = scene
-        .linear_test()
-        .ok_or_else(|| anyhow::anyhow!("scenes/hoffman.toml must hold a [linear_test]"))?;
-    Ok(SweepCase {
-        rapier: None,
-        id: "hoffman",
-        error_label: "|y error| over 0-1 s (-)",
-        h0: 0.1,
-        scale: 1.0,
-        run: Box::new(move |method, h, _observe| {
-            let mut system = ode;
-            let solution = integrate_to(&mut system, method, 0.0, &[ode.y0], duration, h)?;
-            let errors = solution
-                .t
-                .iter()
-                .zip(&solution.y)
-                .map(|(&t, y)| (y[0] - exact.exact(t)).abs());
-            let max_error = errors.fold(0.0, f64::max);
-            let last = solution.y.len() - 1;
-            let end = (solution.y[last][0] - exact.exact(duration)).abs();
-            Ok((end, max_error, solution.stats.evaluations))
-        }),
-    })
-}
-
-/// The cases swept, in report order.
-pub const SWEPT_CASES: [&str; 4] = ["spring", "projectile_drag", "angular_drag", "hoffman"];
-
-/// Runs the sweep of case `id`.
-pub fn run(id: &str, settings: SweepSettings) -> Result<Sweep> {
-    let case = match id {
-        "spring" => spring_case()?,
-        "projectile_drag" => drag_case(DragReference::compute()?)?,
-        "angular_drag" => angular_drag_case()?,
-        "hoffman" => hoffman_case()?,
-        other => anyhow::bail!("no sweep for case '{other}'"),
-    };
+/// Runs the sweep of case `id`, as its [`SweepCase`] declares it.
+pub fn run(id: &'static str, case: &SweepCase, settings: SweepSettings) -> Result<Sweep> {
     let mut points = Vec::new();
     for method in all_methods() {
-        if id == "hoffman" && method.needs_second_order() {
+        if case.first_order && method.needs_second_order() {
             continue;
         }
         let plan: Vec<(Method, f64, Option<f64>)> = if method.is_adaptive() {
@@ -313,7 +196,7 @@ pub fn run(id: &str, settings: SweepSettings) -> Result<Sweep> {
                 .collect()
         };
         for (m, h, tolerance) in plan {
-            let point = measure(&case, m, h, tolerance, settings)?;
+            let point = measure(case, m, h, tolerance, settings)?;
             let at_floor = point.stable && point.max_error < ROUND_OFF_FLOOR * case.scale;
             points.push(point);
             if at_floor && tolerance.is_none() {
@@ -342,8 +225,10 @@ pub fn run(id: &str, settings: SweepSettings) -> Result<Sweep> {
         }
     }
     Ok(Sweep {
-        case: case.id,
+        case: id,
         error_label: case.error_label,
+        unit: case.unit,
+        reference: case.reference,
         scale: case.scale,
         points,
     })

@@ -1,14 +1,18 @@
-//! Snapshots of the contact events of every collision scene (CASES.md case
-//! III): time, kind, bodies, point, normal and impulses, rounded to
-//! significant digits (`harness::snapshot`), each paired with its case's
-//! rows: the snapshot catches any change, the rows catch wrongness.
+//! Every case of the registry whose declaration says
+//! `Snapshots::ContactEvents` (`harness::cases::CASES`): its rows must all
+//! pass, and the contact events of each of its scenes (time, kind, bodies,
+//! point, normal and impulses, rounded to significant digits,
+//! `harness::snapshot`) must match their snapshot,
+//! `collision_snapshots__collision_events__<scene>.snap`: the snapshot
+//! catches any change, the rows catch wrongness.
 //!
 //! CI runs with `INSTA_UPDATE=no`: a changed event list fails. Update on
 //! purpose (`INSTA_UPDATE=always`), read the diff, commit it with the reason.
 
 use harness::cases::collision_common::{render_contact_events, run_engine, thin_events};
 use harness::cases::collision_parry::{agreement, report};
-use harness::cases::{CaseReport, failing_rows, find};
+use harness::cases::{CASES, Case, CaseReport, Snapshots, failing_rows};
+use std::panic::{AssertUnwindSafe, catch_unwind};
 
 fn assert_rows_pass(id: &str, report: &CaseReport) {
     let failed = failing_rows(&report.rows);
@@ -20,13 +24,17 @@ fn assert_rows_pass(id: &str, report: &CaseReport) {
     assert!(!report.rows.is_empty(), "{id} produced no rows");
 }
 
-/// Runs case `id` (asserting its rows) and snapshots the contact events of
+/// Runs `case` (asserting its rows) and snapshots the contact events of
 /// each of its scenes.
-fn check(id: &str, scenes: &[&str]) {
-    let case = find(id).expect("case exists");
+fn check(case: &Case) {
     let report = (case.run)().expect("case runs");
-    assert_rows_pass(id, &report);
-    for scene in scenes {
+    assert_rows_pass(case.id, &report);
+    assert!(
+        !case.scenes.is_empty(),
+        "{} declares contact-event snapshots but no scene",
+        case.id
+    );
+    for scene in case.scenes {
         let run = run_engine(scene).expect("scene runs");
         let events = run.world.contact_events();
         let (kept, left_out) = thin_events(&events, 8, 4);
@@ -42,52 +50,24 @@ fn check(id: &str, scenes: &[&str]) {
 }
 
 #[test]
-fn head_on_events() {
-    check(
-        "collision_head_on",
-        &["collision_head_on", "collision_head_on_half"],
+fn every_collision_case_passes_its_rows_and_matches_its_event_snapshots() {
+    let cases: Vec<&Case> = CASES
+        .iter()
+        .filter(|c| c.snapshots == Snapshots::ContactEvents)
+        .collect();
+    assert!(
+        !cases.is_empty(),
+        "no case declares contact-event snapshots"
     );
-}
-
-#[test]
-fn off_centre_events() {
-    check(
-        "collision_off_centre",
-        &["collision_off_centre", "collision_off_centre_half"],
-    );
-}
-
-#[test]
-fn bounce_events() {
-    check(
-        "collision_bounce",
-        &["collision_bounce", "collision_bounce_08"],
-    );
-}
-
-#[test]
-fn slide_events() {
-    check("collision_slide", &["collision_slide"]);
-}
-
-#[test]
-fn incline_events() {
-    check(
-        "collision_incline",
-        &["collision_incline_slide", "collision_incline_hold"],
-    );
-}
-
-#[test]
-fn rest_events() {
-    check("collision_rest", &["collision_rest"]);
-}
-
-#[test]
-fn toi_events() {
-    check(
-        "collision_toi",
-        &["collision_toi", "collision_toi_rotating"],
+    // Every case is checked; the failures are listed together at the end.
+    let failed: Vec<&str> = cases
+        .iter()
+        .filter(|case| catch_unwind(AssertUnwindSafe(|| check(case))).is_err())
+        .map(|case| case.id)
+        .collect();
+    assert!(
+        failed.is_empty(),
+        "cases that failed (see above): {failed:?}"
     );
 }
 

@@ -8,6 +8,7 @@ use crate::scenes;
 use crate::snapshot::round_sig;
 use anyhow::{Context, Result, bail};
 use engine::{Body, BodyKind, ContactEvent, ContactEventKind, Trace, World};
+use nalgebra::Vector2;
 use references::rapier_contacts::{
     RapierContactBody, RapierContactRun, RapierContactScene, run_contact_scene,
 };
@@ -135,8 +136,10 @@ pub fn rapier_scene(scene: &Scene) -> Result<RapierContactScene> {
                 gravity[1] += g.y;
             }
             other => bail!(
-                "{}: {other:?} has no counterpart in the rapier collision scenes",
-                scene.origin()
+                "{}: a force of type '{}' has no counterpart in the rapier collision scenes \
+                 (only gravity without a window has)",
+                scene.origin(),
+                force_type(other)
             ),
         }
     }
@@ -159,6 +162,18 @@ pub fn exact_contact(scene: &Scene) -> Result<engine::ContactSettings> {
             other.id()
         ),
         None => bail!("{}: no [contact] table", scene.origin()),
+    }
+}
+
+/// The `type` of a force as the scene file writes it.
+fn force_type(force: &ForceSpec) -> &'static str {
+    match force {
+        ForceSpec::Gravity { .. } => "gravity",
+        ForceSpec::Spring { .. } => "spring",
+        ForceSpec::Drag { .. } => "drag",
+        ForceSpec::AngularDrag { .. } => "angular_drag",
+        ForceSpec::PointForce { .. } => "point_force",
+        ForceSpec::Torque { .. } => "torque",
     }
 }
 
@@ -208,6 +223,61 @@ pub fn rapier_row(
         rows,
     }
     .within(check, value, expected, bound, reason);
+}
+
+/// Relative size of the round-off of the few operations that compute an
+/// impulse and the velocities after it from O(1) numbers (a dozen roundings
+/// of 1.1e-16): 1e-12 is CASES.md's bound and sits four orders above.
+pub const IMPULSE_ROUND_OFF: f64 = 1e-12;
+
+/// CASES.md: the stopping distance and the incline's acceleration within
+/// 1e-6 relative of their closed forms.
+pub const CLOSED_FORM_RELATIVE: f64 = 1e-6;
+
+/// CASES.md: a box that must not move moves less than 1e-9 m in 10 s.
+pub const STILL: f64 = 1e-9;
+
+/// The magnitude of the scene's gravity (m/s²).
+pub fn gravity(run: &EngineRun) -> Result<f64> {
+    run.scene
+        .file()
+        .forces
+        .iter()
+        .find_map(|f| match f {
+            ForceSpec::Gravity { g, .. } => Some(g.vector().norm()),
+            _ => None,
+        })
+        .context("the scene has no gravity")
+}
+
+/// The scene's friction coefficient μ (from its `[contact]` table).
+pub fn friction(run: &EngineRun) -> Result<f64> {
+    Ok(exact_contact(&run.scene)?.friction)
+}
+
+/// Largest distance (m) of the body from where it was at `t_from` (s) over
+/// the rest of the run, in the engine's samples.
+pub fn engine_motion_after(run: &EngineRun, body: usize, t_from: f64) -> f64 {
+    let start = run
+        .trace
+        .samples
+        .iter()
+        .find(|s| s.t >= t_from)
+        .map(|s| s.states[body].position);
+    start.map_or(f64::NAN, |p0| {
+        run.trace
+            .samples
+            .iter()
+            .filter(|s| s.t >= t_from)
+            .map(|s| (s.states[body].position - p0).norm())
+            .fold(0.0, f64::max)
+    })
+}
+
+/// Position (m) of body `body` at rapier2d's sample `k`.
+pub fn rapier_position(run: &RapierContactRun, k: usize, body: usize) -> Vector2<f64> {
+    let p = run.samples[k][body].position;
+    Vector2::new(p[0], p[1])
 }
 
 /// Coordinates (m) under this print as 0 in event snapshots: a contact

@@ -14,7 +14,7 @@
 //!   within 1e-12 count for the engine); parry's witness points are also
 //!   checked to lie on the boundaries.
 
-use super::CaseReport;
+use super::{Case, CaseReport, Headline, Snapshots};
 use crate::row::RowSink;
 use anyhow::Result;
 use engine::collision::{collide, distance_polygon_polygon, separation_polygon_polygon};
@@ -25,6 +25,19 @@ use references::parry_queries::exact::{
 };
 use references::parry_queries::{parry_contact, parry_distance, parry_intersects};
 use std::time::Instant;
+
+/// Detection against parry2d-f64 on random convex pairs.
+pub const CASE: Case = Case {
+    snapshots: Snapshots::HarnessOnly(
+        "120 000 pairs; `tests/collision_snapshots.rs` checks its rows on 2 000 + 2 000",
+    ),
+    headline: &[Headline::new("verdict_agreement_rate", "engine_vs_parry2d")],
+    ..Case::new(
+        "collision_parry",
+        "Case III: detection against parry2d on 100 000 random convex pairs and 20 000 near-touching ones",
+        run,
+    )
+};
 
 /// CASES.md: verdicts compared outside 1e-9 of touching; depth and normal
 /// within 1e-9.
@@ -123,9 +136,10 @@ fn compare(
         }
         if s.listed.len() < LISTED {
             s.listed.push(format!(
-                "verdict: engine {engine_verdict}, parry {parry_verdict}; engine distance {:.3e} \
-                 m, SAT separation {:.3e} m, deepest vertex {:.3e} m: {} is right. A = {:?} at \
-                 {:?}; B = {:?} at {:?}",
+                "pair {} of the sample: verdict: engine {engine_verdict}, parry {parry_verdict}; \
+                 engine distance {:.3e} m, SAT separation {:.3e} m, deepest vertex {:.3e} m: {} \
+                 is right. A: {}; B: {}",
+                s.pairs,
                 exact.distance,
                 sat.separation,
                 inside,
@@ -134,10 +148,8 @@ fn compare(
                 } else {
                     "parry"
                 },
-                a.vertices(),
-                pa,
-                b.vertices(),
-                pb
+                describe(a, pa),
+                describe(b, pb),
             ));
         }
         return;
@@ -173,10 +185,11 @@ fn compare(
             signed_distance_to_polygon(&wb, &c.point_b),
         );
         s.listed.push(format!(
-            "depth/normal: engine depth {depth:.15e} m along ({:.12}, {:.12}), parry {:.15e} m \
+            "pair {} of the sample: depth/normal: engine depth {depth:.15e} m along ({:.12}, {:.12}), parry {:.15e} m \
              along ({:.12}, {:.12}); projections overlap by {along_engine:.15e} m along the \
              engine's normal and {along_parry:.15e} m along parry's (the depth is the smaller): \
              {} is right; parry's witness points lie {wpa:.1e} m and {wpb:.1e} m off the boundaries",
+            s.pairs,
             sat.normal.x,
             sat.normal.y,
             c.depth,
@@ -185,6 +198,24 @@ fn compare(
             if engine_right { "the engine" } else { "parry" },
         ));
     }
+}
+
+/// A polygon and its pose in words, with units: its vertices in its own
+/// frame, then where it is placed.
+fn describe(polygon: &ConvexPolygon, pose: &Isometry2<f64>) -> String {
+    let vertices: Vec<String> = polygon
+        .vertices()
+        .iter()
+        .map(|v| format!("({:.6}, {:.6})", v.x, v.y))
+        .collect();
+    format!(
+        "{} vertices {} m in its own frame, placed at position ({:.6}, {:.6}) m, angle {:.6} rad",
+        vertices.len(),
+        vertices.join(", "),
+        pose.translation.x,
+        pose.translation.y,
+        pose.rotation.angle()
+    )
 }
 
 /// Compares the engine with parry on `pairs` random pairs and
@@ -328,8 +359,13 @@ pub fn report(random: &Agreement, near: &Agreement) -> CaseReport {
             1e6 * s.engine_seconds / s.pairs.max(1) as f64,
             1e6 * s.parry_seconds / s.pairs.max(1) as f64,
         ));
+        let sample = if tag.is_empty() {
+            "random sample (generator seed 0xC0111DE)"
+        } else {
+            "near-touching sample (generator seed 0x70C4)"
+        };
         for l in &s.listed {
-            report.notes.push(format!("Pair{tag}: {l}"));
+            report.notes.push(format!("Disagreement in the {sample}, {l}"));
         }
     }
     report

@@ -1,13 +1,11 @@
 //! Charts of the collision cases, drawn with the shared chart model of
 //! [`crate::plots`] (same font, colours per curve: closed form, engine,
-//! rapier2d), written into `reports/` by release runs of the harness only: a
-//! debug build (the tests) draws nothing, so running the tests never
-//! rewrites the committed report.
+//! rapier2d). A case returns them as [`CaseFigure`]s; the report writer
+//! saves them into the report folder, so a run without one writes nothing.
 
-use crate::plots::{Chart, save_svg};
-use anyhow::Result;
+use super::CaseFigure;
+use crate::plots::Chart;
 use plotters::style::RGBColor;
-use std::path::PathBuf;
 
 /// Width and height of one panel (px).
 const PANEL: (u32, u32) = (550, 460);
@@ -46,14 +44,16 @@ fn curves(series: &[Series]) -> Vec<crate::plots::Series> {
         .collect()
 }
 
-/// Writes `panels` side by side into `reports/<file>` and returns `file`
-/// (the path relative to the report's README).
-pub fn write_chart(file: &str, panels: &[Chart]) -> Result<String> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("..")
-        .join("reports");
-    save_svg(&dir.join(file), panels, panels.len(), PANEL)?;
-    Ok(file.to_string())
+/// The figure `file` (`.svg`) of `panels` side by side, with its
+/// alternative text and caption.
+pub fn figure(file: &str, alt: &str, caption: String, panels: Vec<Chart>) -> CaseFigure {
+    CaseFigure {
+        file: file.into(),
+        alt: alt.into(),
+        caption,
+        panels,
+        panel_size: PANEL,
+    }
 }
 
 /// Apex per bounce: e = 1 (apex / h0, linear) beside e = 0.8 (apex in m,

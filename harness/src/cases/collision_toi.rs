@@ -6,7 +6,7 @@
 //! same motions, by parry2d-f64's `cast_shapes` / `cast_shapes_nonlinear`,
 //! and in rapier2d-f64 (which sees contacts a step at a time).
 
-use super::CaseReport;
+use super::{Case, CaseReport, Headline, Snapshots};
 use super::collision_common::{RAPIER, rapier_settings, run_rapier};
 use crate::row::RowSink;
 use crate::scenes;
@@ -15,6 +15,18 @@ use engine::collision::{Motion, ToiOptions, toi_bisection, toi_conservative_adva
 use engine::{ContactEvent, ContactEventKind, ContactSettings, Shape, ToiMethod};
 use nalgebra::{Isometry2, Vector2};
 use references::parry_queries::{ParryMotion, parry_time_of_impact};
+
+/// The time of impact of a box on a box, without and with rotation.
+pub const CASE: Case = Case {
+    scenes: &["collision_toi", "collision_toi_rotating"],
+    snapshots: Snapshots::ContactEvents,
+    headline: &[Headline::new("toi_world_bisection_rotating", "rk4")],
+    ..Case::new(
+        "collision_toi",
+        "Case III: time of impact, 2.0 s and 1.8736370117 s with rotation (seed Fig. 7.7-7.8), against parry2d",
+        run,
+    )
+};
 
 /// CASES.md's value with rotation, to its 10 decimals.
 const ROTATING_TOI: f64 = 1.8736370117;
@@ -36,6 +48,18 @@ pub fn rotating_contact_time() -> f64 {
         if f(mid) > 0.0 { hi = mid } else { lo = mid }
     }
     lo
+}
+
+/// A variant name in words: `OutOfIterations` → `out of iterations`.
+fn words(name: &str) -> String {
+    let mut out = String::new();
+    for c in name.chars() {
+        if c.is_uppercase() && !out.is_empty() {
+            out.push(' ');
+        }
+        out.extend(c.to_lowercase());
+    }
+    out
 }
 
 /// The first impact of a world run of scene `id` with `method`.
@@ -182,9 +206,10 @@ pub fn run() -> Result<CaseReport> {
             exact,
             1e-9,
             format!(
-                "parry2d-f64 0.31 {} (status {:?}); its GJK-based cast stops within its own \
+                "parry2d-f64 0.31 {} (status: {}); its GJK-based cast stops within its own \
                  distance tolerance (~1e-10 m for these sizes): 1e-9 s at >= 1 m/s",
-                parry.method, parry.status
+                parry.method,
+                words(&format!("{:?}", parry.status))
             ),
         );
         for (name, t) in &world_times {
@@ -221,9 +246,13 @@ pub fn run() -> Result<CaseReport> {
         );
         report.notes.push(format!(
             "`{id}`: exact {exact:.15} s; world bisection {:.15} s, world conservative \
-             advancement {:.15} s; parry2d {} {:.15} s ({:?}); rapier2d's first contact impulse \
+             advancement {:.15} s; parry2d {} {:.15} s (status: {}); rapier2d's first contact impulse \
              in the step ending at {first} s (dt = {rdt} s).",
-            world_times[0].1, world_times[1].1, parry.method, parry.time, parry.status
+            world_times[0].1,
+            world_times[1].1,
+            parry.method,
+            parry.time,
+            words(&format!("{:?}", parry.status))
         ));
     }
     Ok(report)

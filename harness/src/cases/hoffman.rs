@@ -5,15 +5,45 @@
 //! engine's error must equal −R(hλ)^n: stable where |R| ≤ 1, blown up
 //! where theory says so.
 
-use super::{CaseReport, MethodTrace, all_methods, dp_global_bound, dp_reason};
+use super::{
+    Case, CaseReport, FigureSection, Headline, MethodTrace, Snapshots, StudyFigure, all_methods,
+    dp_global_bound, dp_reason,
+};
+use crate::plots::failures;
 use crate::row::RowSink;
 use crate::scenes;
+use crate::stability::Axis;
+use crate::sweep::SweepCase;
 use crate::tolerance::ROUND_OFF_RELATIVE;
 use anyhow::Context;
 use anyhow::Result;
-use engine::integrate_fixed;
+use engine::{integrate_fixed, integrate_to};
 use references::Hoffman;
 use references::linear_stability::stability_function;
+
+/// Hoffman's stiff test: its rows against linear stability theory, its
+/// sweep against the exact solution, the real axis of the stability study
+/// and the seed's figures 4.2–4.3.
+pub const CASE: Case = Case {
+    scenes: &["hoffman"],
+    snapshots: Snapshots::Traces,
+    headline: &[
+        Headline::new("error_end", "explicit_euler").at(0.0021),
+        Headline::new("stability_limit", "explicit_euler"),
+        Headline::new("stability_limit", "rk4"),
+    ],
+    sweep: Some(sweep),
+    stability: Some(Axis::Real),
+    figures: &[StudyFigure {
+        section: FigureSection::Failures,
+        write: failures::hoffman_euler,
+    }],
+    ..Case::new(
+        "hoffman",
+        "Stiff test y' = -1000(y - (t + 2)) + 1 (seed §4.3, after Hoffman)",
+        run,
+    )
+};
 
 /// The steps of CASES.md (s): explicit Euler stable at 0.0019 and blown up at
 /// 0.0021 and 0.003; RK4 stable at 0.0027 and unstable at 0.0029; implicit
@@ -109,4 +139,38 @@ pub fn run() -> Result<CaseReport> {
         }
     }
     Ok(report)
+}
+
+/// The sweep: |y error| against the exact solution over the scene's
+/// duration; methods that need a (position, velocity) system do not apply.
+fn sweep() -> Result<SweepCase> {
+    let exact = Hoffman::seed();
+    let scene = scenes::load("hoffman")?;
+    let duration = scene.duration();
+    let ode = scene
+        .linear_test()
+        .context("scenes/hoffman.toml must hold a [linear_test]")?;
+    Ok(SweepCase {
+        error_label: "|y error| over 0-1 s (-)",
+        unit: "-",
+        reference: "the exact solution t + 2 - e^(-1000 t)",
+        h0: 0.1,
+        scale: 1.0,
+        first_order: true,
+        speed_target: None,
+        rapier: None,
+        run: Box::new(move |method, h, _observe| {
+            let mut system = ode;
+            let solution = integrate_to(&mut system, method, 0.0, &[ode.y0], duration, h)?;
+            let errors = solution
+                .t
+                .iter()
+                .zip(&solution.y)
+                .map(|(&t, y)| (y[0] - exact.exact(t)).abs());
+            let max_error = errors.fold(0.0, f64::max);
+            let last = solution.y.len() - 1;
+            let end = (solution.y[last][0] - exact.exact(duration)).abs();
+            Ok((end, max_error, solution.stats.evaluations))
+        }),
+    })
 }

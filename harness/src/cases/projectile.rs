@@ -2,13 +2,28 @@
 //! h = 0.01 s. Landing, range and apex come from event location inside the
 //! step, so they are not quantized to h.
 
-use super::{CaseReport, MethodTrace, all_methods, dp_global_bound, dp_reason, sample_at};
+use super::{
+    Case, CaseReport, Headline, MethodTrace, Snapshots, all_methods, dp_global_bound, dp_reason,
+    sample_at,
+};
 use crate::row::RowSink;
 use crate::scenes;
 use crate::tolerance::{ROUND_OFF_RELATIVE, from_order, from_order_reason};
 use anyhow::{Context, Result};
 use engine::{Method, Trace};
 use references::Projectile;
+
+/// The projectile in vacuum against its closed form.
+pub const CASE: Case = Case {
+    scenes: &["projectile"],
+    snapshots: Snapshots::Traces,
+    headline: &[Headline::new("landing_time", "rk4").at(0.01)],
+    ..Case::new(
+        "projectile",
+        "Case II: projectile in vacuum, h = 0.01 s (seed §6)",
+        run,
+    )
+};
 
 /// Time at which the first-order methods' y error is compared with theory (s).
 const T_CHECK: f64 = 8.0;

@@ -4,14 +4,53 @@
 //! independent DOP853 solve (`references::DragReference`).
 
 use super::projectile::{EVENT_CHECKS, ballistic_trace, events};
-use super::{CaseReport, all_methods, dp_global_bound, dp_reason, sample_at};
+use super::{
+    Case, CaseReport, FigureOutput, FigureSection, Headline, Snapshots, StudyFigure, all_methods,
+    dp_global_bound, dp_reason, sample_at,
+};
+use crate::plots::trajectories::{REFERENCE, error_panel, runs};
+use crate::plots::{Chart, Series, method_color, save_svg};
 use crate::row::RowSink;
 use crate::scenes;
+use crate::sweep::{SweepCase, rapier_runner, step_world};
 use crate::tolerance::{from_order, from_order_reason, half_unit};
 use anyhow::Result;
 use engine::Method;
-use references::DragReference;
+use plotters::style::RGBColor;
 use references::drag_reference_values as cases_md;
+use references::{DragReference, Projectile};
+use std::path::Path;
+
+/// The drag projectile: its rows against CASES.md's reference, the sweep
+/// against the DOP853 reference (with the speed comparison against
+/// rapier2d-f64), seed figures 6.2 and 6.4, and the bench.
+pub const CASE: Case = Case {
+    scenes: &["projectile_drag"],
+    snapshots: Snapshots::Traces,
+    headline: &[
+        Headline::new("landing_time", "dormand_prince").at(0.01),
+        Headline::new("position_error_t5", "rk4").at(0.2),
+        Headline::new("order", "rk4"),
+    ],
+    sweep: Some(sweep),
+    figures: &[StudyFigure {
+        section: FigureSection::Trajectories,
+        write: trajectory,
+    }],
+    bench: true,
+    ..Case::new(
+        "projectile_drag",
+        "Case II: projectile with quadratic drag (seed Table 6.2)",
+        run,
+    )
+};
+
+/// Accuracy at which the report compares the CPU time of the engine and of
+/// rapier2d-f64 (m of max position error over 0–5 s).
+pub const TARGET_ERROR: f64 = 1e-6;
+
+/// End of the swept run (s), where CASES.md gives the state.
+const SWEEP_UNTIL: f64 = 5.0;
 
 /// Runs the case.
 pub fn run() -> Result<CaseReport> {
@@ -114,4 +153,134 @@ pub fn run() -> Result<CaseReport> {
         }));
     }
     Ok(report)
+}
+
+/// The sweep: |position error| against the DOP853 reference over 0–5 s.
+fn sweep() -> Result<SweepCase> {
+    let reference = std::rc::Rc::new(DragReference::compute()?);
+    let for_rapier = reference.clone();
+    let rapier = rapier_runner("projectile_drag", SWEEP_UNTIL, move |s| {
+        let r = for_rapier.state_at(s.t)?;
+        Ok((s.position[0] - r[0]).hypot(s.position[1] - r[1]))
+    })?;
+    Ok(SweepCase {
+        error_label: "|position error| over 0-5 s (m)",
+        unit: "m",
+        reference: "an independent DOP853 solve (references::DragReference)",
+        h0: 0.2,
+        scale: 100.0,
+        first_order: false,
+        speed_target: Some(TARGET_ERROR),
+        rapier: Some(rapier),
+        run: Box::new(move |method, h, observe| {
+            let mut world = scenes::world("projectile_drag", method)?;
+            let mut max_error: f64 = 0.0;
+            let mut failure = None;
+            step_world(&mut world, SWEEP_UNTIL, h, |w| {
+                if observe {
+                    match reference.state_at(w.time()) {
+                        Ok(r) => {
+                            let p = w.states()[0].position;
+                            max_error = max_error.max((p.x - r[0]).hypot(p.y - r[1]));
+                        }
+                        Err(e) => failure = Some(e),
+                    }
+                }
+            })?;
+            if let Some(e) = failure {
+                return Err(e.into());
+            }
+            let p = world.states()[0].position;
+            let r = reference.state_at(SWEEP_UNTIL)?;
+            Ok((
+                (p.x - r[0]).hypot(p.y - r[1]),
+                max_error,
+                world.stats().evaluations,
+            ))
+        }),
+    })
+}
+
+/// Seed figures 6.2 and 6.4: the path with and without drag, then the
+/// position error of the drag run against the DOP853 reference.
+fn trajectory(dir: &Path, id: &str) -> Result<FigureOutput> {
+    let file = format!("trajectory_{id}.svg");
+    let reference = DragReference::compute()?;
+    let vacuum = Projectile::seed();
+    let until = reference.landing_time();
+    let (method, trace, rapier) = runs(id, 5.8)?;
+    let dense: Vec<(f64, f64)> = reference.step_points().map(|(_, s)| (s[0], s[1])).collect();
+    let parabola: Vec<(f64, f64)> = (0..=200)
+        .map(|i| vacuum.position(vacuum.landing_time() * i as f64 / 200.0))
+        .map(|p| (p[0], p[1]))
+        .collect();
+    let engine: Vec<(f64, f64)> = trace
+        .samples
+        .iter()
+        .map(|s| (s.states[0].position.x, s.states[0].position.y))
+        .collect();
+    let rap: Vec<(f64, f64)> = rapier
+        .iter()
+        .map(|s| (s.position[0], s.position[1]))
+        .collect();
+    let path = Chart {
+        title: "projectile (seed figs. 6.2, 6.4): path with and without drag".into(),
+        x_label: "x (m)".into(),
+        y_label: "y (m)".into(),
+        series: vec![
+            Series::new(
+                "vacuum parabola (closed form)",
+                RGBColor(150, 150, 150),
+                parabola,
+            )
+            .plain()
+            .dashed(),
+            Series::new("drag reference (DOP853)", REFERENCE, dense)
+                .plain()
+                .dashed(),
+            Series::new(format!("engine {method}"), method_color(&method), engine).plain(),
+            Series::new("rapier2d (4 substeps)", method_color("rapier2d_4sub"), rap).plain(),
+        ],
+        y_range: Some((0.0, 95.0)),
+        ..Chart::default()
+    };
+    let err_engine: Vec<(f64, f64)> = trace
+        .samples
+        .iter()
+        .filter(|s| s.t <= until)
+        .filter_map(|s| {
+            let r = reference.state_at(s.t).ok()?;
+            Some((
+                s.t,
+                (s.states[0].position.x - r[0]).hypot(s.states[0].position.y - r[1]),
+            ))
+        })
+        .collect();
+    let err_rapier: Vec<(f64, f64)> = rapier
+        .iter()
+        .filter_map(|s| {
+            let r = reference.state_at(s.t).ok()?;
+            Some((s.t, (s.position[0] - r[0]).hypot(s.position[1] - r[1])))
+        })
+        .collect();
+    let errors = error_panel(
+        "drag projectile: position error against DOP853",
+        "m",
+        vec![
+            Series::new(
+                format!("engine {method}"),
+                method_color(&method),
+                err_engine,
+            )
+            .plain(),
+            Series::new(
+                "rapier2d (4 substeps)",
+                method_color("rapier2d_4sub"),
+                err_rapier,
+            )
+            .plain(),
+        ],
+    );
+    save_svg(&dir.join(&file), &[path, errors], 1, (900, 420))?;
+    Ok(FigureOutput::file(file))
 }

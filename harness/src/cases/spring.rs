@@ -2,14 +2,63 @@
 //! over 57.2 s = 286 steps, against the exact solution and against linear
 //! stability theory (each method's step matrix raised to the 286th power).
 
-use super::{CaseReport, MethodTrace, all_methods, dp_global_bound, dp_reason};
+use super::{
+    Case, CaseReport, FigureOutput, FigureSection, Headline, MethodTrace, Snapshots, StudyFigure,
+    all_methods, dp_global_bound, dp_reason,
+};
+use crate::plots::trajectories::ScalarFigure;
+use crate::plots::{energy, failures};
 use crate::row::RowSink;
 use crate::scenes;
+use crate::stability::Axis;
+use crate::sweep::{SweepCase, rapier_runner, step_world};
 use crate::tolerance::{ROUND_OFF_RELATIVE, half_unit};
 use anyhow::Result;
 use engine::Method;
 use references::SpringOscillator;
 use references::linear_stability::{oscillator_after, oscillator_growth_per_step};
+use references::rapier_world::RapierSample;
+use std::path::Path;
+
+/// The spring: its rows, the sweep against the closed form, the imaginary
+/// axis of the stability study, the long energy run, the failures at the
+/// limits of Verlet and RK4, the trajectory figure, and the bench.
+pub const CASE: Case = Case {
+    scenes: &["spring"],
+    snapshots: Snapshots::Traces,
+    headline: &[
+        Headline::new("x_end_seed", "rk4").at(0.2),
+        Headline::new("max_error", "rk4").at(0.2),
+        Headline::new("amplitude_growth", "explicit_euler").at(0.2),
+        Headline::new("order", "velocity_verlet"),
+        Headline::new("stability_limit", "rk4"),
+    ],
+    sweep: Some(sweep),
+    stability: Some(Axis::Imaginary),
+    figures: &[
+        StudyFigure {
+            section: FigureSection::Failures,
+            write: failures::spring_limits,
+        },
+        StudyFigure {
+            section: FigureSection::Energy,
+            write: energy::write,
+        },
+        StudyFigure {
+            section: FigureSection::Trajectories,
+            write: trajectory,
+        },
+    ],
+    bench: true,
+    ..Case::new(
+        "spring",
+        "Case I: mass-spring, RK4 at h = 0.2 s over 57.2 s (seed §5)",
+        run,
+    )
+};
+
+/// Length of the seed's run (s).
+const DURATION: f64 = 57.2;
 
 /// Runs the case.
 pub fn run() -> Result<CaseReport> {
@@ -119,8 +168,10 @@ pub fn run() -> Result<CaseReport> {
                 "explicit Euler grows by (1 + (hw)^2)^(n/2) (CASES.md: x8.3e5 at 57.2 s); 1e-9 relative round-off",
             );
         }
-        let band = |lo: f64, hi: f64| {
-            format!("CASES.md energy band [{lo}, {hi}] (quoted to 4 decimals: +/- half a unit)")
+        let band = |lo: f64, hi: f64, decimals: i32| {
+            format!(
+                "CASES.md energy band [{lo}, {hi}] (quoted to {decimals} decimals: +/- half a unit)"
+            )
         };
         match method {
             Method::SemiImplicitEuler => {
@@ -129,18 +180,18 @@ pub fn run() -> Result<CaseReport> {
                     e_min,
                     -0.1365,
                     half_unit(4),
-                    band(-0.1365, 0.1878),
+                    band(-0.1365, 0.1878, 4),
                 );
                 sink.at_most(
                     "energy_max",
                     e_max,
                     0.1878,
                     half_unit(4),
-                    band(-0.1365, 0.1878),
+                    band(-0.1365, 0.1878, 4),
                 );
             }
             Method::VelocityVerlet => {
-                sink.at_least("energy_min", e_min, -0.025, half_unit(3), band(-0.025, 0.0));
+                sink.at_least("energy_min", e_min, -0.025, half_unit(3), band(-0.025, 0.0, 3));
                 sink.at_most(
                     "energy_max",
                     e_max,
@@ -164,4 +215,52 @@ pub fn run() -> Result<CaseReport> {
         });
     }
     Ok(report)
+}
+
+/// The sweep: |x error| against the closed form over the seed's run, from
+/// the seed's h = 0.2 s down.
+fn sweep() -> Result<SweepCase> {
+    let exact = SpringOscillator::seed();
+    let rapier = rapier_runner("spring", DURATION, move |s| {
+        Ok((s.position[0] - exact.position(s.t)).abs())
+    })?;
+    Ok(SweepCase {
+        error_label: "|x error| over 0-57.2 s (m)",
+        unit: "m",
+        reference: "the closed form l0 + (x0 - l0) cos(w t)",
+        h0: 0.2,
+        scale: exact.x0 - exact.rest_length,
+        first_order: false,
+        speed_target: None,
+        rapier: Some(rapier),
+        run: Box::new(move |method, h, observe| {
+            let mut world = scenes::world("spring", method)?;
+            let mut max_error: f64 = 0.0;
+            step_world(&mut world, DURATION, h, |w| {
+                if observe {
+                    let e = (w.states()[0].position.x - exact.position(w.time())).abs();
+                    max_error = max_error.max(e);
+                }
+            })?;
+            let end = (world.states()[0].position.x - exact.position(DURATION)).abs();
+            Ok((end, max_error, world.stats().evaluations))
+        }),
+    })
+}
+
+/// Seed figure 5.2: x(t) of the scene's run, rapier2d's and the closed form.
+fn trajectory(dir: &Path, id: &str) -> Result<FigureOutput> {
+    let spring = SpringOscillator::seed();
+    let file = format!("trajectory_{id}.svg");
+    ScalarFigure {
+        file: &file,
+        title: "spring (seed fig. 5.2): x(t)",
+        case: (id, DURATION),
+        quantity: ("x", "m"),
+        engine_value: |s: &engine::Sample| s.states[0].position.x,
+        rapier_value: |s: &RapierSample| s.position[0],
+        exact: |t| spring.position(t),
+        y_range: Some((-20.0, 120.0)),
+    }
+    .write(dir)
 }

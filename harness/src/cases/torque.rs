@@ -3,12 +3,34 @@
 //! The world splits the step at the switch-off, so methods exact on a
 //! quadratic (RK2, RK4, Verlet) stay exact.
 
-use super::{CaseReport, MethodTrace, all_methods, dp_global_bound, dp_reason, sample_at};
+use super::{
+    Case, CaseReport, FigureOutput, FigureSection, Headline, MethodTrace, Snapshots, StudyFigure,
+    all_methods, dp_global_bound, dp_reason, sample_at,
+};
+use crate::plots::trajectories::ScalarFigure;
 use crate::row::RowSink;
 use crate::scenes;
 use crate::tolerance::{from_order, from_order_reason};
 use anyhow::Result;
 use references::TorquePulse;
+use references::rapier_world::RapierSample;
+use std::path::Path;
+
+/// The torque pulse against its closed form, with seed figure 6.3.
+pub const CASE: Case = Case {
+    scenes: &["torque"],
+    snapshots: Snapshots::Traces,
+    headline: &[Headline::new("theta_8.7", "rk4").at(0.01)],
+    figures: &[StudyFigure {
+        section: FigureSection::Trajectories,
+        write: trajectory,
+    }],
+    ..Case::new(
+        "torque",
+        "Case II: a 0.7 s torque pulse on the box (seed eq. 6.16-6.20)",
+        run,
+    )
+};
 
 /// Times (s) at which ω and θ are checked: the end of the pulse and of the run.
 pub(crate) const CHECK_TIMES: [f64; 2] = [0.7, 8.7];
@@ -90,4 +112,21 @@ pub(crate) fn rotation_case(
 pub fn run() -> Result<CaseReport> {
     let exact = TorquePulse::seed();
     rotation_case("torque", |t| exact.omega(t), |t| exact.theta(t))
+}
+
+/// Seed figure 6.3: ω(t) of the scene's run, rapier2d's and the closed form.
+fn trajectory(dir: &Path, id: &str) -> Result<FigureOutput> {
+    let torque = TorquePulse::seed();
+    let file = format!("trajectory_{id}.svg");
+    ScalarFigure {
+        file: &file,
+        title: "torque pulse (seed fig. 6.3): angular velocity",
+        case: (id, CHECK_TIMES[1]),
+        quantity: ("omega", "rad/s"),
+        engine_value: |s: &engine::Sample| s.states[0].angular_velocity,
+        rapier_value: |s: &RapierSample| s.angular_velocity,
+        exact: |t| torque.omega(t),
+        y_range: None,
+    }
+    .write(dir)
 }

@@ -4,6 +4,7 @@
 //! (hω = 1.99, 2.01) and RK4 (hω = 2.82, 2.84).
 
 use super::{Chart, Series, method_color, save_svg};
+use crate::cases::FigureOutput;
 use crate::scenes;
 use anyhow::{Context, Result};
 use engine::{Method, integrate_fixed};
@@ -11,13 +12,14 @@ use plotters::style::RGBColor;
 use references::{Hoffman, SpringOscillator};
 use std::path::Path;
 
-/// Writes `<dir>/failure_hoffman_euler.svg`.
-pub fn hoffman_euler(dir: &Path) -> Result<String> {
-    let file = "failure_hoffman_euler.svg".to_string();
+/// Writes `<dir>/failure_<id>_euler.svg`: explicit Euler on Hoffman's
+/// test (scene `id`, a `[linear_test]`).
+pub fn hoffman_euler(dir: &Path, id: &str) -> Result<FigureOutput> {
+    let file = format!("failure_{id}_euler.svg");
     let exact = Hoffman::seed();
-    let ode = scenes::load("hoffman")?
+    let ode = scenes::load(id)?
         .linear_test()
-        .context("hoffman scene")?;
+        .with_context(|| format!("scenes/{id}.toml must hold a [linear_test]"))?;
     let t_end: f64 = 0.1;
     let mut panels = Vec::new();
     for h in [0.0019, 0.0021, 0.003] {
@@ -49,12 +51,13 @@ pub fn hoffman_euler(dir: &Path) -> Result<String> {
         });
     }
     save_svg(&dir.join(&file), &panels, 3, (520, 420))?;
-    Ok(file)
+    Ok(FigureOutput::file(file))
 }
 
-/// Writes `<dir>/failure_spring_limits.svg`.
-pub fn spring_limits(dir: &Path) -> Result<String> {
-    let file = "failure_spring_limits.svg".to_string();
+/// Writes `<dir>/failure_<id>_limits.svg`: the seed spring (scene `id`)
+/// just inside and outside two methods' limits.
+pub fn spring_limits(dir: &Path, id: &str) -> Result<FigureOutput> {
+    let file = format!("failure_{id}_limits.svg");
     let exact = SpringOscillator::seed();
     let amplitude = exact.x0 - exact.rest_length;
     let mut panels = Vec::new();
@@ -65,7 +68,7 @@ pub fn spring_limits(dir: &Path) -> Result<String> {
         (Method::Rk4, 2.84),
     ] {
         let h = hw / exact.omega();
-        let mut world = scenes::world("spring", method)?;
+        let mut world = scenes::world(id, method)?;
         let steps = 150u32;
         let mut pts = vec![(0.0, 1.0)];
         for i in 1..=steps {
@@ -85,5 +88,5 @@ pub fn spring_limits(dir: &Path) -> Result<String> {
         });
     }
     save_svg(&dir.join(&file), &panels, 2, (600, 380))?;
-    Ok(file)
+    Ok(FigureOutput::file(file))
 }

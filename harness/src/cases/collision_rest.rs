@@ -1,0 +1,112 @@
+//! Case III, `collision_rest` (CASES.md; seed §7.1 after Baraff): a box
+//! resting on the ground for 10 s must not move, in the engine (exact
+//! contact forces) and in rapier2d-f64 (soft contacts).
+
+use super::collision_common::{
+    RAPIER, STILL, rapier_position, rapier_settings, run_engine, run_rapier,
+};
+use super::{Case, CaseReport, Headline, Snapshots};
+use crate::row::RowSink;
+use anyhow::Result;
+
+/// A box resting on the ground.
+pub const CASE: Case = Case {
+    scenes: &["collision_rest"],
+    snapshots: Snapshots::ContactEvents,
+    headline: &[Headline::new("motion", "rk4")],
+    ..Case::new(
+        "collision_rest",
+        "Case III: a box resting on the ground for 10 s (seed §7.1, after Baraff)",
+        run,
+    )
+};
+
+/// Runs `collision_rest`.
+pub fn run() -> Result<CaseReport> {
+    let id = "collision_rest";
+    let run = run_engine(id)?;
+    let b = run.body("box")?;
+    let start = run.scene.bodies()[b].state;
+    let end = run.world.states()[b];
+    let motion = run
+        .trace
+        .samples
+        .iter()
+        .map(|s| (s.states[b].position - start.position).norm())
+        .fold(0.0, f64::max);
+    let mut report = CaseReport::default();
+    let dt = run.scene.dt();
+    let mut sink = RowSink {
+        case: id,
+        method: run.scene.method().id(),
+        dt,
+        rows: &mut report.rows,
+    };
+    sink.at_most(
+        "motion",
+        motion,
+        0.0,
+        STILL,
+        "largest distance from the start over 10 s; CASES.md: less than 1e-9 m (the contact \
+         force equals the weight at every evaluation: nothing sinks, nothing is corrected)",
+    );
+    sink.at_most(
+        "rotation",
+        (end.angle - start.angle).abs(),
+        0.0,
+        1e-12,
+        "the two corners carry half the weight each (solved together): no torque, angle kept to \
+         round-off",
+    );
+    sink.at_most(
+        "speed",
+        end.velocity.norm(),
+        0.0,
+        1e-12,
+        "at rest: speed 0 to round-off after 10 s",
+    );
+    let events = run.world.contact_events();
+    sink.within(
+        "contact_events",
+        events.len() as f64,
+        1.0,
+        0.0,
+        "one event, the contact coming to rest at t = 0; no impact, no release, no jitter",
+    );
+    // rapier2d.
+    let rapier = run_rapier(&run.scene)?;
+    let rdt = rapier_settings(&run.scene).dt;
+    let rmotion = (0..rapier.samples.len())
+        .map(|k| (rapier_position(&rapier, k, b) - start.position).norm())
+        .fold(0.0, f64::max);
+    let sink_depth = start.position.y - rapier_position(&rapier, rapier.samples.len() - 1, b).y;
+    // CASES.md: a resting body sinks about 3.1/f² m at contact frequency f;
+    // against a fixed body rapier's contacts are 60 Hz.
+    let f = 60.0;
+    let soft = 3.1 / (f * f);
+    RowSink {
+        case: id,
+        method: RAPIER,
+        dt: rdt,
+        rows: &mut report.rows,
+    }
+    .at_most(
+        "motion",
+        rmotion,
+        0.0,
+        soft,
+        format!(
+            "rapier's contacts are soft: CASES.md's estimate of the sink of a resting body, \
+             3.1/f² m with f = 60 Hz against a fixed body = {soft:.2e} m, bounds its motion"
+        ),
+    );
+    report.notes.push(format!(
+        "`{id}`: box 0.5 m, 2 kg on the ground, mu = 0.5. Engine: largest motion {motion:.3e} m \
+         in 10 s, {} contact event(s). rapier2d: largest motion {rmotion:.3e} m, resting \
+         {sink_depth:.3e} m into the ground at the end.",
+        events.len()
+    ));
+    report.notes.push(run.profile_note(id));
+    Ok(report)
+}
+
