@@ -73,6 +73,13 @@ fn in_the_studies(id: &str, study: &StudyResults) -> String {
     md
 }
 
+/// Starts section `title` one blank line after what `md` holds.
+fn section(md: &mut String, title: &str) {
+    let kept = md.trim_end_matches('\n').len();
+    md.truncate(kept);
+    let _ = write!(md, "\n\n## {title}\n\n");
+}
+
 /// The page of `case`, run as `report`, with its place in `study` when
 /// the studies ran, linking the pictures of `scenes/` when there are.
 pub fn markdown(
@@ -111,20 +118,20 @@ pub fn markdown(
         }
     }
     if !report.notes.is_empty() {
-        md.push_str("\n## Notes\n\n");
+        section(&mut md, "Notes");
         for note in &report.notes {
             md.push_str(&wrap(note, "- ", "  "));
         }
     }
     if !report.figures.is_empty() {
-        md.push_str("\n## Figures\n\n");
+        section(&mut md, "Figures");
         for figure in &report.figures {
             let _ = writeln!(md, "![{}](../{})\n", figure.alt, figure.file);
             md.push_str(&wrap(&figure.caption, "", ""));
             md.push('\n');
         }
     }
-    md.push_str("\n## Rows\n\n");
+    section(&mut md, "Rows");
     let rows: Vec<&Row> = report.rows.iter().collect();
     md.push_str(&table::markdown(&rows, false));
     md
