@@ -75,6 +75,12 @@ pub enum GenerateSpec {
         /// Gap between neighbours in a row (m), ≥ 0. Default 0.
         #[serde(default)]
         spacing: f64,
+        /// Fraction of a box by which each box overlaps its neighbours in
+        /// its row and the rows above and below, in [0, 0.5): rows and
+        /// boxes are `box_size · (1 − overlap)` apart (an overlap-recovery
+        /// test). Default 0.
+        #[serde(default)]
+        overlap: f64,
         /// Middle of the bottom row's bottom edge (m). Default `[0, 0]`.
         #[serde(default)]
         origin: Xy,
@@ -295,6 +301,7 @@ pub(crate) fn expand(
             base,
             box_size,
             spacing,
+            overlap,
             origin,
             ..
         } => {
@@ -303,15 +310,24 @@ pub(crate) fn expand(
             check_total(path, so_far, total)?;
             let size = positive(&path.key("box_size"), *box_size, "box_size", "m")?;
             let gap = non_negative(&path.key("spacing"), *spacing, "spacing", "m")?;
+            let overlap = non_negative(&path.key("overlap"), *overlap, "overlap", "")?;
+            if overlap >= 0.5 {
+                return Err(Problem::new(
+                    &path.key("overlap"),
+                    ErrorKind::InvalidValue,
+                    format!("overlap must be below 0.5 (half a box), got {overlap}"),
+                ));
+            }
             let origin = crate::build::xy(&path.key("origin"), origin)?;
             let square = Shape::rectangle(size, size).map_err(|e| Problem::engine(path, e))?;
-            let pitch = size + gap;
+            let pitch = size * (1.0 - overlap) + gap;
+            let rise = size * (1.0 - overlap);
             let mut out = Vec::with_capacity(total);
             for row in 0..base {
                 let n = base - row;
                 for column in 0..n {
                     let x = (column as f64 - 0.5 * (n as f64 - 1.0)) * pitch;
-                    let y = (row as f64 + 0.5) * size;
+                    let y = 0.5 * size + row as f64 * rise;
                     out.push((square.clone(), origin + Vector2::new(x, y), 0.0));
                 }
             }
@@ -476,6 +492,7 @@ mod tests {
             base,
             box_size: 1.0,
             spacing: 0.0,
+            overlap: 0.0,
             origin: Xy { x: 0.0, y: 0.0 },
             density: 1.0,
             friction: None,

@@ -4,7 +4,10 @@
 //! engine and in rapier2d-f64, with a chart of the apex per bounce.
 
 use super::{Case, CaseReport, Headline, Snapshots};
-use super::collision_common::{EngineRun, rapier_row, rapier_settings, run_engine, run_rapier};
+use super::collision_common::{
+    EngineRun, rapier_row, rapier_settings, run_engine, run_rapier, run_soft_step,
+    soft_step_sink,
+};
 use super::collision_plots::{Series, apex_chart, figure};
 use crate::row::RowSink;
 use anyhow::{Context, Result, ensure};
@@ -115,6 +118,8 @@ pub fn run() -> Result<CaseReport> {
     let mut report = CaseReport::default();
     let elastic = elastic(&mut report)?;
     let damped = restitution_08(&mut report)?;
+    soft_step_elastic(&mut report)?;
+    soft_step_08(&mut report)?;
     report.notes.push(
         "Apex heights are the ball's bottom above the ground at the located apex events \
          (vy = 0, root finding inside the step); rapier2d's from its state at the last step \
@@ -411,6 +416,133 @@ fn restitution_08(report: &mut CaseReport) -> Result<[Series; 3]> {
 /// rapier's apex loss per bounce, in units of v dt: up to the gap v dt of
 /// the impact step, plus symplectic Euler's h v/2 with h = dt/4.
 const RAPIER_LOSS_FACTOR: f64 = 1.125;
+
+/// The soft step's largest apex change at one bounce (m), for an impact at
+/// speed `v` (m/s), steps of `dt` and substeps of `h` (s), speculative
+/// distance `d` (m). A contact point appears at the first step that starts
+/// within `d` of the ground: the fall is stopped at the surface and the
+/// restitution pass reflects the speed the ball had at that step's start,
+/// so the height of the gap closed in that step is lost — a gap in
+/// (d − v dt, d] when v dt < d (the step before started farther than d), in
+/// [0, v dt] otherwise; when v dt > d a gap over d is crossed unseen and the
+/// overlap (≤ v dt) is pushed out without velocity, gaining at most that
+/// height. Symplectic Euler's flight tops out h v/2 lower. So the change is
+/// at most max(v dt, d) + h v/2.
+fn soft_step_change_bound(v: f64, dt: f64, h: f64, d: f64) -> f64 {
+    (v * dt).max(d) + 0.5 * h * v
+}
+
+/// The substep and the speculative distance of a soft-step run (s, m).
+fn soft_step_steps(run: &EngineRun) -> Result<(f64, f64)> {
+    match run.world.contact_model() {
+        Some(engine::ContactModel::SoftStep(s)) => Ok((
+            run.scene.dt() / s.substeps as f64,
+            s.speculative_distance,
+        )),
+        _ => anyhow::bail!("not a soft-step run"),
+    }
+}
+
+/// The e = 1 bounce under the soft-step model: the mean apex loss over 10
+/// bounces and each bounce's change against the model's bound.
+fn soft_step_elastic(report: &mut CaseReport) -> Result<()> {
+    let id = "collision_bounce";
+    let run = run_soft_step(id)?;
+    let geo = geometry(&run)?;
+    let apexes = engine_apexes(&run, &geo);
+    ensure!(apexes.len() >= 10, "{id} (soft step): {} apexes", apexes.len());
+    let dt = run.scene.dt();
+    let (h, d) = soft_step_steps(&run)?;
+    let mut worst = 0.0f64;
+    let mut before = geo.h0;
+    for a in &apexes[..10] {
+        let v = (2.0 * geo.g * before).sqrt();
+        worst = worst.max((before - a).abs() / soft_step_change_bound(v, dt, h, d));
+        before = *a;
+    }
+    let loss = 1.0 - (apexes[9] / geo.h0).powf(1.0 / 10.0);
+    let v0 = (2.0 * geo.g * geo.h0).sqrt();
+    let mut sink = soft_step_sink(&mut report.rows, "collision_bounce", &run);
+    sink.at_most(
+        "apex_change_per_bounce_e1",
+        worst,
+        0.0,
+        1.0,
+        "largest |h_(n-1) − h_n| over the first 10 bounces in units of the model's bound \
+         max(v dt, d) + h v/2 (v the impact speed, d = 0.02 m the speculative distance, \
+         h = dt/4): the impact step loses the gap it closes, or gains the unseen overlap it \
+         pushes out, and symplectic Euler tops out h v/2 lower",
+    );
+    sink.within(
+        "apex_loss_per_bounce_e1",
+        loss,
+        0.0,
+        soft_step_change_bound(v0, dt, h, d) / apexes[9],
+        "1 − (h_10/h0)^(1/10), the mean loss per bounce over 10 bounces, against 0 (e = 1), \
+         within the model's bound per bounce, (max(v dt, d) + h v/2) / h_10",
+    );
+    report.notes.push(format!(
+        "`{id}` under the soft step: apex 1 = {:.6} m, apex 10 = {:.6} m, {:.3} % lost per \
+         bounce over 10 (the step-quantised impact; rapier2d's model is the same).",
+        apexes[0],
+        apexes[9],
+        100.0 * loss
+    ));
+    Ok(())
+}
+
+/// The e = 0.8 bounce under the soft-step model: each apex against 0.64
+/// times the one before within the model's bound, and the end of the
+/// bounces when the impact speed drops under the restitution threshold.
+fn soft_step_08(report: &mut CaseReport) -> Result<()> {
+    let id = "collision_bounce_08";
+    let run = run_soft_step(id)?;
+    let geo = geometry(&run)?;
+    let apexes = engine_apexes(&run, &geo);
+    let settings = match run.world.contact_model() {
+        Some(engine::ContactModel::SoftStep(s)) => s,
+        _ => anyhow::bail!("{id}: not a soft-step run"),
+    };
+    let (e, threshold) = (settings.restitution, settings.restitution_threshold);
+    let dt = run.scene.dt();
+    let (h, d) = soft_step_steps(&run)?;
+    let speed = |h: f64| (2.0 * geo.g * h).sqrt();
+    // The ball bounces off impact n only if it arrives faster than the
+    // threshold: the bounces stop after the first apex whose fall is slower.
+    let mut heights = vec![geo.h0];
+    heights.extend(apexes.iter().copied());
+    let expected_count = heights
+        .iter()
+        .position(|&h| speed(h) < threshold)
+        .unwrap_or(heights.len());
+    let mut sink = soft_step_sink(&mut report.rows, "collision_bounce", &run);
+    for n in 1..=apexes.len().min(expected_count) {
+        let (before, apex) = (heights[n - 1], heights[n]);
+        sink.within(
+            &format!("apex_{n}_e0.8"),
+            apex,
+            e * e * before,
+            e * e * soft_step_change_bound(speed(before), dt, h, d),
+            format!(
+                "e² h_(n-1) = 0.64 × {before:.6} m, within e² (max(v dt, d) + h v/2): the impact \
+                 step's gap or overlap and symplectic Euler's lag (v = {:.3} m/s)",
+                speed(before)
+            ),
+        );
+    }
+    sink.within(
+        "bounce_count_e0.8",
+        apexes.len() as f64,
+        expected_count as f64,
+        0.0,
+        format!(
+            "the ball stops bouncing once it falls from an apex slower than the restitution \
+             threshold ({threshold} m/s: from below {:.4} m); counted from the measured apexes",
+            threshold * threshold / (2.0 * geo.g)
+        ),
+    );
+    Ok(())
+}
 
 /// The contact slop (m): 4 ε at the default ε = 1e-10 m
 /// ([`engine::contact::PROJECTION_SLOP`]).

@@ -7,7 +7,7 @@ use crate::row::RowSink;
 use crate::scenes;
 use crate::snapshot::round_sig;
 use anyhow::{Context, Result, bail};
-use engine::{Body, BodyKind, ContactEvent, ContactEventKind, Trace, World};
+use engine::{Body, BodyKind, ContactEvent, ContactEventKind, SoftStepSettings, Trace, World};
 use nalgebra::Vector2;
 use references::rapier_contacts::{
     RapierContactBody, RapierContactRun, RapierContactScene, run_contact_scene,
@@ -19,6 +19,10 @@ use std::fmt::Write as _;
 
 /// Method id of rapier rows.
 pub const RAPIER: &str = "rapier2d";
+
+/// Method id of the rows of the engine's soft-step contact model (it
+/// integrates by semi-implicit Euler per substep).
+pub const SOFT_STEP: &str = "soft_step";
 
 /// A collision scene run in the engine with the scene's own method.
 pub struct EngineRun {
@@ -91,6 +95,60 @@ pub fn run_engine(id: &str) -> Result<EngineRun> {
         world,
         trace,
     })
+}
+
+/// The soft-step model at its defaults for a collision scene: the scene's
+/// restitution and friction become the bodies' own (the soft step mixes
+/// per-body values; equal values mix to themselves), everything else is
+/// [`SoftStepSettings::default`] (4 substeps, 30 Hz contacts, ζ = 10,
+/// restitution threshold 1 m/s, speculative distance 0.02 m).
+pub fn soft_step_settings(scene: &Scene) -> Result<SoftStepSettings> {
+    let exact = exact_contact(scene)?;
+    Ok(SoftStepSettings {
+        restitution: exact.restitution,
+        friction: exact.friction,
+        ..SoftStepSettings::default()
+    })
+}
+
+/// Loads collision scene `id` and runs it under the soft-step model at its
+/// defaults ([`soft_step_settings`]), at the scene's step, with profiling
+/// on.
+pub fn run_soft_step(id: &str) -> Result<EngineRun> {
+    let scene = scenes::load(id)?;
+    let mut world = scene.build_world(Some(engine::Method::SemiImplicitEuler))?;
+    world.set_contact_model(engine::ContactModel::SoftStep(soft_step_settings(&scene)?))?;
+    world.set_profiling(true);
+    let trace = world
+        .run(scene.duration(), scene.dt())
+        .with_context(|| format!("running {id} under the soft step"))?;
+    Ok(EngineRun {
+        scene,
+        world,
+        trace,
+    })
+}
+
+/// The rows of the soft-step model of case `case` at the scene's step.
+pub fn soft_step_sink<'a>(
+    rows: &'a mut Vec<crate::row::Row>,
+    case: &'a str,
+    run: &EngineRun,
+) -> RowSink<'a> {
+    RowSink {
+        case,
+        method: SOFT_STEP,
+        dt: run.scene.dt(),
+        rows,
+    }
+}
+
+/// The soft step's substep h = dt / substeps (s) of a run.
+pub fn soft_substep(run: &EngineRun) -> f64 {
+    match run.world.contact_model() {
+        Some(engine::ContactModel::SoftStep(s)) => run.scene.dt() / s.substeps as f64,
+        _ => run.scene.dt(),
+    }
 }
 
 /// The rapier description of a collision scene: its bodies with their

@@ -5,6 +5,7 @@
 
 use super::collision_common::{
     IMPULSE_ROUND_OFF, kinetic_energy, rapier_row, rapier_settings, run_engine, run_rapier,
+    run_soft_step, soft_step_sink,
 };
 use super::{Case, CaseReport, Headline, Snapshots};
 use crate::row::RowSink;
@@ -170,6 +171,37 @@ fn head_on(report: &mut CaseReport, id: &str, e: f64, v1: f64, v2: f64) -> Resul
         r2 - v2,
     ));
     report.notes.push(run.profile_note(id));
+    soft_step(report, id, (v1, v2))
+}
+
+/// The same impact under the soft-step model. The discs meet along the
+/// line of centres at one point; at 2 m/s they close at most 0.02 m per
+/// step, the speculative distance, so the point is found before they
+/// overlap. Every impulse of that step (the speculative stop, the soft
+/// and relax passes, the restitution pass) acts at the same anchors along
+/// the same normal: they add up to one impulse, and the restitution pass
+/// sets the final normal velocity to −e × the approach speed measured at
+/// the step's start, which no force changed. So the soft step gives
+/// eq. 7.15's velocities to round-off.
+fn soft_step(report: &mut CaseReport, id: &str, (v1, v2): (f64, f64)) -> Result<()> {
+    let run = run_soft_step(id)?;
+    let (a, b) = (run.body("m1")?, run.body("m2")?);
+    let tag = if id.ends_with("half") { "e0.5" } else { "e1" };
+    let s = run.world.states();
+    let mut sink = soft_step_sink(&mut report.rows, "collision_head_on", &run);
+    let why = "one speculative point found before overlap (2 m/s × 0.01 s = the 0.02 m \
+               speculative distance): the step's impulses act at one point along one normal \
+               and the restitution pass ends at −e × the approach speed, so eq. 7.15 holds \
+               to round-off, 1e-12";
+    sink.within(&format!("v1_after_{tag}"), s[a].velocity.x, v1, IMPULSE_ROUND_OFF, why);
+    sink.within(&format!("v2_after_{tag}"), s[b].velocity.x, v2, IMPULSE_ROUND_OFF, why);
+    sink.within(
+        &format!("momentum_{tag}"),
+        s[a].velocity.x + 3.0 * s[b].velocity.x,
+        2.0,
+        IMPULSE_ROUND_OFF,
+        "equal and opposite impulses keep m1 v1 + m2 v2 = 2 kg·m/s; round-off",
+    );
     Ok(())
 }
 

@@ -4,6 +4,7 @@
 //! the engine against the closed form and in rapier2d-f64.
 
 use super::collision_common::{
+    run_soft_step, soft_step_sink,
     CLOSED_FORM_RELATIVE, RAPIER, STILL, friction, gravity, rapier_position, rapier_settings,
     run_engine, run_rapier,
 };
@@ -145,6 +146,55 @@ fn incline(report: &mut CaseReport, id: &str, slides: bool) -> Result<()> {
         }
     ));
     report.notes.push(run.profile_note(id));
+    soft_step(report, id, slides, a)
+}
+
+/// The incline under the soft-step model. Once the soft contact has
+/// settled (its normal impulse per substep is m g cos θ h and the friction
+/// μ m g cos θ h, or whatever holds), every substep adds exactly
+/// (g sin θ − μ g cos θ) h along the plane, which symplectic Euler turns
+/// into a constant velocity increment: the acceleration is measured from
+/// the velocities at 1 s and at the end, past the settling.
+fn soft_step(report: &mut CaseReport, id: &str, slides: bool, a: f64) -> Result<()> {
+    let run = run_soft_step(id)?;
+    let b = run.body("box")?;
+    let theta = run.scene.bodies()[b].state.angle;
+    let down = Vector2::new(-theta.cos(), -theta.sin());
+    let t1 = 1.0;
+    let early = crate::cases::sample_at(&run.trace, t1)?.states[b];
+    let end = run.world.states()[b];
+    let t_end = run.world.time();
+    let tag = if slides { "slide" } else { "hold" };
+    let mut sink = soft_step_sink(&mut report.rows, "collision_incline", &run);
+    if slides {
+        let measured = (end.velocity - early.velocity).dot(&down) / (t_end - t1);
+        sink.within(
+            "acceleration_slide",
+            measured,
+            a,
+            CLOSED_FORM_RELATIVE * a,
+            "velocity gained along the plane from 1 s to the end over the time: once the soft \
+             contact has settled each substep adds exactly (g sin θ − mu g cos θ) h, so the \
+             closed form holds to round-off; CASES.md's 1e-6 relative",
+        );
+    } else {
+        let moved = (end.position - early.position).norm();
+        sink.at_most(
+            "motion_hold",
+            moved,
+            0.0,
+            STILL,
+            "distance moved from 1 s (the contact settled) to 10 s: the relax pass's friction \
+             holds the box within the cone (mu > tan 25°); CASES.md's 1e-9 m",
+        );
+    }
+    report.notes.push(format!(
+        "`{id}` under the soft step: the box turned by {:.2e} rad into the plane as its two \
+         contact points compressed unequally under the friction's torque (a soft contact's \
+         compression, not a slide).",
+        (end.angle - theta).abs(),
+    ));
+    let _ = tag;
     Ok(())
 }
 
