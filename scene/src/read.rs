@@ -93,10 +93,10 @@ fn kind_of(file_type: &std::fs::FileType) -> &'static str {
 /// Byte-order marks that say the file is not UTF-8, longest first (the
 /// UTF-32 little-endian mark starts with UTF-16's).
 const FOREIGN_MARKS: [(&[u8], &str); 4] = [
-    (&[0xFF, 0xFE, 0x00, 0x00], "UTF-32 (little-endian)"),
-    (&[0x00, 0x00, 0xFE, 0xFF], "UTF-32 (big-endian)"),
-    (&[0xFF, 0xFE], "UTF-16 (little-endian)"),
-    (&[0xFE, 0xFF], "UTF-16 (big-endian)"),
+    (&[0xFF, 0xFE, 0x00, 0x00], "UTF-32 little-endian"),
+    (&[0x00, 0x00, 0xFE, 0xFF], "UTF-32 big-endian"),
+    (&[0xFF, 0xFE], "UTF-16 little-endian"),
+    (&[0xFE, 0xFF], "UTF-16 big-endian"),
 ];
 
 /// Decodes scene bytes as UTF-8, or says what they are instead, located.
@@ -110,7 +110,7 @@ pub(crate) fn decode(origin: &str, bytes: &[u8]) -> Result<String, SceneError> {
             return refuse(
                 (1, 1),
                 format!(
-                    "the file is {encoding} (it starts with the byte-order mark {}); a scene file must be UTF-8: save it as UTF-8",
+                    "the file is {encoding} (byte-order mark {} at its start); a scene file must be UTF-8: save it as UTF-8",
                     shown.join(" ")
                 ),
             );
@@ -202,7 +202,7 @@ mod tests {
         le.extend("[simulation]".encode_utf16().flat_map(u16::to_le_bytes));
         let e = refused(&le);
         assert_eq!(e.kind(), ErrorKind::Encoding);
-        assert!(e.message().contains("UTF-16 (little-endian)"), "{e}");
+        assert!(e.message().contains("UTF-16 little-endian"), "{e}");
         assert!(e.message().contains("FF FE"), "{e}");
         assert_eq!(e.line(), Some(1));
         let be: Vec<u8> = "[simulation]"
@@ -210,7 +210,7 @@ mod tests {
             .flat_map(u16::to_be_bytes)
             .collect();
         let e = refused(&be);
-        assert!(e.message().contains("UTF-16 (big-endian)"), "{e}");
+        assert!(e.message().contains("UTF-16 big-endian"), "{e}");
     }
 
     #[test]
