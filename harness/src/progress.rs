@@ -52,7 +52,12 @@ pub fn bar(len: u64, message: impl Into<String>) -> ProgressBar {
     if !enabled() {
         return ProgressBar::hidden();
     }
-    let bar = ProgressBar::with_draw_target(Some(len), ProgressDrawTarget::stderr());
+    styled(len, message, ProgressDrawTarget::stderr())
+}
+
+/// A bar of `len` units labelled `message`, drawn to `target`.
+fn styled(len: u64, message: impl Into<String>, target: ProgressDrawTarget) -> ProgressBar {
+    let bar = ProgressBar::with_draw_target(Some(len), target);
     let style = ProgressStyle::with_template(
         "{msg} [{bar:32}] {human_pos}/{human_len} ({percent}%) {elapsed} elapsed, ETA {eta}",
     )
@@ -101,9 +106,9 @@ impl Ticker {
         if !enabled() {
             return Self::new(ProgressBar::hidden(), chunk);
         }
-        let shown = bar(len, message);
-        let bar = shown.clone();
-        bar.set_draw_target(ProgressDrawTarget::hidden());
+        // Hidden from its creation: nothing is drawn before it is revealed.
+        let bar = styled(len, message, ProgressDrawTarget::hidden());
+        let shown = bar.clone();
         let (done, wait) = mpsc::channel::<()>();
         std::thread::spawn(move || {
             // Nothing is ever sent: the loop ends by dropping its sender.

@@ -4,6 +4,7 @@
 //! ```text
 //! harness simulate scene.toml [--method M] [--dt H] [--until T]
 //!     [--trace out.csv] [--svg out.svg] [--gif out.gif] [--compare rapier]
+//!     [--budget SECONDS]
 //! ```
 //!
 //! - the scene runs with its own `[simulation]` method, step and duration,
@@ -22,13 +23,28 @@
 //! - `--compare rapier`: runs the scene in rapier2d-f64 too
 //!   (`references::rapier_world`; one dynamic body under gravity, an axial
 //!   spring to an anchor, drag, angular drag and torques) and prints the
-//!   largest difference of each quantity and rapier's configuration.
+//!   largest difference of each quantity and rapier's configuration;
+//! - `--budget SECONDS`: a wall-time limit, checked between steps: the run
+//!   stops after the step that spends it, says so (stdout and stderr,
+//!   exit code 0), and the outputs cover the part that ran;
+//! - on a terminal, a progress bar appears once a run has lasted a second,
+//!   redrawn while a slow step goes on ([`crate::progress`]).
 //!
 //! Bad input never panics and never costs the user's work: the scene file
 //! is only read, every error (the scene's, with file, field and line, or a
 //! command-line value) is reported before the run, and the outputs are
 //! written only after the run succeeded, each to a temporary file renamed
-//! into place. An output path equal to the scene file is refused.
+//! into place. An output path equal to the scene file is refused, and so
+//! is an existing one that is not a regular file (a link, a FIFO, a device:
+//! the rename would replace it).
+//!
+//! Non-finite figures are errors, never numbers: a step whose energy is
+//! not a finite number fails the run (exit code 2, nothing written) with a
+//! hint naming the fastest body; a `[linear_test]` whose exact solution or
+//! error overflows is refused; a picture whose axes cannot be drawn is
+//! refused or drawn with a widened view that says so
+//! ([`crate::pictures::axis_range`]). A failure of the adaptive method
+//! names the force that makes the problem stiff.
 
 mod compare;
 mod diagnosis;
@@ -198,7 +214,8 @@ impl Recorded {
 /// samples. After every step, `on_step(i, whole, world)` is called, with
 /// `whole` true when the world stands at exactly `t0 + i·dt` (not after a
 /// shortened last step or a terminal event). `ticker` counts the steps.
-/// When `limits.budget` is spent, the run stops after the current step
+/// A step whose energy is not a finite number fails the run
+/// ([`engine::EngineError::BlowUp`]). When `limits.budget` is spent, the run stops after the current step
 /// with what it has (`stopped_by_budget`), and says so on stderr.
 pub fn record(
     world: &mut World,
@@ -228,6 +245,21 @@ pub fn record(
             ))
         })?;
         rec.events.extend(events);
+        // The world checks the energy of its own steps, but not of a step
+        // cut short by a terminal event: every step's is checked here, as
+        // the figure printed and written with the states.
+        let energy = world.energy();
+        if !energy.is_finite() {
+            let blow_up = engine::EngineError::BlowUp {
+                t: world.time(),
+                step: i - 1,
+                reason: format!("energy {energy} J is not a finite number"),
+            };
+            return Err(anyhow!(blow_up).context(format!(
+                "the run failed in step {i} of {steps} (t = {} s)",
+                world.time()
+            )));
+        }
         ticker.tick();
         let stopped = world.is_stopped();
         on_step(i, !stopped && (i < steps || last_is_whole), world);
