@@ -194,10 +194,10 @@ pub struct Recorded {
 }
 
 impl Recorded {
-    fn push(&mut self, world: &World) {
+    fn push(&mut self, world: &World, energy: f64) {
         self.times.push(world.time());
         self.states.push(world.states().to_vec());
-        self.energies.push(world.energy());
+        self.energies.push(energy);
     }
 
     /// Copies the samples into `film`.
@@ -214,7 +214,7 @@ impl Recorded {
 /// samples. After every step, `on_step(i, whole, world)` is called, with
 /// `whole` true when the world stands at exactly `t0 + i·dt` (not after a
 /// shortened last step or a terminal event). `ticker` counts the steps.
-/// A step whose energy is not a finite number fails the run
+/// A sampled step whose energy is not a finite number fails the run
 /// ([`engine::EngineError::BlowUp`]). When `limits.budget` is spent, the run stops after the current step
 /// with what it has (`stopped_by_budget`), and says so on stderr.
 pub fn record(
@@ -234,7 +234,7 @@ pub fn record(
         stride,
         ..Recorded::default()
     };
-    rec.push(world);
+    rec.push(world, world.energy());
     let budget = Budget::new(limits.budget);
     for i in 1..=steps {
         let t = grid_time(t0, until, dt, i, steps);
@@ -245,10 +245,13 @@ pub fn record(
             ))
         })?;
         rec.events.extend(events);
-        // The world checks the energy of its own steps, but not of a step
-        // cut short by a terminal event: every step's is checked here, as
-        // the figure printed and written with the states.
-        let energy = world.energy();
+        let stopped = world.is_stopped();
+        let out_of_time = !stopped && i < steps && budget.exhausted();
+        let sampled = i % stride == 0 || i == steps || stopped || out_of_time;
+        // A world built from a scene checks the energy of its steps, but
+        // not of a step cut short by a terminal event: the energy of every
+        // sample (what is printed and written) is checked here too.
+        let energy = if sampled { world.energy() } else { 0.0 };
         if !energy.is_finite() {
             let blow_up = engine::EngineError::BlowUp {
                 t: world.time(),
@@ -261,12 +264,10 @@ pub fn record(
             )));
         }
         ticker.tick();
-        let stopped = world.is_stopped();
         on_step(i, !stopped && (i < steps || last_is_whole), world);
         rec.steps = i;
-        let out_of_time = !stopped && i < steps && budget.exhausted();
-        if i % stride == 0 || i == steps || stopped || out_of_time {
-            rec.push(world);
+        if sampled {
+            rec.push(world, energy);
         }
         if stopped {
             rec.stopped_by_event = true;
@@ -274,11 +275,15 @@ pub fn record(
         }
         if out_of_time {
             rec.stopped_by_budget = true;
-            budget.say_stopped(world.time(), i, steps);
             break;
         }
     }
+    // The bar is cleared before the note, which would otherwise be drawn
+    // over.
     ticker.finish();
+    if rec.stopped_by_budget {
+        budget.say_stopped(world.time(), rec.steps, steps);
+    }
     Ok(rec)
 }
 

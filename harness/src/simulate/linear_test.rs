@@ -173,10 +173,12 @@ fn solve(
         }
         if out_of_time {
             run.stopped_by_budget = true;
-            budget.say_stopped(t_next, i, steps);
             break;
         }
     }
     ticker.finish();
+    if run.stopped_by_budget {
+        budget.say_stopped(t, run.steps, steps);
+    }
     Ok(run)
 }
