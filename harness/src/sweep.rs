@@ -169,7 +169,7 @@ fn spring_case() -> Result<SweepCase> {
         h0: 0.2,
         scale: exact.x0 - exact.rest_length,
         run: Box::new(move |method, h, observe| {
-            let mut world = scenes::world("spring", method)?;
+            let mut world = scenes::timed_world("spring", method)?;
             let mut max_error: f64 = 0.0;
             step_world(&mut world, 57.2, h, |w| {
                 if observe {
@@ -197,7 +197,7 @@ fn drag_case(reference: DragReference) -> Result<SweepCase> {
         h0: 0.2,
         scale: 100.0,
         run: Box::new(move |method, h, observe| {
-            let mut world = scenes::world("projectile_drag", method)?;
+            let mut world = scenes::timed_world("projectile_drag", method)?;
             let mut max_error: f64 = 0.0;
             let mut failure = None;
             step_world(&mut world, 5.0, h, |w| {
@@ -237,7 +237,7 @@ fn angular_drag_case() -> Result<SweepCase> {
         h0: 0.1,
         scale: 1.0,
         run: Box::new(move |method, h, observe| {
-            let mut world = scenes::world("angular_drag", method)?;
+            let mut world = scenes::timed_world("angular_drag", method)?;
             let mut max_error: f64 = 0.0;
             step_world(&mut world, 8.7, h, |w| {
                 if observe {
