@@ -30,8 +30,9 @@
 //! ```
 //!
 //! (`FUZZ_SEED=n` picks another deterministic sequence.) Every failing case
-//! is counted and the first few are printed with their text, so one run
-//! reports all the kinds of failure, not just the first.
+//! is counted by kind and the first few are printed with their text (panics
+//! first, or those whose reason starts with `FUZZ_SHOW`), so one run reports
+//! all the kinds of failure, not just the first.
 
 use engine::Method;
 use engine::time_grid::grid_time;
