@@ -122,7 +122,7 @@ pub(crate) fn decode(origin: &str, bytes: &[u8]) -> Result<String, SceneError> {
                 return refuse(
                     (1, 1),
                     format!(
-                        "the file looks like UTF-16 ({order}) without a byte-order mark: every other byte is zero; a scene file must be UTF-8: save it as UTF-8"
+                        "the file looks like UTF-16 {order} without a byte-order mark: every other byte is zero; a scene file must be UTF-8: save it as UTF-8"
                     ),
                 );
             }
@@ -135,7 +135,7 @@ pub(crate) fn decode(origin: &str, bytes: &[u8]) -> Result<String, SceneError> {
                 return refuse(
                     line_column(valid, offset),
                     format!(
-                        "the file looks like UTF-16 ({order}) without a byte-order mark: every other byte is zero; a scene file must be UTF-8: save it as UTF-8"
+                        "the file looks like UTF-16 {order} without a byte-order mark: every other byte is zero; a scene file must be UTF-8: save it as UTF-8"
                     ),
                 );
             }
