@@ -9,7 +9,7 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum EngineError {
     /// A user-supplied number is out of its domain (mass ≤ 0, dt ≤ 0, NaN, ...).
-    #[error("invalid {what}: {value} ({reason})")]
+    #[error("invalid {what}: {} ({reason})", readable(*.value))]
     InvalidParameter {
         /// Which parameter, e.g. `"mass of body 'box'"`.
         what: String,
@@ -49,7 +49,7 @@ pub enum EngineError {
         method: &'static str,
     },
     /// The state stopped being finite: the integration blew up.
-    #[error("blow-up at t = {t} s (step {step}): {reason}")]
+    #[error("blow-up at t = {} s (step {step}): {reason}", readable(*.t))]
     BlowUp {
         /// Time at the start of the step that produced it, in s.
         t: f64,
@@ -59,7 +59,7 @@ pub enum EngineError {
         reason: String,
     },
     /// The adaptive controller needed a step smaller than round-off allows.
-    #[error("step size underflow at t = {t} s (h = {h} s)")]
+    #[error("step size underflow at t = {} s (h = {} s)", readable(*.t), readable(*.h))]
     StepSizeUnderflow {
         /// Time at which the step could not be taken, in s.
         t: f64,
@@ -68,7 +68,9 @@ pub enum EngineError {
     },
     /// Newton's iterations of the implicit method did not converge.
     #[error(
-        "implicit solver did not converge at t = {t} s after {iterations} iterations (residual {residual})"
+        "implicit solver did not converge at t = {} s after {iterations} iterations (residual {})",
+        readable(*.t),
+        readable(*.residual)
     )]
     NewtonDiverged {
         /// Time at the start of the step, in s.
@@ -80,7 +82,7 @@ pub enum EngineError {
     },
     /// Contact handling could not go on: a time-of-impact search did not
     /// converge, or a step needed more contact events than allowed.
-    #[error("contact handling failed at t = {t} s: {reason}")]
+    #[error("contact handling failed at t = {} s: {reason}", readable(*.t))]
     Contact {
         /// Time at the start of the step (or piece of step), in s.
         t: f64,
@@ -98,11 +100,24 @@ pub enum EngineError {
         reason: &'static str,
     },
     /// The Jacobian of the implicit step is singular.
-    #[error("singular Newton matrix at t = {t} s")]
+    #[error("singular Newton matrix at t = {} s", readable(*.t))]
     SingularJacobian {
         /// Time at the start of the step, in s.
         t: f64,
     },
+}
+
+/// A number for messages: Rust's shortest digits that read back exactly,
+/// switched to scientific notation when the magnitude is at least 1e16 or
+/// below 1e-4 (`-1e308`, `1e-320`, `2.5e-7`), so that no message prints
+/// hundreds of digits. Zero, infinities and NaN print as Rust prints them.
+pub fn readable(value: f64) -> String {
+    let magnitude = value.abs();
+    if value == 0.0 || !value.is_finite() || (1e-4..1e16).contains(&magnitude) {
+        format!("{value}")
+    } else {
+        format!("{value:e}")
+    }
 }
 
 /// Short alias used across the engine.
@@ -157,5 +172,29 @@ pub(crate) fn require_finite(what: impl Into<String>, value: f64) -> Result<f64>
             value,
             reason: "must be finite",
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn readable_numbers_are_short_and_exact() {
+        assert_eq!(readable(-1e308), "-1e308");
+        assert_eq!(readable(-1e-320), "-1e-320");
+        assert_eq!(readable(0.25), "0.25");
+        assert_eq!(readable(-20.0), "-20");
+        assert_eq!(readable(1e16), "1e16");
+        assert_eq!(readable(2.5e-7), "2.5e-7");
+        assert_eq!(readable(f64::INFINITY), "inf");
+        for v in [1.2345678901234567e300, 3e-310, 0.1, 123456.789] {
+            assert_eq!(readable(v).parse::<f64>(), Ok(v));
+        }
+        let e = require_positive("mass", -1e308).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid mass: -1e308 (must be finite and > 0)"
+        );
     }
 }

@@ -14,9 +14,18 @@ pub fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
-/// Relative tolerance under which three vertices count as collinear, scaled
-/// by the polygon's size squared (a cross product has units of m²).
-const COLLINEAR_TOLERANCE: f64 = 1e-12;
+/// Bound on the rounding error of a turn `cross(e1, e2)` computed in f64,
+/// relative to `|e1.x e2.y| + |e1.y e2.x|`.
+///
+/// The vertices are exact (rescaled by a power of two, which is exact), so
+/// each edge component carries one rounding (relative error ≤ u = ε/2), each
+/// product one more, and the final difference one more: the computed turn is
+/// within γ₄ (|e1.x e2.y| + |e1.y e2.x|) of the true one, γ₄ = 4u/(1 − 4u)
+/// ≈ 2ε (Higham, *Accuracy and Stability of Numerical Algorithms*, §3.1).
+/// Doubled to 4ε so that the bound's own evaluation in f64 cannot make it
+/// too small. A turn within this bound has no trustworthy sign: the three
+/// vertices are collinear as far as f64 can tell.
+const TURN_ROUNDING: f64 = 4.0 * f64::EPSILON;
 
 /// A convex polygon, counter-clockwise, in its body's frame (m).
 #[derive(Debug, Clone, PartialEq)]
@@ -45,25 +54,26 @@ impl ConvexPolygon {
                 reason: "non-finite coordinate",
             });
         }
-        let size = vertices
-            .iter()
-            .map(|v| (v - vertices[0]).norm())
-            .fold(0.0, f64::max);
-        let tolerance = COLLINEAR_TOLERANCE * size * size;
+        for i in 0..n {
+            if vertices[i] == vertices[(i + n - 1) % n] {
+                return Err(EngineError::InvalidPolygon {
+                    vertex: i,
+                    reason: "repeated vertex",
+                });
+            }
+        }
+        let vertices_in = vertices;
+        let vertices = rescaled(&vertices_in);
         let signed_area: f64 = (0..n)
             .map(|i| cross(vertices[i], vertices[(i + 1) % n]))
             .sum();
         for i in 0..n {
             let prev = vertices[(i + n - 1) % n];
             let next = vertices[(i + 1) % n];
-            let turn = cross(vertices[i] - prev, next - vertices[i]);
-            if (vertices[i] - prev).norm() <= tolerance.sqrt() {
-                return Err(EngineError::InvalidPolygon {
-                    vertex: i,
-                    reason: "repeated vertex",
-                });
-            }
-            if turn.abs() <= tolerance {
+            let (e1, e2) = (vertices[i] - prev, next - vertices[i]);
+            let turn = cross(e1, e2);
+            let rounding = TURN_ROUNDING * ((e1.x * e2.y).abs() + (e1.y * e2.x).abs());
+            if turn.abs() <= rounding {
                 return Err(EngineError::InvalidPolygon {
                     vertex: i,
                     reason: "collinear vertex",
@@ -95,7 +105,9 @@ impl ConvexPolygon {
                 reason: "polygon is not convex (self-intersecting)",
             });
         }
-        Ok(Self { vertices })
+        Ok(Self {
+            vertices: vertices_in,
+        })
     }
 
     /// The axis-aligned rectangle `width × height` (m) centred on the origin.
@@ -204,6 +216,28 @@ impl ConvexPolygon {
             vertices: self.vertices.iter().map(|v| v - c).collect(),
         }
     }
+}
+
+/// The vertices multiplied by the power of two that brings the largest
+/// coordinate magnitude into [1, 2): exact (barring underflow of
+/// coordinates some 2^1000 times smaller than the largest, far below any
+/// turn's rounding), and it keeps the products of the convexity test from
+/// overflowing (coordinates of ±1e300) or underflowing (±1e-300).
+fn rescaled(vertices: &[Vector2<f64>]) -> Vec<Vector2<f64>> {
+    let largest = vertices
+        .iter()
+        .map(|v| v.x.abs().max(v.y.abs()))
+        .fold(0.0, f64::max);
+    if largest == 0.0 {
+        return vertices.to_vec();
+    }
+    // floor(log2(largest)) from the exponent bits, exact for normal numbers;
+    // a subnormal largest gives an exponent a little too high, still exact.
+    let exponent = largest.log2().floor() as i32;
+    // 2^-exponent in two factors, each representable (|exponent| ≤ 1074).
+    let half = -exponent / 2;
+    let (a, b) = (2f64.powi(half), 2f64.powi(-exponent - half));
+    vertices.iter().map(|v| v * a * b).collect()
 }
 
 /// A circle of given radius (m) centred on its body's origin.
@@ -514,5 +548,56 @@ mod tests {
         assert!((t.centroid() - Vector2::new(1.0, 2.0)).norm() < 1e-14);
         let per_area = t.polar_moment_about_centroid() / t.area();
         assert!((per_area - 45.0 / 18.0).abs() < 1e-13, "{per_area}");
+    }
+
+    fn polygon(points: &[[f64; 2]]) -> Result<ConvexPolygon> {
+        ConvexPolygon::new(points.iter().map(|p| Vector2::new(p[0], p[1])).collect())
+    }
+
+    fn reason(points: &[[f64; 2]]) -> (usize, &'static str) {
+        match polygon(points).unwrap_err() {
+            EngineError::InvalidPolygon { vertex, reason } => (vertex, reason),
+            e => panic!("unexpected {e}"),
+        }
+    }
+
+    #[test]
+    fn thin_boxes_are_valid() {
+        for (w, h) in [(1.0, 1e-7), (1000.0, 0.001), (1e-7, 1.0), (1e6, 1e-9)] {
+            let b = ConvexPolygon::rectangle(w, h).unwrap();
+            assert!((b.area() - w * h).abs() <= 1e-15 * w * h, "{w} x {h}");
+        }
+    }
+
+    #[test]
+    fn huge_and_tiny_coordinates_are_judged_by_their_shape() {
+        let huge = polygon(&[[-1e300, -1e300], [1e300, -1e300], [0.0, 1e300]]);
+        assert!(huge.is_ok(), "{huge:?}");
+        let tiny = polygon(&[[-1e-300, -1e-300], [1e-300, -1e-300], [0.0, 1e-300]]);
+        assert!(tiny.is_ok(), "{tiny:?}");
+        let far = polygon(&[[1e6, 1e6], [1e6 + 1e-3, 1e6], [1e6, 1e6 + 1e-3]]);
+        assert!(far.is_ok(), "{far:?}");
+    }
+
+    #[test]
+    fn a_duplicated_vertex_is_a_repeated_vertex() {
+        let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        assert_eq!(reason(&square), (2, "repeated vertex"));
+        assert_eq!(
+            reason(&[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.0, 0.0]]).1,
+            "repeated vertex"
+        );
+    }
+
+    #[test]
+    fn collinear_vertices_are_refused_at_any_scale() {
+        for s in [1.0, 1e-300, 1e300] {
+            let points = [[0.0, 0.0], [s, 0.0], [2.0 * s, 0.0], [s, s]];
+            assert_eq!(reason(&points), (1, "collinear vertex"), "scale {s}");
+        }
+        // The vertices are exact: a dent of 1e-17 m in a 1 m edge is a real
+        // dent, far above the turn's rounding (about 1e-32 m² here).
+        let points = [[0.0, 0.0], [0.5, 1e-17], [1.0, 0.0], [0.5, 1.0]];
+        assert_eq!(reason(&points), (1, "polygon is not convex"));
     }
 }

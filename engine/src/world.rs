@@ -407,7 +407,8 @@ impl World {
     /// almost always `run(until, dt)` with its arguments swapped.
     pub fn run(&mut self, until: f64, dt: f64) -> Result<Trace> {
         let t0 = self.core.time;
-        if dt > until - t0 && (until - t0).is_finite() {
+        let span = until - t0;
+        if dt.is_finite() && span.is_finite() && span > 0.0 && dt > span {
             return Err(EngineError::InvalidParameter {
                 what: format!("step dt = {dt:e} s for a run from t = {t0:e} s to {until:e} s"),
                 value: dt,

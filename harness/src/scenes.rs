@@ -56,3 +56,14 @@ pub fn list() -> Result<Vec<PathBuf>> {
     files.sort();
     Ok(files)
 }
+
+/// The world of scene `id` for a timed run: as [`world`], without the
+/// energy check a scene's world makes after every step (one evaluation of
+/// the total energy per step, a safety net for user scenes that the timing
+/// of the engine's integration must not include; these scenes are the
+/// harness's own, whose energies stay finite).
+pub fn timed_world(id: &str, method: Method) -> Result<World> {
+    let mut world = world(id, method)?;
+    world.set_energy_limit(None)?;
+    Ok(world)
+}

@@ -4,6 +4,7 @@
 //! ```text
 //! harness simulate scene.toml [--method M] [--dt H] [--until T]
 //!     [--trace out.csv] [--svg out.svg] [--gif out.gif] [--compare rapier]
+//!     [--budget SECONDS]
 //! ```
 //!
 //! - the scene runs with its own `[simulation]` method, step and duration,
@@ -22,20 +23,41 @@
 //! - `--compare rapier`: runs the scene in rapier2d-f64 too
 //!   (`references::rapier_world`; one dynamic body under gravity, an axial
 //!   spring to an anchor, drag, angular drag and torques) and prints the
-//!   largest difference of each quantity and rapier's configuration.
+//!   largest difference of each quantity and rapier's configuration;
+//! - `--budget SECONDS`: a wall-time limit, checked between steps: the run
+//!   stops after the step that spends it, says so (stdout and stderr,
+//!   exit code 0), and the outputs cover the part that ran;
+//! - on a terminal, a progress bar appears once a run has lasted a second,
+//!   redrawn while a slow step goes on ([`crate::progress`]).
 //!
 //! Bad input never panics and never costs the user's work: the scene file
 //! is only read, every error (the scene's, with file, field and line, or a
 //! command-line value) is reported before the run, and the outputs are
 //! written only after the run succeeded, each to a temporary file renamed
-//! into place. An output path equal to the scene file is refused.
+//! into place. An output path equal to the scene file is refused, and so
+//! is an existing one that is not a regular file (a link, a FIFO, a device:
+//! the rename would replace it).
+//!
+//! Non-finite figures are errors, never numbers: a step whose energy is
+//! not a finite number fails the run (exit code 2, nothing written) with a
+//! hint naming the fastest body; a `[linear_test]` whose exact solution or
+//! error overflows is refused; a picture whose axes cannot be drawn is
+//! refused or drawn with a widened view that says so
+//! ([`crate::pictures::axis_range`]). A failure of the adaptive method
+//! names the force that makes the problem stiff.
 
 mod compare;
+mod diagnosis;
+mod linear_test;
+mod outputs;
+
+use outputs::{Output, check_outputs, outputs, write_all};
+pub use outputs::{refuse_special, write_atomically};
 
 use crate::pictures::{self, Film, GifOptions};
-use crate::progress::Ticker;
+use crate::progress::{Budget, Ticker};
 use crate::report::fmt_num;
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::{Result, anyhow};
 use clap::{Args, ValueEnum};
 use engine::time_grid::grid_time;
 use engine::{BodyState, EventRecord, MAX_RUN_STEPS, Method, Tolerance, World};
@@ -78,6 +100,11 @@ pub struct SimulateArgs {
     #[arg(long, value_name = "N", default_value_t = 100_000,
           value_parser = clap::value_parser!(u64).range(2..=100_000_000))]
     pub max_samples: u64,
+    /// Wall-time budget in seconds (> 0): the run stops after the step
+    /// that spends it, says so, and writes the outputs for the part that
+    /// ran. Checked between steps.
+    #[arg(long, value_name = "SECONDS", value_parser = parse_seconds, allow_negative_numbers = true)]
+    pub budget: Option<f64>,
     /// Run the scene in another engine too and print the differences.
     #[arg(long, value_name = "ENGINE")]
     pub compare: Option<CompareWith>,
@@ -126,20 +153,21 @@ fn parse_seconds(text: &str) -> Result<f64, String> {
 }
 
 /// Limits of a recorded run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunLimits {
     /// Most samples kept (≥ 2): a longer run keeps every k-th step.
     pub max_samples: u64,
-    /// Runs of at least this many steps show a progress bar (on a terminal).
-    pub progress_from: u64,
+    /// Wall-time budget (s): the run stops after the step that spends it,
+    /// keeping what it has. `None`: no limit.
+    pub budget: Option<f64>,
 }
 
 impl Default for RunLimits {
-    /// 100 000 samples; a progress bar from 200 000 steps.
+    /// 100 000 samples, no budget.
     fn default() -> Self {
         Self {
             max_samples: 100_000,
-            progress_from: 200_000,
+            budget: None,
         }
     }
 }
@@ -161,13 +189,15 @@ pub struct Recorded {
     pub stride: u64,
     /// Whether a terminal event (a landing) ended the run.
     pub stopped_by_event: bool,
+    /// Whether the wall-time budget ended the run early.
+    pub stopped_by_budget: bool,
 }
 
 impl Recorded {
-    fn push(&mut self, world: &World) {
+    fn push(&mut self, world: &World, energy: f64) {
         self.times.push(world.time());
         self.states.push(world.states().to_vec());
-        self.energies.push(world.energy());
+        self.energies.push(energy);
     }
 
     /// Copies the samples into `film`.
@@ -184,6 +214,9 @@ impl Recorded {
 /// samples. After every step, `on_step(i, whole, world)` is called, with
 /// `whole` true when the world stands at exactly `t0 + i·dt` (not after a
 /// shortened last step or a terminal event). `ticker` counts the steps.
+/// A sampled step whose energy is not a finite number fails the run
+/// ([`engine::EngineError::BlowUp`]). When `limits.budget` is spent, the run stops after the current step
+/// with what it has (`stopped_by_budget`), and says so on stderr.
 pub fn record(
     world: &mut World,
     until: f64,
@@ -201,7 +234,8 @@ pub fn record(
         stride,
         ..Recorded::default()
     };
-    rec.push(world);
+    rec.push(world, world.energy());
+    let budget = Budget::new(limits.budget);
     for i in 1..=steps {
         let t = grid_time(t0, until, dt, i, steps);
         let events = world.step_to(t).map_err(|e| {
@@ -211,113 +245,46 @@ pub fn record(
             ))
         })?;
         rec.events.extend(events);
-        ticker.tick();
         let stopped = world.is_stopped();
+        let out_of_time = !stopped && i < steps && budget.exhausted();
+        let sampled = i % stride == 0 || i == steps || stopped || out_of_time;
+        // A world built from a scene checks the energy of its steps, but
+        // not of a step cut short by a terminal event: the energy of every
+        // sample (what is printed and written) is checked here too.
+        let energy = if sampled { world.energy() } else { 0.0 };
+        if !energy.is_finite() {
+            let blow_up = engine::EngineError::BlowUp {
+                t: world.time(),
+                step: i - 1,
+                reason: format!("energy {energy} J is not a finite number"),
+            };
+            return Err(anyhow!(blow_up).context(format!(
+                "the run failed in step {i} of {steps} (t = {} s)",
+                world.time()
+            )));
+        }
+        ticker.tick();
         on_step(i, !stopped && (i < steps || last_is_whole), world);
         rec.steps = i;
-        if i % stride == 0 || i == steps || stopped {
-            rec.push(world);
+        if sampled {
+            rec.push(world, energy);
         }
         if stopped {
             rec.stopped_by_event = true;
             break;
         }
+        if out_of_time {
+            rec.stopped_by_budget = true;
+            break;
+        }
     }
+    // The bar is cleared before the note, which would otherwise be drawn
+    // over.
     ticker.finish();
+    if rec.stopped_by_budget {
+        budget.say_stopped(world.time(), rec.steps, steps);
+    }
     Ok(rec)
-}
-
-/// Writes `bytes` to `path` through a temporary file in the same folder
-/// renamed into place, so that a failure never leaves half a file (nor
-/// destroys the previous one).
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let name = path
-        .file_name()
-        .ok_or_else(|| anyhow!("{}: not a file path", path.display()))?;
-    let tmp = dir.join(format!(
-        ".{}.{}.tmp",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
-    std::fs::write(&tmp, bytes).with_context(|| format!("writing {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        anyhow!(e).context(format!("writing {}", path.display()))
-    })
-}
-
-/// One requested output: its option name and path.
-struct Output<'a> {
-    option: &'static str,
-    path: &'a Path,
-}
-
-fn outputs(args: &SimulateArgs) -> Vec<Output<'_>> {
-    [
-        ("--trace", &args.trace),
-        ("--svg", &args.svg),
-        ("--gif", &args.gif),
-    ]
-    .into_iter()
-    .filter_map(|(option, path)| path.as_deref().map(|path| Output { option, path }))
-    .collect()
-}
-
-/// Where `path` would be, resolved through existing folders.
-fn resolved(path: &Path) -> Option<PathBuf> {
-    if let Ok(p) = path.canonicalize() {
-        return Some(p);
-    }
-    let parent = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    Some(parent.canonicalize().ok()?.join(path.file_name()?))
-}
-
-/// Refuses outputs that would overwrite the scene file or each other, or
-/// that cannot be written (missing folder, a folder in the way), before
-/// any time is spent running.
-fn check_outputs(scene_path: &Path, outputs: &[Output<'_>]) -> Result<()> {
-    let scene_real = scene_path.canonicalize().ok();
-    let mut seen: Vec<(PathBuf, &str)> = Vec::new();
-    for out in outputs {
-        let shown = out.path.display();
-        let parent = match out.path.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p,
-            _ => Path::new("."),
-        };
-        if !parent.is_dir() {
-            bail!(
-                "{} {shown}: the folder {} does not exist",
-                out.option,
-                parent.display()
-            );
-        }
-        if out.path.is_dir() {
-            bail!("{} {shown}: is a folder, not a file", out.option);
-        }
-        let real =
-            resolved(out.path).ok_or_else(|| anyhow!("{} {shown}: not a file path", out.option))?;
-        if scene_real.as_ref() == Some(&real) {
-            bail!(
-                "{} {shown} is the scene file itself: refusing to overwrite it; choose another path",
-                out.option
-            );
-        }
-        if let Some((_, other)) = seen.iter().find(|(p, _)| *p == real) {
-            bail!(
-                "{} and {other} both write {shown}: give each its own path",
-                out.option
-            );
-        }
-        seen.push((real, out.option));
-    }
-    Ok(())
 }
 
 /// Step count of the run, with the command-line options named when they
@@ -357,15 +324,15 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     let dt = args.dt.unwrap_or(scene.dt());
     let until = args.until.unwrap_or(scene.duration());
     let steps = steps_of(&scene, args, dt, until)?;
-    let outputs = outputs(args);
-    check_outputs(&args.scene, &outputs)?;
+    let requested = outputs(args);
+    check_outputs(&args.scene, &requested)?;
     let header = format!(
         "{}: {}, dt = {dt} s, until {until} s ({steps} steps)",
         scene.origin(),
         method.id()
     );
     if scene.is_linear_test() {
-        return run_linear_test(&scene, args, method, (dt, until), &header);
+        return linear_test::run_linear_test(&scene, args, method, (dt, until), &header);
     }
     let mut comparison = match args.compare {
         Some(CompareWith::Rapier) => Some(compare::Rapier::prepare(&scene, steps)?),
@@ -379,16 +346,16 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     println!("{header}");
     let limits = RunLimits {
         max_samples: args.max_samples,
-        ..RunLimits::default()
+        budget: args.budget,
     };
-    let ticker = Ticker::for_loop(steps, limits.progress_from, "simulating");
+    let ticker = Ticker::for_loop(steps, "simulating");
     let run_started = Instant::now();
     let recorded = record(&mut world, until, dt, &limits, ticker, |i, whole, w| {
         if let Some(c) = comparison.as_mut() {
             c.observe(i, whole, w);
         }
     })
-    .map_err(|e| e.context(scene.origin().to_owned()))?;
+    .map_err(|e| diagnosis::explain(e, &scene, &world, dt).context(scene.origin().to_owned()))?;
     let run_time = run_started.elapsed();
     print!(
         "{}",
@@ -400,19 +367,22 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     // Everything ran: now build the outputs in memory, then write them.
     let names = scene.body_names();
     let mut files: Vec<(&Output<'_>, Vec<u8>)> = Vec::new();
-    for out in &outputs {
+    for out in &requested {
         let bytes = match out.option {
             "--trace" => world_csv(&names, &recorded).into_bytes(),
             "--svg" | "--gif" => {
                 let film = film_of(&scene, &world, &recorded, method, dt);
                 if out.option == "--svg" {
-                    pictures::svg::filmstrip(&film, pictures::FILMSTRIP_FRAMES)?.into_bytes()
+                    pictures::svg::filmstrip(&film, pictures::FILMSTRIP_FRAMES)
+                        .map_err(|e| e.context(format!("--svg {}", out.path.display())))?
+                        .into_bytes()
                 } else {
                     let options = GifOptions {
                         max_frames: usize::from(args.frames),
                         ..GifOptions::default()
                     };
-                    pictures::gif::animation(&film, &options)?
+                    pictures::gif::animation(&film, &options)
+                        .map_err(|e| e.context(format!("--gif {}", out.path.display())))?
                 }
             }
             _ => continue,
@@ -440,27 +410,6 @@ fn film_of(scene: &Scene, world: &World, recorded: &Recorded, method: Method, dt
     film
 }
 
-fn write_all(files: &[(&Output<'_>, Vec<u8>)], recorded: &Recorded) -> Result<()> {
-    for (out, bytes) in files {
-        write_atomically(out.path, bytes)
-            .with_context(|| format!("{} {}", out.option, out.path.display()))?;
-        let what = match out.option {
-            "--trace" => format!(
-                "{} samples{}",
-                recorded.times.len(),
-                if recorded.stride > 1 {
-                    format!(", every {}th step", recorded.stride)
-                } else {
-                    String::new()
-                }
-            ),
-            _ => format!("{:.1} kB", bytes.len() as f64 / 1024.0),
-        };
-        println!("wrote {} ({what})", out.path.display());
-    }
-    Ok(())
-}
-
 /// A duration for people: ms below a second.
 fn duration_text(seconds: f64) -> String {
     if seconds < 1.0 {
@@ -477,6 +426,7 @@ fn summary(scene: &Scene, world: &World, rec: &Recorded, seconds: f64) -> String
     let end = rec.times.last().copied().unwrap_or(0.0);
     let ended_by = match (rec.stopped_by_event, rec.events.last()) {
         (true, Some(e)) => format!(" (ended by the {} event)", e.name),
+        _ if rec.stopped_by_budget => " (stopped by --budget: the outputs cover this part)".into(),
         _ => String::new(),
     };
     let _ = writeln!(
@@ -525,8 +475,11 @@ fn summary(scene: &Scene, world: &World, rec: &Recorded, seconds: f64) -> String
         out.push('\n');
     }
     if let (Some(e0), Some(e1)) = (rec.energies.first(), rec.energies.last()) {
-        let relative = if *e0 != 0.0 {
-            format!(" (relative change {:.3e})", (e1 - e0) / e0.abs())
+        // Each energy is finite (the world reports a non-finite one as a
+        // blow-up); their difference may still overflow.
+        let change = (e1 - e0) / e0.abs();
+        let relative = if *e0 != 0.0 && change.is_finite() {
+            format!(" (relative change {change:.3e})")
         } else {
             String::new()
         };
@@ -572,85 +525,6 @@ pub fn world_csv(names: &[&str], rec: &Recorded) -> String {
         }
     }
     out
-}
-
-/// A `[linear_test]` scene: the scalar ODE, its CSV and its curve.
-fn run_linear_test(
-    scene: &Scene,
-    args: &SimulateArgs,
-    method: Method,
-    (dt, until): (f64, f64),
-    header: &str,
-) -> Result<()> {
-    if args.gif.is_some() {
-        bail!(
-            "--gif: {} is a [linear_test] scene, with no bodies to animate (use --svg for its y(t) curve)",
-            scene.origin()
-        );
-    }
-    if args.compare.is_some() {
-        bail!(
-            "--compare: {} is a [linear_test] scene; only scenes of bodies run in rapier2d",
-            scene.origin()
-        );
-    }
-    if method.needs_second_order() {
-        bail!(
-            "--method {}: needs a (position, velocity) system; a [linear_test] is first order",
-            method.id()
-        );
-    }
-    let test = scene
-        .linear_test()
-        .ok_or_else(|| anyhow!("{}: not a [linear_test] scene", scene.origin()))?;
-    println!("{header}");
-    let started = Instant::now();
-    let solution = test
-        .solve(method, dt, until)
-        .with_context(|| format!("{}: the run failed", scene.origin()))?;
-    let (t_end, y_end) = match (solution.t.last(), solution.y.last()) {
-        (Some(t), Some(y)) => (*t, y[0]),
-        _ => bail!("{}: the run produced no samples", scene.origin()),
-    };
-    let exact = test.exact(t_end);
-    println!(
-        "ran {} steps to t = {} s in {}\ny = {}, exact {}, error {:.3e}",
-        solution.t.len().saturating_sub(1),
-        fmt_num(t_end),
-        duration_text(started.elapsed().as_secs_f64()),
-        fmt_num(y_end),
-        fmt_num(exact),
-        y_end - exact
-    );
-    let mut csv = String::from("t,y,exact,error\n");
-    for (t, y) in solution.t.iter().zip(&solution.y) {
-        let e = test.exact(*t);
-        let _ = writeln!(csv, "{t:?},{:?},{e:?},{:?}", y[0], y[0] - e);
-    }
-    let ys: Vec<f64> = solution.y.iter().map(|y| y[0]).collect();
-    let mut files = Vec::new();
-    let outputs = outputs(args);
-    for out in &outputs {
-        let bytes = match out.option {
-            "--trace" => csv.clone().into_bytes(),
-            "--svg" => pictures::svg::linear_test_curve(
-                scene.origin(),
-                &format!("{}, dt = {dt} s", method.id()),
-                &solution.t,
-                &ys,
-                |t| test.exact(t),
-            )?
-            .into_bytes(),
-            _ => continue,
-        };
-        files.push((out, bytes));
-    }
-    let recorded = Recorded {
-        times: solution.t.clone(),
-        stride: 1,
-        ..Recorded::default()
-    };
-    write_all(&files, &recorded)
 }
 
 #[cfg(test)]

@@ -26,6 +26,7 @@ use crate::format::{
     LinearTestSpec, SceneFile, ShapeSpec, ToiMethodSpec, Window, Xy,
 };
 use crate::linear_test::LinearTest;
+use engine::error::readable;
 use engine::forces::{AngularDrag, Gravity, PointForce, QuadraticDrag, Spring, TimeWindow, Torque};
 use engine::{
     BodyDef, BodyKind, BodyState, Circle, Compound, ContactModel, ContactSettings, ConvexPolygon,
@@ -86,7 +87,7 @@ pub(crate) enum EngineForce {
 }
 
 impl EngineForce {
-    fn boxed(self) -> Box<dyn Force> {
+    pub(crate) fn boxed(self) -> Box<dyn Force> {
         match self {
             EngineForce::Gravity(f) => Box::new(f),
             EngineForce::Spring(f) => Box::new(f),
@@ -112,7 +113,7 @@ pub(crate) fn plan(file: &SceneFile) -> Checked<Plan> {
     let sim = FieldPath::root().key("simulation");
     let sim_spec = &file.simulation;
     let tolerance = match sim_spec.tolerance {
-        Some(t) => positive(&sim.key("tolerance"), t, "tolerance", "")?,
+        Some(t) => tolerance_in_reach(&sim.key("tolerance"), t)?,
         None => DEFAULT_TOLERANCE,
     };
     let tolerance = Tolerance::uniform(tolerance);
@@ -149,7 +150,8 @@ pub(crate) fn plan(file: &SceneFile) -> Checked<Plan> {
             &sim.key("method"),
             ErrorKind::InvalidType,
             format!(
-                "unknown method \"{method_id}\"; expected one of {}",
+                "unknown method {}; expected one of {}",
+                quote(method_id),
                 known.join(", ")
             ),
         )
@@ -179,9 +181,21 @@ pub(crate) fn plan(file: &SceneFile) -> Checked<Plan> {
                     ),
                 ));
             }
-            Content::LinearTest(linear_test(spec)?)
+            let test = linear_test(spec)?;
+            test.check_horizon(duration).map_err(|reason| {
+                Problem::new(
+                    &FieldPath::root().key("linear_test").key("lambda"),
+                    ErrorKind::OutOfRange,
+                    reason,
+                )
+            })?;
+            Content::LinearTest(test)
         }
-        None => Content::World(world(file)?),
+        None => {
+            let plan = world(file)?;
+            crate::energy_check::initial_energy(&plan, method)?;
+            Content::World(plan)
+        }
     };
     Ok(Plan {
         method,
@@ -416,23 +430,94 @@ fn model_allows_body(
 
 // ---------------------------------------------------------------- numbers
 
+/// The largest magnitude a scene's number may have, 2^512 ≈ 1.3e154: the
+/// square root of f64's largest value (≈ 1.8e308). The engine multiplies
+/// the scene's quantities by each other (½ m v², m g·x, k ψ², m r², D v²,
+/// lever × force): with both factors within this bound, a product stays
+/// finite.
+pub const MAX_MAGNITUDE: f64 = 1.340_780_792_994_259_7e154; // 2^512
+
+/// The smallest non-zero magnitude, 2^-511 ≈ 1.5e-154: the square root of
+/// f64's smallest normal number (≈ 2.2e-308), so that a product of two
+/// such numbers does not underflow to 0 (a radius of 1e-200 m gives an
+/// inertia of exactly 0).
+pub const MIN_MAGNITUDE: f64 = 1.491_668_146_240_041_3e-154; // 2^-511
+
+/// Every number of a scene enters here: finite, and 0 or within
+/// [`MIN_MAGNITUDE`, `MAX_MAGNITUDE`] in magnitude.
 pub(crate) fn finite(path: &FieldPath, value: f64) -> Checked<f64> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(Problem::new(
+    if !value.is_finite() {
+        return Err(Problem::new(
             path,
             ErrorKind::NonFinite,
-            format!("{value} is not a finite number (TOML allows nan and inf; a scene does not)"),
-        ))
+            format!(
+                "{} is not a finite number (TOML allows nan and inf; a scene does not)",
+                readable(value)
+            ),
+        ));
     }
+    let magnitude = value.abs();
+    if value != 0.0 && !(MIN_MAGNITUDE..=MAX_MAGNITUDE).contains(&magnitude) {
+        let side = if magnitude > MAX_MAGNITUDE {
+            "too large"
+        } else {
+            "too small"
+        };
+        return Err(Problem::new(
+            path,
+            ErrorKind::OutOfRange,
+            format!(
+                "{} is {side} for the engine's arithmetic: a scene's numbers are 0 or between 1.5e-154 and 1.3e154 in magnitude (the square roots of f64's range, since the physics multiplies quantities together)",
+                readable(value)
+            ),
+        ));
+    }
+    Ok(value)
+}
+
+/// Text the user wrote, for a message: cut after 40 characters.
+pub(crate) fn clip(text: &str) -> String {
+    const SHOWN: usize = 40;
+    match text.char_indices().nth(SHOWN) {
+        Some((cut, _)) => format!("{}…", &text[..cut]),
+        None => text.to_owned(),
+    }
+}
+
+/// Text the user wrote, in double quotes, cut after 40 characters.
+pub(crate) fn quote(text: &str) -> String {
+    format!("\"{}\"", clip(text))
+}
+
+/// dormand_prince's tolerance, refused when f64 cannot reach it.
+///
+/// The error estimate |y5 − y4| / (tol (1 + |y|)) is a difference of two
+/// solutions each carrying rounding errors of a few ε (ε = 2.2e-16) relative
+/// to |y|: below about 10 ε the controller chases rounding noise and the step
+/// shrinks until it underflows. Hairer's reference code DOPRI5 refuses
+/// `rtol <= 10 * uround` ("tolerances are too small") for the same reason.
+fn tolerance_in_reach(path: &FieldPath, value: f64) -> Checked<f64> {
+    let tolerance = positive(path, value, "tolerance", "")?;
+    let floor = 10.0 * f64::EPSILON;
+    if tolerance <= floor {
+        return Err(Problem::new(
+            path,
+            ErrorKind::OutOfRange,
+            format!(
+                "tolerance {} is below what f64 arithmetic can reach: the error estimate itself carries rounding errors of a few ε = 2.2e-16, so the tolerance must exceed 10 ε = {}",
+                readable(tolerance),
+                readable(floor)
+            ),
+        ));
+    }
+    Ok(tolerance)
 }
 
 fn with_unit(value: f64, unit: &str) -> String {
     if unit.is_empty() {
-        format!("{value}")
+        readable(value)
     } else {
-        format!("{value} {unit}")
+        format!("{} {unit}", readable(value))
     }
 }
 
@@ -466,7 +551,7 @@ pub(crate) fn unit_interval(path: &FieldPath, value: f64, what: &str) -> Checked
         return Err(Problem::new(
             path,
             ErrorKind::InvalidValue,
-            format!("{what} must be in [0, 1], got {v}"),
+            format!("{what} must be in [0, 1], got {}", readable(v)),
         ));
     }
     Ok(v)
@@ -489,7 +574,11 @@ pub(crate) fn window(path: &FieldPath, window: Option<&Window>) -> Checked<TimeW
         Problem::new(
             path,
             ErrorKind::InvalidValue,
-            format!("window [{start}, {end}] s must end after it starts"),
+            format!(
+                "window [{}, {}] s must end after it starts",
+                readable(start),
+                readable(end)
+            ),
         )
     })
 }
@@ -590,8 +679,62 @@ fn body(path: &FieldPath, spec: &BodySpec) -> Checked<BodyDef> {
         restitution,
     };
     // The engine's own check, so that building the world cannot fail.
-    engine::Body::from_def(&def).map_err(|e| Problem::engine(path, e))?;
+    let (built, _) = engine::Body::from_def(&def).map_err(|e| Problem::engine(path, e))?;
+    derived_in_range(path, spec, &built)?;
     Ok(def)
+}
+
+/// The mass and inertia a dynamic body gets from its shape must be usable:
+/// finite, and at least f64's smallest normal number (≈ 2.2e-308) so that
+/// 1/m and 1/I, which the engine divides by, stay finite. A circle of radius
+/// 1e-150 m and mass 1e-10 kg has I = m r²/2 = 5e-311 kg·m²: refused here,
+/// naming the shape's field, rather than blowing up in the first step.
+fn derived_in_range(path: &FieldPath, spec: &BodySpec, body: &engine::Body) -> Checked<()> {
+    if !body.is_dynamic() {
+        return Ok(());
+    }
+    let shape_field = match &spec.shape {
+        Some(ShapeSpec::Circle { .. }) => path.key("shape").key("radius"),
+        Some(ShapeSpec::Box { .. }) => path.key("shape").key("width"),
+        Some(ShapeSpec::Polygon { .. }) => path.key("shape").key("vertices"),
+        Some(ShapeSpec::HollowBox { .. }) => path.key("shape").key("wall"),
+        None => path.key("inertia"),
+    };
+    let name = &spec.name;
+    let usable = |v: f64| v.is_finite() && v >= f64::MIN_POSITIVE;
+    if !usable(body.mass) {
+        return Err(Problem::new(
+            &path.key("density"),
+            ErrorKind::OutOfRange,
+            format!(
+                "the mass of body '{name}', density × shape area = {} kg, is out of f64's usable range (2.2e-308 to 1.8e308): change the density or the shape",
+                readable(body.mass)
+            ),
+        ));
+    }
+    if let Some(inertia) = body.inertia {
+        if !usable(inertia) {
+            let (field, source) = if spec.inertia.is_some() {
+                (path.key("inertia"), "given")
+            } else {
+                (shape_field, "from its shape and mass")
+            };
+            return Err(Problem::new(
+                &field,
+                ErrorKind::OutOfRange,
+                format!(
+                    "the moment of inertia of body '{name}' {source} is {} kg·m², out of f64's usable range (2.2e-308 to 1.8e308; 1/I must be finite): the shape is too {} for its mass",
+                    readable(inertia),
+                    if inertia.is_finite() && inertia < 1.0 {
+                        "small"
+                    } else {
+                        "large"
+                    }
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn static_body_has_no_dynamics(path: &FieldPath, spec: &BodySpec) -> Checked<()> {
@@ -749,7 +892,8 @@ fn shape(path: &FieldPath, spec: &ShapeSpec, body: &str) -> Checked<Shape> {
                         ErrorKind::InvalidPolygon,
                         format!(
                             "polygon of body '{body}': {reason} at vertex {vertex} [{}, {}]",
-                            v.x, v.y
+                            readable(v.x),
+                            readable(v.y)
                         ),
                     ))
                 }
@@ -771,7 +915,7 @@ fn colour(path: &FieldPath, spec: &BodySpec, index: usize) -> Checked<Colour> {
             Problem::new(
                 &path.key("colour"),
                 ErrorKind::InvalidValue,
-                format!("colour must be \"#rrggbb\" (hex), got \"{text}\""),
+                format!("colour must be \"#rrggbb\" (hex), got {}", quote(text)),
             )
         }),
     }
@@ -910,6 +1054,12 @@ pub(crate) fn build_world(
     method_path: &FieldPath,
 ) -> Checked<World> {
     let mut world = World::new(method).map_err(|e| Problem::engine(method_path, e))?;
+    // Every step checks that the total energy is still a finite number: a
+    // state can stay finite while ½ m v² or m g·x overflows, and a world
+    // built from a scene never returns such a step as a success.
+    world
+        .set_energy_limit(Some(f64::MAX))
+        .map_err(|e| Problem::engine(method_path, e))?;
     if let Some(model) = plan.contact {
         // A [contact] table turns contact handling on, under its model,
         // before any body is added (the soft step inserts each body's

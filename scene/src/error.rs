@@ -18,8 +18,12 @@ use thiserror::Error;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum ErrorKind {
-    /// The file could not be read.
+    /// The file could not be read: missing, not a regular file (a folder,
+    /// a FIFO, a device), or larger than [`crate::MAX_SCENE_BYTES`].
     Io,
+    /// The bytes are not UTF-8 (UTF-16, Latin-1, ...): located at the first
+    /// bad byte.
+    Encoding,
     /// The text is not valid TOML (unclosed bracket, duplicate key, ...).
     Syntax,
     /// A key the format does not know (a typo, or a field of another shape
@@ -32,6 +36,11 @@ pub enum ErrorKind {
     InvalidType,
     /// A number is NaN or infinite (TOML allows `nan` and `inf`).
     NonFinite,
+    /// A number too large or too small for the engine's arithmetic: every
+    /// number of a scene is 0 or between about 1.5e-154 and 1.3e154 in
+    /// magnitude (see [`crate::format`]); or a value derived from the
+    /// scene (an inertia, an energy, an exact solution) leaves f64's range.
+    OutOfRange,
     /// A number or combination out of its domain (mass ≤ 0, dt ≤ 0, a window
     /// that ends before it starts, both `mass` and `density`, ...).
     InvalidValue,

@@ -26,7 +26,11 @@ impl Bodies<'_> {
                 Problem::new(
                     path,
                     ErrorKind::UnknownBody,
-                    format!("no body is named '{name}' (bodies: {})", known.join(", ")),
+                    format!(
+                        "no body is named '{}' (bodies: {})",
+                        crate::build::clip(name),
+                        known.join(", ")
+                    ),
                 )
             })
     }
@@ -276,6 +280,9 @@ fn spring(path: &FieldPath, spec: &ForceSpec, bodies: &Bodies<'_>) -> Checked<En
                     "a spring axis must not be [0, 0]",
                 ));
             }
+            // Scaled by its largest component first, so that the norm of
+            // [1e300, 0] or [1e-300, 0] neither overflows nor underflows.
+            let u = u / u.amax();
             Some(u / u.norm())
         }
     };

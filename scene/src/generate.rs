@@ -315,7 +315,10 @@ pub(crate) fn expand(
                 return Err(Problem::new(
                     &path.key("overlap"),
                     ErrorKind::InvalidValue,
-                    format!("overlap must be below 0.5 (half a box), got {overlap}"),
+                    format!(
+                        "overlap must be below 0.5 (half a box), got {}",
+                        engine::error::readable(overlap)
+                    ),
                 ));
             }
             let origin = crate::build::xy(&path.key("origin"), origin)?;
@@ -395,7 +398,11 @@ pub(crate) fn expand(
                 return Err(Problem::new(
                     &zp,
                     ErrorKind::InvalidValue,
-                    format!("size [{lo}, {hi}] m must be [smallest, largest]"),
+                    format!(
+                        "size [{}, {}] m must be [smallest, largest]",
+                        engine::error::readable(lo),
+                        engine::error::readable(hi)
+                    ),
                 ));
             }
             let mut rng = SplitMix64(*seed as u64);

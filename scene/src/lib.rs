@@ -13,6 +13,17 @@
 //! scenes/spring.toml:19:8: bodies[0].mass: mass of body 'mass' must be > 0, got -20 kg
 //! ```
 //!
+//! Limits, each refused with its reason and its line: a scene file is a
+//! regular file of at most [`MAX_SCENE_BYTES`] (16 MiB) in UTF-8 (UTF-16 or
+//! Latin-1 bytes are named as such); every number is 0 or between
+//! [`MIN_MAGNITUDE`] (≈ 1.5e-154) and [`MAX_MAGNITUDE`] (≈ 1.3e154) in
+//! magnitude, the square roots of f64's range, because the physics
+//! multiplies quantities together; the mass and inertia derived from a
+//! shape, the energy at t = 0 and a `[linear_test]`'s exact solution must
+//! be finite; `dormand_prince`'s tolerance must exceed 10 ε ≈ 2.2e-15. A
+//! world built from a scene reports a step whose energy stops being a
+//! finite number as a blow-up ([`engine::EngineError::BlowUp`]).
+//!
 //! The format, field by field with units and defaults, is in [`mod@format`].
 //! A complete example (every table; `#` starts a comment):
 //!
@@ -138,16 +149,21 @@
 
 mod build;
 mod colour;
+mod energy_check;
 pub mod error;
 mod forces;
+mod form_error;
 pub mod format;
 pub mod generate;
 mod linear_test;
 mod load;
 mod location;
+mod read;
 
+pub use build::{MAX_MAGNITUDE, MIN_MAGNITUDE};
 pub use colour::Colour;
 pub use error::{ErrorKind, SceneError};
 pub use format::SceneFile;
 pub use linear_test::LinearTest;
 pub use load::Scene;
+pub use read::MAX_SCENE_BYTES;

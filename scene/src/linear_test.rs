@@ -55,6 +55,27 @@ impl LinearTest {
         self.forcing(t) + (self.y0 - self.forcing_offset) * (self.lambda * t).exp()
     }
 
+    /// Checks that the exact solution stays a finite number over
+    /// `[0, duration]` (s), so that the exact value and the error of a run
+    /// can be printed: e^(λt) overflows f64 once λt > ln(f64::MAX) ≈ 709.78.
+    /// Each term of y(t) = g(t) + (y0 − g(0)) e^(λt) is monotone in t, so
+    /// checking both ends covers the whole interval. `Err` says why, in
+    /// words.
+    pub fn check_horizon(&self, duration: f64) -> Result<(), String> {
+        let transient = |t: f64| (self.y0 - self.forcing_offset) * (self.lambda * t).exp();
+        for t in [0.0, duration] {
+            let parts = [self.forcing(t), transient(t), self.exact(t)];
+            if parts.iter().any(|v| !v.is_finite()) {
+                return Err(format!(
+                    "the exact solution y = g(t) + (y0 − g(0)) e^(λt) overflows f64 at t = {} s (λt = {}; e^(λt) overflows past λt ≈ 709.78): shorten the run or reduce lambda",
+                    engine::error::readable(t),
+                    engine::error::readable(self.lambda * t)
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// Integrates from t = 0 to `duration` (s) in steps of `dt` (s) with
     /// `method`, with the step semantics of [`engine::World::run`]: times
     /// `i·dt` from an integer count, the last step shortened to end exactly

@@ -12,10 +12,11 @@
 
 use crate::build::{self, Content, Plan};
 use crate::colour::Colour;
-use crate::error::{ErrorKind, FieldPath, Problem, SceneError, Segment};
+use crate::error::{ErrorKind, FieldPath, Problem, SceneError};
+use crate::form_error::form_error;
 use crate::format::SceneFile;
 use crate::linear_test::LinearTest;
-use crate::location::{line_column, path_at, position_of};
+use crate::location::{line_column, position_of};
 use engine::{BodyDef, BodyId, Method, Tolerance, World};
 use std::path::Path;
 
@@ -35,25 +36,23 @@ impl Scene {
     pub fn load(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
         let path = path.as_ref();
         let origin = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| {
-            SceneError::new(
-                &origin,
-                ErrorKind::Io,
-                format!("cannot read the scene file: {e}"),
-            )
-            .with_source(e)
-        })?;
+        let text = crate::read::read_scene_file(path, &origin)?;
         Self::parse_str(&origin, &text)
+    }
+
+    /// Decodes scene bytes (UTF-8; anything else is refused with the
+    /// encoding seen and the line of the first bad byte), then parses and
+    /// validates them like [`Scene::parse_str`].
+    pub fn parse_bytes(origin: &str, bytes: &[u8]) -> Result<Scene, SceneError> {
+        let text = crate::read::decode(origin, bytes)?;
+        Self::parse_str(origin, &text)
     }
 
     /// Parses and validates scene text; `origin` names it in errors (a file
     /// name, or e.g. `"<inline>"`).
     pub fn parse_str(origin: &str, text: &str) -> Result<Scene, SceneError> {
         if let Err(e) = toml::de::DeTable::parse(text) {
-            let position = e.span().map(|s| line_column(text, s.start));
-            return Err(
-                SceneError::new(origin, ErrorKind::Syntax, e.message().trim()).at(position),
-            );
+            return Err(syntax_error(origin, text, &e));
         }
         let file: SceneFile = toml::from_str(text).map_err(|e| form_error(origin, text, &e))?;
         let plan = build::plan(&file).map_err(|p| locate(origin, text, p))?;
@@ -210,40 +209,34 @@ fn locate(origin: &str, text: &str, problem: Problem) -> SceneError {
     }
 }
 
-/// Turns a serde error (a message and a byte span) into a located error.
-///
-/// serde names an unknown or missing key in its message but toml places
-/// the span on the enclosing table when the table is buffered (internally
-/// tagged shapes, forces, events), so the key is taken from the message
-/// and appended to the path found from the span.
-fn form_error(origin: &str, text: &str, error: &toml::de::Error) -> SceneError {
-    let message = error.message();
-    let kind = if message.starts_with("unknown field") {
-        ErrorKind::UnknownField
-    } else if message.starts_with("missing field") {
-        ErrorKind::MissingField
-    } else {
-        ErrorKind::InvalidType
-    };
-    let Some(span) = error.span() else {
-        return SceneError::new(origin, kind, message);
-    };
-    let mut path = path_at(text, span.clone());
-    let mut position = Some(line_column(text, span.start));
-    let named_key = match kind {
-        ErrorKind::UnknownField | ErrorKind::MissingField => message.split('`').nth(1),
-        _ => None,
-    };
-    if let Some(key) = named_key {
-        if path.0.last() != Some(&Segment::Key(key.to_owned())) {
-            path = path.key(key);
-            if kind == ErrorKind::UnknownField {
-                position = position_of(text, &path).or(position);
-            }
-        }
+/// Keys nested deeper than this are refused by toml's parser ("recursion
+/// limit", with no position): its limit, 80 levels.
+const TOML_KEY_DEPTH: usize = 80;
+
+/// A TOML syntax error, located. The parser gives no span when a dotted
+/// key nests too deep: the first line holding such a key is found here.
+fn syntax_error(origin: &str, text: &str, e: &toml::de::Error) -> SceneError {
+    let message = e.message().trim();
+    if let Some(span) = e.span() {
+        return SceneError::new(origin, ErrorKind::Syntax, message)
+            .at(Some(line_column(text, span.start)));
     }
-    let field = (!path.0.is_empty()).then(|| path.to_string());
-    SceneError::new(origin, kind, message)
-        .with_field(field)
-        .at(position)
+    if message.contains("recursion limit") {
+        let deep = text.lines().enumerate().find_map(|(i, line)| {
+            let key = line.split('=').next().unwrap_or("");
+            let depth = key.matches('.').count() + 1;
+            (depth >= TOML_KEY_DEPTH).then_some((i + 1, depth))
+        });
+        let (line, depth) = deep.unwrap_or((1, TOML_KEY_DEPTH));
+        return SceneError::new(
+            origin,
+            ErrorKind::Syntax,
+            format!(
+                "a key nested {depth} levels deep (a dotted key of {depth} parts); TOML files are read up to {} levels and a scene needs 4",
+                TOML_KEY_DEPTH - 1
+            ),
+        )
+        .at(Some((line, 1)));
+    }
+    SceneError::new(origin, ErrorKind::Syntax, message).at(Some((1, 1)))
 }

@@ -59,9 +59,12 @@ pub fn animation(film: &Film, options: &GifOptions) -> Result<Vec<u8>> {
         !film.times.is_empty(),
         "nothing to animate: the run has no samples"
     );
-    let layout = Layout::plan(film, options.width.clamp(240, 2000), GIF_HEADER, 160..320);
+    let layout = Layout::plan(film, options.width.clamp(240, 2000), GIF_HEADER, 160..320)?;
     let (w, h) = (layout.width as usize, layout.height as usize);
-    let title = format!("{} — {}", film.title, film.subtitle);
+    let title = match &layout.note {
+        Some(note) => format!("{} — {} — {note}", film.title, film.subtitle),
+        None => format!("{} — {}", film.title, film.subtitle),
+    };
     let mut background_rgb = vec![255u8; w * h * 3];
     let view = {
         let area = Crisp::with_buffer(&mut background_rgb, (layout.width, layout.height))

@@ -14,6 +14,7 @@
 //! A [`Film`] holds what is drawn; [`font::ensure_fonts`] registers the
 //! embedded font that every chart of the harness uses.
 
+pub mod axis_range;
 mod cases;
 mod draw;
 pub mod film;

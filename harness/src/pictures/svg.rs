@@ -3,6 +3,7 @@
 //! the whole run), and for a `[linear_test]` scene, which has no bodies, its
 //! y(t) curve against the exact solution.
 
+use super::axis_range::drawable;
 use super::draw::{Trails, background, foreground, header, plot_err, trail_samples};
 use super::film::Film;
 use super::font::{FAMILY, ensure_fonts};
@@ -25,7 +26,7 @@ const TRAIL_POINTS: usize = 160;
 pub fn filmstrip(film: &Film, frames: usize) -> Result<String> {
     ensure_fonts();
     let picks = film.evenly_spaced(frames);
-    let layout = Layout::plan(film, PANEL_WIDTH, PANEL_HEADER, 150..330);
+    let layout = Layout::plan(film, PANEL_WIDTH, PANEL_HEADER, 150..330)?;
     let cols = picks.len().clamp(1, 3);
     let rows = picks.len().div_ceil(cols).max(1);
     let size = (
@@ -79,6 +80,10 @@ fn strip_note(film: &Film, layout: &Layout) -> String {
             " Drawn enlarged to be seen: {}.",
             enlarged.join(", ")
         ));
+    }
+    if let Some(widened) = &layout.note {
+        note.push(' ');
+        note.push_str(widened);
     }
     note
 }
@@ -142,12 +147,17 @@ fn curve_panel<DB: DrawingBackend>(
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
             (lo.min(v), hi.max(v))
         });
-    let pad = 0.05 * (hi - lo).max(1e-12);
+    // Checked before the padding, which could overflow.
+    let y_range = drawable(lo, hi, "y")?;
+    let (lo, hi) = (y_range.lo, y_range.hi);
+    let pad = (0.05 * (hi - lo)).max(1e-12);
+    let y_range = drawable(lo - pad, hi + pad, "y")?;
+    let t_range = drawable(0.0, span.max(1e-12), "t (s)")?;
     let mut chart = ChartBuilder::on(area)
         .margin(MARGIN)
         .x_label_area_size(34)
         .y_label_area_size(70)
-        .build_cartesian_2d(0.0..span.max(1e-12), (lo - pad)..(hi + pad))
+        .build_cartesian_2d(t_range.lo..t_range.hi, y_range.lo..y_range.hi)
         .map_err(plot_err)?;
     chart
         .configure_mesh()

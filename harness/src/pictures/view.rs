@@ -2,7 +2,9 @@
 //! (one scale on both axes, so shapes keep their proportions), and how much
 //! each body is enlarged when it would be too small to see.
 
+use super::axis_range::{MAX_COORDINATE, drawable};
 use super::film::Film;
+use anyhow::Result;
 use nalgebra::Vector2;
 use std::ops::Range;
 
@@ -22,7 +24,7 @@ pub const MIN_BODY_PX: f64 = 16.0;
 pub const PARTICLE_PX: i32 = 6;
 
 /// The size of a picture and of its plot.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Layout {
     /// Picture width (px).
     pub width: u32,
@@ -34,17 +36,32 @@ pub struct Layout {
     pub x: (f64, f64),
     /// The world window's y range (m).
     pub y: (f64, f64),
+    /// Set when an axis had to be widened to be drawn (see
+    /// [`super::axis_range`]), saying so.
+    pub note: Option<String>,
 }
 
 impl Layout {
     /// Plans a picture `width` px wide with a `header` px band on top, whose
     /// plot shows the whole run of `film` at one scale; the plot height is
     /// what the run's aspect asks for, kept within `plot_height` (px).
-    pub fn plan(film: &Film, width: u32, header: u32, plot_height: Range<u32>) -> Self {
+    ///
+    /// Fails when the run reaches coordinates no picture can show (beyond
+    /// ±[`MAX_COORDINATE`] m); widens, with a note, a view too narrow for
+    /// its distance from the origin ([`super::axis_range`]).
+    pub fn plan(film: &Film, width: u32, header: u32, plot_height: Range<u32>) -> Result<Self> {
         let (lo, hi) = film
             .bounds()
             .unwrap_or((Vector2::repeat(-1.0), Vector2::repeat(1.0)));
-        let max_radius = film.bodies.iter().map(|b| b.radius()).fold(0.0, f64::max);
+        // Checked first, so that the sizes and the centre below stay finite.
+        drawable(lo.x, hi.x, "x (m)")?;
+        drawable(lo.y, hi.y, "y (m)")?;
+        let max_radius = film
+            .bodies
+            .iter()
+            .map(|b| b.radius())
+            .fold(0.0, f64::max)
+            .min(MAX_COORDINATE);
         let mut size = hi - lo;
         let mut big = size.x.max(size.y);
         if big.is_nan() || big <= 0.0 {
@@ -53,7 +70,7 @@ impl Layout {
         // A run along one line still gets some height (or width).
         size.x = size.x.max(0.2 * big) + 0.1 * big;
         size.y = size.y.max(0.2 * big) + 0.1 * big;
-        let centre = 0.5 * (lo + hi);
+        let centre = lo + 0.5 * (hi - lo);
         let plot_w = f64::from(width - 2 * MARGIN - Y_LABEL_AREA);
         let wanted_h = plot_w * size.y / size.x;
         let plot_h = wanted_h
@@ -61,13 +78,17 @@ impl Layout {
             .clamp(f64::from(plot_height.start), f64::from(plot_height.end));
         let scale = ((plot_w - 2.0 * INSET) / size.x).min((plot_h - 2.0 * INSET) / size.y);
         let half = Vector2::new(plot_w, plot_h) / (2.0 * scale);
-        Self {
+        let x = drawable(centre.x - half.x, centre.x + half.x, "x (m)")?;
+        let y = drawable(centre.y - half.y, centre.y + half.y, "y (m)")?;
+        let notes: Vec<String> = [x.note, y.note].into_iter().flatten().collect();
+        Ok(Self {
             width,
             height: header + plot_h as u32 + X_LABEL_AREA + MARGIN,
             header,
-            x: (centre.x - half.x, centre.x + half.x),
-            y: (centre.y - half.y, centre.y + half.y),
-        }
+            x: (x.lo, x.hi),
+            y: (y.lo, y.hi),
+            note: (!notes.is_empty()).then(|| notes.join(" ")),
+        })
     }
 }
 

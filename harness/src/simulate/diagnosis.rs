@@ -1,0 +1,158 @@
+//! Why a run failed, in terms the user can act on: the engine's error says
+//! what happened (a step size underflow, a blow-up); this says which part
+//! of the scene is the likely cause and what to change.
+//!
+//! - **Step size underflow** (`dormand_prince`): the adaptive step shrank
+//!   to nothing, the mark of a stiff problem. Each force that can make a
+//!   problem stiff gets a rate (1/s), the largest eigenvalue magnitude of
+//!   its Jacobian at the state where the run stopped: quadratic drag
+//!   2·D·|v|/m (with |v| at least the speed gravity gives in one `dt`, since
+//!   a run that fails at rest fails on the speed of its first trial steps),
+//!   angular drag 2·D·|ω|/I, a spring √(k/m). An explicit method needs
+//!   steps below a few times 1/rate to stay stable: the force with the
+//!   largest rate · dt is named.
+//! - **Blow-up of the energy**: the state is finite but the energy is not:
+//!   the body with the largest speed is named.
+//! - **Blow-up of the state**: the method is unstable at this step.
+
+use engine::error::readable;
+use engine::{EngineError, World};
+use scene::Scene;
+use scene::format::ForceSpec;
+
+/// `error` with a hint appended when its cause can be told.
+pub(super) fn explain(
+    error: anyhow::Error,
+    scene: &Scene,
+    world: &World,
+    dt: f64,
+) -> anyhow::Error {
+    let hint = match error.downcast_ref::<EngineError>() {
+        Some(EngineError::StepSizeUnderflow { .. }) => Some(stiffness_hint(scene, world, dt)),
+        Some(EngineError::BlowUp { reason, .. }) if reason.contains("energy") => {
+            Some(energy_hint(scene, world))
+        }
+        Some(EngineError::BlowUp { .. }) => Some(format!(
+            "{} is unstable with this step: use a smaller dt or --method implicit_euler",
+            world.method().id()
+        )),
+        _ => None,
+    };
+    match hint {
+        // After the cause, which anyhow's context would put it before.
+        Some(hint) => anyhow::anyhow!("{error:#}\nhint: {hint}"),
+        None => error,
+    }
+}
+
+/// A stiff force and its rate (1/s).
+struct Stiff {
+    index: usize,
+    what: String,
+    rate: f64,
+}
+
+fn stiffness_hint(scene: &Scene, world: &World, dt: f64) -> String {
+    let gravity: f64 = scene
+        .file()
+        .forces
+        .iter()
+        .map(|f| match f {
+            ForceSpec::Gravity { g, .. } => g.vector().norm(),
+            _ => 0.0,
+        })
+        .sum();
+    let bodies = world.bodies();
+    let states = world.states();
+    let mut candidates: Vec<Stiff> = Vec::new();
+    for (index, force) in scene.file().forces.iter().enumerate() {
+        let id = |name: &str| scene.body_id(name);
+        let stiff = match force {
+            ForceSpec::Drag {
+                body, coefficient, ..
+            } => id(body).map(|i| {
+                let speed = states[i].velocity.norm().max(gravity * dt);
+                Stiff {
+                    index,
+                    what: format!(
+                        "drag on '{body}', coefficient {} kg/m: rate 2·D·|v|/m",
+                        readable(*coefficient)
+                    ),
+                    rate: 2.0 * coefficient * speed / bodies[i].mass,
+                }
+            }),
+            ForceSpec::AngularDrag {
+                body, coefficient, ..
+            } => id(body).and_then(|i| {
+                let inertia = bodies[i].inertia?;
+                Some(Stiff {
+                    index,
+                    what: format!(
+                        "angular drag on '{body}', coefficient {} N·m·s²: rate 2·D·|ω|/I",
+                        readable(*coefficient)
+                    ),
+                    rate: 2.0 * coefficient * states[i].angular_velocity.abs() / inertia,
+                })
+            }),
+            ForceSpec::Spring {
+                body,
+                other_body,
+                stiffness,
+                ..
+            } => {
+                let masses = [Some(body), other_body.as_ref()]
+                    .into_iter()
+                    .flatten()
+                    .filter_map(|b| id(b))
+                    .filter(|i| bodies[*i].is_dynamic())
+                    .map(|i| bodies[i].mass);
+                masses
+                    .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.min(v))))
+                    .map(|mass| Stiff {
+                        index,
+                        what: format!(
+                            "spring on '{body}', stiffness {} N/m: rate √(k/m)",
+                            readable(*stiffness)
+                        ),
+                        rate: (stiffness / mass).sqrt(),
+                    })
+            }
+            _ => None,
+        };
+        candidates.extend(stiff.filter(|s| s.rate.is_finite()));
+    }
+    let worst = candidates
+        .into_iter()
+        .max_by(|a, b| a.rate.total_cmp(&b.rate));
+    match worst {
+        Some(s) if s.rate * dt > 1.0 => format!(
+            "the problem is stiff: forces[{}] ({}) ≈ {:.2e} 1/s, {:.2e} times 1/dt (dt = {} s); an explicit method's steps must stay below a few times 1/rate. Use a fixed-step implicit method (--method implicit_euler, stable at any step), or a smaller coefficient",
+            s.index,
+            s.what,
+            s.rate,
+            s.rate * dt,
+            readable(dt)
+        ),
+        _ => "dormand_prince could not meet its tolerance with any step here: the forces change too fast; try --method implicit_euler or a looser tolerance".into(),
+    }
+}
+
+fn energy_hint(scene: &Scene, world: &World) -> String {
+    let names = scene.body_names();
+    let fastest = world
+        .states()
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| world.bodies()[*i].is_dynamic())
+        .max_by(|a, b| a.1.velocity.norm().total_cmp(&b.1.velocity.norm()));
+    let body = fastest.map_or(String::new(), |(i, s)| {
+        format!(
+            " (body '{}' moves at {} m/s)",
+            names[i],
+            readable(s.velocity.norm())
+        )
+    });
+    format!(
+        "the total energy is no longer a finite number{body}: the masses, speeds, distances or forces of the scene are too large together for f64 (1.8e308)"
+    )
+}

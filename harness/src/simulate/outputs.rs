@@ -1,0 +1,169 @@
+//! The outputs of `simulate` (`--trace`, `--svg`, `--gif`): checked before
+//! the run, written after it, each through a temporary file renamed into
+//! place so that a failure never leaves half a file.
+//!
+//! An output path that exists must be a regular file: renaming over a
+//! symbolic link would replace the link (not write where it points), over
+//! a FIFO or a device node (`/dev/full`, `/dev/null`) would replace the
+//! node by a regular file. Such paths are refused with the reason.
+
+use super::{Recorded, SimulateArgs};
+use anyhow::{Context, Result, anyhow, bail};
+use std::path::{Path, PathBuf};
+
+/// Refuses an existing `path` that is not a regular file (a symbolic link,
+/// a FIFO, a device, a socket); a missing path or a regular file passes.
+pub fn refuse_special(path: &Path) -> Result<()> {
+    let Ok(metadata) = std::fs::symlink_metadata(path) else {
+        return Ok(()); // absent: created by the rename
+    };
+    let file_type = metadata.file_type();
+    if file_type.is_file() {
+        return Ok(());
+    }
+    let what = if file_type.is_symlink() {
+        "a symbolic link (writing would replace the link itself, not its target)"
+    } else if file_type.is_dir() {
+        "a folder"
+    } else {
+        special_kind(&file_type)
+    };
+    bail!(
+        "{} is {what}: refusing to replace it by a file; give the path of a regular file",
+        path.display()
+    )
+}
+
+fn special_kind(file_type: &std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if file_type.is_fifo() {
+            return "a named pipe (FIFO)";
+        }
+        if file_type.is_char_device() || file_type.is_block_device() {
+            return "a device";
+        }
+        if file_type.is_socket() {
+            return "a socket";
+        }
+    }
+    let _ = file_type;
+    "not a regular file"
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same folder
+/// renamed into place, so that a failure never leaves half a file (nor
+/// destroys the previous one).
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let name = path
+        .file_name()
+        .ok_or_else(|| anyhow!("{}: not a file path", path.display()))?;
+    let tmp = dir.join(format!(
+        ".{}.{}.tmp",
+        name.to_string_lossy(),
+        std::process::id()
+    ));
+    refuse_special(path)?;
+    std::fs::write(&tmp, bytes).with_context(|| format!("writing {}", tmp.display()))?;
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        anyhow!(e).context(format!("writing {}", path.display()))
+    })
+}
+
+/// One requested output: its option name and path.
+pub(super) struct Output<'a> {
+    pub(super) option: &'static str,
+    pub(super) path: &'a Path,
+}
+
+pub(super) fn outputs(args: &SimulateArgs) -> Vec<Output<'_>> {
+    [
+        ("--trace", &args.trace),
+        ("--svg", &args.svg),
+        ("--gif", &args.gif),
+    ]
+    .into_iter()
+    .filter_map(|(option, path)| path.as_deref().map(|path| Output { option, path }))
+    .collect()
+}
+
+/// Where `path` would be, resolved through existing folders.
+fn resolved(path: &Path) -> Option<PathBuf> {
+    if let Ok(p) = path.canonicalize() {
+        return Some(p);
+    }
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    Some(parent.canonicalize().ok()?.join(path.file_name()?))
+}
+
+/// Refuses outputs that would overwrite the scene file or each other, or
+/// that cannot be written (missing folder, a folder in the way), before
+/// any time is spent running.
+pub(super) fn check_outputs(scene_path: &Path, outputs: &[Output<'_>]) -> Result<()> {
+    let scene_real = scene_path.canonicalize().ok();
+    let mut seen: Vec<(PathBuf, &str)> = Vec::new();
+    for out in outputs {
+        let shown = out.path.display();
+        let parent = match out.path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        };
+        if !parent.is_dir() {
+            bail!(
+                "{} {shown}: the folder {} does not exist",
+                out.option,
+                parent.display()
+            );
+        }
+        if out.path.is_dir() {
+            bail!("{} {shown}: is a folder, not a file", out.option);
+        }
+        refuse_special(out.path).with_context(|| out.option)?;
+        let real =
+            resolved(out.path).ok_or_else(|| anyhow!("{} {shown}: not a file path", out.option))?;
+        if scene_real.as_ref() == Some(&real) {
+            bail!(
+                "{} {shown} is the scene file itself: refusing to overwrite it; choose another path",
+                out.option
+            );
+        }
+        if let Some((_, other)) = seen.iter().find(|(p, _)| *p == real) {
+            bail!(
+                "{} and {other} both write {shown}: give each its own path",
+                out.option
+            );
+        }
+        seen.push((real, out.option));
+    }
+    Ok(())
+}
+
+pub(super) fn write_all(files: &[(&Output<'_>, Vec<u8>)], recorded: &Recorded) -> Result<()> {
+    for (out, bytes) in files {
+        write_atomically(out.path, bytes)
+            .with_context(|| format!("{} {}", out.option, out.path.display()))?;
+        let what = match out.option {
+            "--trace" => format!(
+                "{} samples{}",
+                recorded.times.len(),
+                if recorded.stride > 1 {
+                    format!(", every {}th step", recorded.stride)
+                } else {
+                    String::new()
+                }
+            ),
+            _ => format!("{:.1} kB", bytes.len() as f64 / 1024.0),
+        };
+        println!("wrote {} ({what})", out.path.display());
+    }
+    Ok(())
+}
