@@ -24,6 +24,7 @@ mod common;
 
 pub mod collision_common;
 mod collision_plots;
+pub mod soft_step_common;
 
 pub use case::{
     Case, CaseFigure, CaseReport, FigureOutput, FigureSection, Headline, MethodTrace, Snapshots,
@@ -59,6 +60,11 @@ registry! {
     collision_slide,
     collision_incline,
     collision_rest,
+    stack,
+    pyramid,
+    friction_ramp,
+    overlap_recovery,
+    mass_ratio,
 }
 
 /// The case with this id.
