@@ -3,6 +3,7 @@
 //! harness`) is a thin command line over this library, which the snapshot
 //! tests and the benches use too.
 
+pub mod bench;
 pub mod cases;
 pub mod convergence;
 pub mod links;

@@ -41,6 +41,16 @@ enum Command {
     },
     /// Runs a scene file of your own.
     Simulate(harness::simulate::SimulateArgs),
+    /// Benchmarks this engine's soft step against rapier2d-f64 and Box2D v3
+    /// on the many-body scenes, side by side, and writes
+    /// `benchmarks.md`/`benchmarks.json` and the charts into the report
+    /// folder (`reports/` unless `--out` says).
+    Bench {
+        /// Full sizes and 500 timed steps (Box2D's many pyramids and smash
+        /// at their size: many minutes).
+        #[arg(long)]
+        full: bool,
+    },
 }
 
 /// Exit codes: 0 every row passed (or the command succeeded), 1 a row
@@ -95,6 +105,23 @@ fn real_main() -> Result<bool> {
             quick,
             reasons,
         }) => run(&cases, quick, reasons, cli.out),
+        Some(Command::Bench { full }) => {
+            let dir = cli.out.unwrap_or_else(workspace::reports_dir);
+            let settings = if full {
+                harness::bench::BenchSettings::FULL
+            } else {
+                harness::bench::BenchSettings::DEFAULT
+            };
+            let results = harness::bench::run(&dir, settings)?;
+            if workspace::same_dir(&dir, &workspace::reports_dir()) && !full {
+                harness::bench::report::update_readme(&workspace::readme(), &results)?;
+            }
+            println!(
+                "Benchmark report written to {}.",
+                dir.join("benchmarks.md").display()
+            );
+            Ok(true)
+        }
         None => run(&[], false, false, cli.out),
     }
 }
@@ -187,6 +214,15 @@ fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Resu
         (Some(dir), true) => Some(harness::study::run(dir, settings)?),
         _ => None,
     };
+    // The many-body benchmark runs with a full (not quick) run that writes
+    // a report, at the sizes of `BenchSettings::DEFAULT`.
+    let bench = match (&out, full && !quick) {
+        (Some(dir), true) => Some(harness::bench::run(
+            dir,
+            harness::bench::BenchSettings::DEFAULT,
+        )?),
+        _ => None,
+    };
     if let Some(dir) = &out {
         // The pictures index has one section per scene drawn: each case's
         // first scene file (the parry comparison has none).
@@ -219,6 +255,9 @@ fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Resu
             all.extend(&study.rows);
         }
         report::update_readme(&workspace::readme(), &all)?;
+        if let Some(bench) = &bench {
+            harness::bench::report::update_readme(&workspace::readme(), bench)?;
+        }
     }
     let mut rows: Vec<_> = results.iter().flat_map(|(_, r)| &r.rows).collect();
     if let Some(study) = &study {

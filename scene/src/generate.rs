@@ -55,6 +55,10 @@ fn default_seed() -> i64 {
     1
 }
 
+fn yes() -> bool {
+    true
+}
+
 /// Most bodies one scene may generate: beyond this a typo (a base of 1e6)
 /// would exhaust memory rather than give an error.
 pub const MAX_GENERATED: usize = 1_000_000;
@@ -84,6 +88,13 @@ pub enum GenerateSpec {
         /// Middle of the bottom row's bottom edge (m). Default `[0, 0]`.
         #[serde(default)]
         origin: Xy,
+        /// Copies of the pyramid along x and y, `[columns, rows]`, each an
+        /// integer ≥ 1 (Box2D's "many pyramids"). Default `[1, 1]`.
+        repeat: Option<Xy>,
+        /// Offset between copies along x and y (m). Default `[0, 0]`
+        /// (required when `repeat` asks for copies).
+        #[serde(default)]
+        repeat_spacing: Xy,
         /// Density (kg/m²), > 0. Default 1.
         #[serde(default = "one")]
         density: f64,
@@ -152,6 +163,10 @@ pub enum GenerateSpec {
         /// Initial velocity of every body (m/s). Default `[0, 0]`.
         #[serde(default)]
         velocity: Xy,
+        /// Whether each body is turned by a random angle. Default true;
+        /// false keeps every body upright (Box2D's tumbler).
+        #[serde(default = "yes")]
+        random_angle: bool,
         /// Seed of the random draws. Default 1.
         #[serde(default = "default_seed")]
         seed: i64,
@@ -303,10 +318,34 @@ pub(crate) fn expand(
             spacing,
             overlap,
             origin,
+            repeat,
+            repeat_spacing,
             ..
         } => {
             let base = count(&path.key("base"), *base, "base")?;
-            let total = base * (base + 1) / 2;
+            let (copies_x, copies_y) = match repeat {
+                None => (1, 1),
+                Some(r) => {
+                    let rp = path.key("repeat");
+                    let whole = |i: usize, v: f64| -> Checked<usize> {
+                        if v.fract() != 0.0 || !(1.0..=MAX_GENERATED as f64).contains(&v) {
+                            return Err(Problem::new(
+                                &rp.index(i),
+                                ErrorKind::InvalidValue,
+                                format!(
+                                    "a number of copies must be a whole number from 1 to {MAX_GENERATED}, got {}",
+                                    engine::error::readable(v)
+                                ),
+                            ));
+                        }
+                        Ok(v as usize)
+                    };
+                    (whole(0, r.x)?, whole(1, r.y)?)
+                }
+            };
+            let shift = crate::build::xy(&path.key("repeat_spacing"), repeat_spacing)?;
+            let copies = copies_x.saturating_mul(copies_y);
+            let total = (base * (base + 1) / 2).saturating_mul(copies);
             check_total(path, so_far, total)?;
             let size = positive(&path.key("box_size"), *box_size, "box_size", "m")?;
             let gap = non_negative(&path.key("spacing"), *spacing, "spacing", "m")?;
@@ -326,12 +365,17 @@ pub(crate) fn expand(
             let pitch = size * (1.0 - overlap) + gap;
             let rise = size * (1.0 - overlap);
             let mut out = Vec::with_capacity(total);
-            for row in 0..base {
-                let n = base - row;
-                for column in 0..n {
-                    let x = (column as f64 - 0.5 * (n as f64 - 1.0)) * pitch;
-                    let y = 0.5 * size + row as f64 * rise;
-                    out.push((square.clone(), origin + Vector2::new(x, y), 0.0));
+            for cy in 0..copies_y {
+                for cx in 0..copies_x {
+                    let at = origin + Vector2::new(cx as f64 * shift.x, cy as f64 * shift.y);
+                    for row in 0..base {
+                        let n = base - row;
+                        for column in 0..n {
+                            let x = (column as f64 - 0.5 * (n as f64 - 1.0)) * pitch;
+                            let y = 0.5 * size + row as f64 * rise;
+                            out.push((square.clone(), at + Vector2::new(x, y), 0.0));
+                        }
+                    }
                 }
             }
             out
@@ -373,6 +417,7 @@ pub(crate) fn expand(
             shapes,
             size,
             seed,
+            random_angle,
             ..
         } => {
             let rows = count(&path.key("rows"), *rows, "rows")?;
@@ -412,6 +457,7 @@ pub(crate) fn expand(
                     let kind = shapes[(rng.next() % shapes.len() as u64) as usize];
                     let d = rng.range(lo, hi);
                     let angle = rng.range(-std::f64::consts::PI, std::f64::consts::PI);
+                    let angle = if *random_angle { angle } else { 0.0 };
                     let shape =
                         grid_shape(kind, d, &mut rng).map_err(|e| Problem::engine(path, e))?;
                     let at = origin + Vector2::new(column as f64 * dx, row as f64 * dy);
@@ -501,6 +547,8 @@ mod tests {
             spacing: 0.0,
             overlap: 0.0,
             origin: Xy { x: 0.0, y: 0.0 },
+            repeat: None,
+            repeat_spacing: Xy::default(),
             density: 1.0,
             friction: None,
             restitution: None,
@@ -530,6 +578,7 @@ mod tests {
             shapes: vec![GridShape::Box, GridShape::Circle, GridShape::Polygon],
             size: Some(Xy { x: 0.3, y: 0.8 }),
             velocity: Xy::default(),
+            random_angle: true,
             seed,
             density: 1.0,
             friction: None,

@@ -5,6 +5,7 @@
 //! are drawn as linear axes over log10 of the data, labelled `1e<k>`, which
 //! keeps every chart one type.
 
+pub mod bench;
 pub mod convergence;
 pub mod energy;
 pub mod failures;

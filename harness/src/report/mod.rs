@@ -161,6 +161,18 @@ pub fn write(
             );
         }
     }
+    if dir.join("benchmarks.md").is_file() {
+        md.push_str("\n## Benchmarks\n\n");
+        md.push_str(&wrap(
+            "[`benchmarks.md`](benchmarks.md): this engine's soft step, rapier2d-f64 and Box2D v3 \
+             on the same many-body scenes (pyramids of 55 to 5050 boxes, a stack, many pyramids, \
+             a tumbler, a smash, a rain of mixed shapes), measured side by side in one run: ms per \
+             step, ratios, quality figures, the targets with their verdicts, and what a contact \
+             model's accuracy costs on the validation contact cases.",
+            "",
+            "",
+        ));
+    }
     md.push_str("\n## Reading a row\n\n");
     for item in [
         "`value` is what the engine (or the reference engine named as the method: rapier2d, \
@@ -182,6 +194,13 @@ pub fn write(
     ];
     if study.is_some() {
         files.push("`sweeps.json`: every point of every sweep.");
+    }
+    if dir.join("benchmarks.json").is_file() {
+        files.push(
+            "`benchmarks.json`: one row per benchmark scene and engine (`scene, engine, bodies, \
+             steps, substeps, ms_per_step_min, ms_per_step_median, ratio_to_engine` and the \
+             quality figures).",
+        );
     }
     if pictures {
         files.push(

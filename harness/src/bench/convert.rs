@@ -1,0 +1,76 @@
+//! A scene file as the reference engines take it: the neutral
+//! [`ManyBodyScene`] of `references::many_body`, built from the same
+//! validated bodies the engine gets (shapes re-centred on their centroids,
+//! mass from the density or the given mass), with the soft step's default
+//! materials filled in, the scene's gravity, its step and its substeps.
+
+use anyhow::{Context, Result, bail};
+use engine::{Body, BodyKind, ContactModel};
+use references::many_body::{self, ManyBodyScene, SceneBody};
+use scene::Scene;
+use scene::format::ForceSpec;
+
+/// The neutral description of a soft-step `scene` (bodies in file order,
+/// so indices agree with the engine's).
+pub fn many_body_scene(scene: &Scene) -> Result<ManyBodyScene> {
+    let settings = match scene.contact() {
+        Some(ContactModel::SoftStep(s)) => s,
+        _ => bail!(
+            "{}: a benchmark scene must use the soft-step contact model",
+            scene.origin()
+        ),
+    };
+    let mut gravity = scene.gravity().map_or([0.0, 0.0], |g| [g.x, g.y]);
+    for f in &scene.file().forces {
+        match f {
+            ForceSpec::Gravity { g, window: None } => {
+                gravity[0] += g.x;
+                gravity[1] += g.y;
+            }
+            _ => bail!(
+                "{}: only gravity acts in a benchmark scene (the reference engines take no other force)",
+                scene.origin()
+            ),
+        }
+    }
+    let bodies = scene
+        .bodies()
+        .iter()
+        .map(|def| {
+            let (body, state) = Body::from_def(def)?;
+            let shape = body
+                .shape
+                .clone()
+                .with_context(|| format!("body '{}' has no shape", body.name))?;
+            let kind = match body.kind {
+                BodyKind::Dynamic => many_body::BodyKind::Dynamic,
+                BodyKind::Static => many_body::BodyKind::Static,
+                BodyKind::Kinematic => many_body::BodyKind::Kinematic,
+            };
+            let density = if body.is_dynamic() {
+                body.mass / shape.area()
+            } else {
+                0.0
+            };
+            Ok(SceneBody {
+                kind,
+                shape,
+                position: [state.position.x, state.position.y],
+                angle: state.angle,
+                velocity: [state.velocity.x, state.velocity.y],
+                angular_velocity: state.angular_velocity,
+                density,
+                friction: body.friction.unwrap_or(settings.friction),
+                restitution: body.restitution.unwrap_or(settings.restitution),
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let scene = ManyBodyScene {
+        gravity,
+        dt: scene.dt(),
+        substeps: settings.substeps,
+        bodies,
+    };
+    scene.validate()?;
+    Ok(scene)
+}

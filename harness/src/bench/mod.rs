@@ -1,0 +1,64 @@
+//! The many-body benchmark (`harness bench`, and a section of the main
+//! run): this engine's soft step, rapier2d-f64 0.36 and Box2D v3.2 on the
+//! same scenes, built from the same scene files, measured side by side in
+//! one process (Box2D's protocol, [`measure`]), with the quality figures
+//! read the same way from every engine; the contact work-precision study
+//! ([`contact_precision`]); `reports/benchmarks.md`, `benchmarks.json` and
+//! the charts ([`report`], `crate::plots::bench`).
+
+pub mod contact_precision;
+pub mod convert;
+pub mod measure;
+pub mod ours;
+pub mod report;
+pub mod scenes;
+pub mod targets;
+
+pub use measure::{BenchRow, BenchSettings, SceneResult};
+
+use anyhow::{Context, Result};
+use std::path::Path;
+
+/// Runs every benchmark scene under `settings`, printing a line per scene,
+/// then the contact work-precision study, and writes the report and charts
+/// into `dir`.
+pub fn run(dir: &Path, settings: BenchSettings) -> Result<Vec<SceneResult>> {
+    let mut results = Vec::new();
+    for bench in scenes::SCENES {
+        let file = match (settings.full, bench.full) {
+            (true, Some(full)) => full,
+            _ => bench.file,
+        };
+        let scene =
+            crate::scenes::load(file).with_context(|| format!("benchmark scene {}", bench.id))?;
+        let result = measure::measure(*bench, &scene, settings)?;
+        println!(
+            "bench {:<14} {:>6} bodies: {}",
+            bench.id,
+            result.rows[0].bodies,
+            result
+                .rows
+                .iter()
+                .map(|r| format!("{} {:.3} ms", short(&r.engine), r.ms_per_step_min))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        results.push(result);
+    }
+    let precision = contact_precision::run(settings)?;
+    let mut charts = crate::plots::bench::draw(dir, &results)?;
+    charts.push(contact_precision::chart(dir, &precision)?);
+    report::write(dir, &results, settings, &charts, &precision)?;
+    Ok(results)
+}
+
+/// A short engine name for the console.
+pub fn short(engine: &str) -> &str {
+    if engine.starts_with("this") {
+        "ours"
+    } else if engine.starts_with("rapier") {
+        "rapier2d"
+    } else {
+        "Box2D"
+    }
+}

@@ -1,0 +1,75 @@
+//! The benchmark scenes (Box2D's benchmark suite and Solver2D's stack,
+//! `docs/soft_step.md#benchmark-scenes`): their scene files, and which
+//! body the quality figures watch.
+
+/// A benchmark scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BenchScene {
+    /// Id in the report.
+    pub id: &'static str,
+    /// Its scene file, relative to the scenes folder.
+    pub file: &'static str,
+    /// The full-size file for `bench --full`, when it differs.
+    pub full: Option<&'static str>,
+    /// The body whose sink (below its starting height) and sideways drift
+    /// the quality figures report: the top box of a pyramid or stack.
+    pub top: Option<&'static str>,
+    /// Whether it belongs to the pyramid series of the scaling chart.
+    pub scaling: bool,
+}
+
+const fn pyramid(id: &'static str, file: &'static str, top: &'static str) -> BenchScene {
+    BenchScene {
+        id,
+        file,
+        full: None,
+        top: Some(top),
+        scaling: true,
+    }
+}
+
+/// Every benchmark scene, in report order: the pyramid series (base 10,
+/// 20, 40, 70 and 100 = `large_pyramid`), the stack, then Box2D's other
+/// benchmarks.
+pub const SCENES: &[BenchScene] = &[
+    pyramid("pyramid_10", "bench/pyramid_10", "pyramid_54"),
+    pyramid("pyramid_20", "pyramid_20", "pyramid_209"),
+    pyramid("pyramid_40", "bench/pyramid_40", "pyramid_819"),
+    pyramid("pyramid_70", "bench/pyramid_70", "pyramid_2484"),
+    pyramid("large_pyramid", "bench/large_pyramid", "pyramid_5049"),
+    BenchScene {
+        id: "stack",
+        file: "stack",
+        full: None,
+        top: Some("stack_14"),
+        scaling: false,
+    },
+    BenchScene {
+        id: "many_pyramids",
+        file: "bench/many_pyramids",
+        full: Some("bench/full/many_pyramids"),
+        top: None,
+        scaling: false,
+    },
+    BenchScene {
+        id: "tumbler",
+        file: "bench/tumbler",
+        full: None,
+        top: None,
+        scaling: false,
+    },
+    BenchScene {
+        id: "smash",
+        file: "bench/smash",
+        full: Some("bench/full/smash"),
+        top: None,
+        scaling: false,
+    },
+    BenchScene {
+        id: "rain",
+        file: "bench/rain",
+        full: None,
+        top: None,
+        scaling: false,
+    },
+];
