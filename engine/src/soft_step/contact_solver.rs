@@ -175,6 +175,7 @@ fn store(bodies: &mut [SolverBody], c: &ContactConstraint, va: SolverBody, vb: S
 }
 
 /// Applies every constraint's accumulated impulses.
+#[inline(never)]
 pub(crate) fn warm_start(constraints: &mut [ContactConstraint], bodies: &mut [SolverBody]) {
     for c in constraints.iter_mut() {
         let (mut a, mut b) = load(bodies, c.a, c.b);
@@ -196,6 +197,7 @@ pub(crate) fn warm_start(constraints: &mut [ContactConstraint], bodies: &mut [So
 /// (relax) the pass removes the bias velocity and solves friction.
 /// Speculative points (s > 0) may close their gap in one substep of
 /// length 1/`inv_h` and no more.
+#[inline(never)]
 pub(crate) fn solve(
     constraints: &mut [ContactConstraint],
     bodies: &mut [SolverBody],
@@ -267,6 +269,7 @@ pub(crate) fn solve(
 /// The restitution pass: every point that approached faster than
 /// `threshold` (m/s) before the solve and pushed during it gets the normal
 /// velocity −e × its approach speed (the impulse stays ≥ 0).
+#[inline(never)]
 pub(crate) fn restitution(
     constraints: &mut [ContactConstraint],
     bodies: &mut [SolverBody],
@@ -302,6 +305,7 @@ pub(crate) fn restitution(
 
 /// Copies the impulses back into the contacts, for the next step's warm
 /// start and for the reports.
+#[inline(never)]
 pub(crate) fn store_impulses(constraints: &[ContactConstraint], contacts: &mut [Contact]) {
     for c in constraints {
         let contact = &mut contacts[c.contact];

@@ -335,6 +335,7 @@ impl SoftStep {
     }
 
     /// Stage 1: contacts for the new overlapping pairs of colliders.
+    #[inline(never)]
     fn update_pairs(&mut self) {
         let sims = &self.sims;
         let colliders = &self.colliders;
@@ -362,6 +363,7 @@ impl SoftStep {
     }
 
     /// Stage 2: manifolds; destroys the contacts whose fat boxes parted.
+    #[inline(never)]
     fn collide(&mut self, core: &WorldCore) {
         let settings = self.settings;
         self.contacts.changes.clear();
@@ -448,6 +450,7 @@ impl SoftStep {
 
     /// Copies the world's velocities into the solver records and resets
     /// the motion since the step began.
+    #[inline(never)]
     fn load_bodies(&mut self, core: &WorldCore) {
         for (id, sim) in self.sims.iter().enumerate() {
             let record = &mut self.bodies[id + 1];
@@ -460,6 +463,7 @@ impl SoftStep {
     }
 
     /// Stage 3: a constraint per touching contact with an awake body.
+    #[inline(never)]
     fn prepare(&mut self, core: &mut WorldCore, h: f64) {
         let settings = &self.settings;
         // Contact stiffness capped at a quarter of the substep's Nyquist
@@ -510,6 +514,7 @@ impl SoftStep {
     /// v += h (g + F/m), ω += h τ/I for every awake dynamic body; the force
     /// generators (other than uniform fields) see the state at the
     /// substep's start, at time `t_sub`, active as at `middle`.
+    #[inline(never)]
     fn integrate_velocities(
         &mut self,
         core: &WorldCore,
@@ -557,6 +562,7 @@ impl SoftStep {
     }
 
     /// x += h v, θ += h ω (symplectic Euler) for every awake moving body.
+    #[inline(never)]
     fn integrate_positions(&mut self, h: f64) {
         for (sim, r) in self.sims.iter().zip(&mut self.bodies[1..]) {
             if !sim.moving() {
@@ -573,6 +579,7 @@ impl SoftStep {
 
     /// Stage 6: the solver's motion into the world's states, with the
     /// non-finite guard naming the body.
+    #[inline(never)]
     fn write_states(&mut self, core: &mut WorldCore, t0: f64, step: u64) -> Result<()> {
         for (id, sim) in self.sims.iter().enumerate() {
             if !sim.moving() {
@@ -607,6 +614,7 @@ impl SoftStep {
 
     /// Stage 7: bounding boxes into the broad phase, fast bodies swept
     /// against static ones, sleep timers.
+    #[inline(never)]
     fn finalize_bodies(&mut self, core: &mut WorldCore, dt: f64) {
         let settings = self.settings;
         for id in 0..self.sims.len() {
@@ -684,6 +692,7 @@ impl SoftStep {
 
     /// Stage 8: islands whose every body has been at rest for the time to
     /// sleep fall asleep.
+    #[inline(never)]
     fn sleep(&mut self, core: &mut WorldCore) {
         self.touching_pairs.clear();
         for c in &self.contacts.contacts {
