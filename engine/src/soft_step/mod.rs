@@ -40,14 +40,17 @@
 
 mod bodies;
 mod broad_phase;
+mod colouring;
 mod contact_solver;
 mod contacts;
 mod continuous;
 mod geometry;
 mod islands;
+mod lanes;
 mod manifold;
 mod settings;
 mod softness;
+mod wide_solver;
 
 pub use settings::SoftStepSettings;
 pub use softness::Softness;
@@ -61,10 +64,12 @@ use crate::integrators::Stats;
 use crate::world_core::{WorldCore, check_energy_value};
 use bodies::{BodySim, SolverBody, solver_body, solver_index};
 use broad_phase::BroadPhase;
+use colouring::Colouring;
 use contact_solver::{ContactConstraint, PairMass};
 use contacts::{ContactSet, Side, TouchChange};
 use geometry::Collider;
 use nalgebra::{Isometry2, Translation2, UnitComplex, Vector2};
+use wide_solver::{WideConstraint, WideExtra};
 
 /// The soft step's state: per-body solver records, broad phase, contacts,
 /// constraints, islands.
@@ -78,7 +83,13 @@ pub struct SoftStep {
     bodies: Vec<SolverBody>,
     broad: BroadPhase,
     contacts: ContactSet,
+    /// The constraints of the step's colours, four per record, colour
+    /// after colour.
+    wide: Vec<WideConstraint>,
+    wide_extra: Vec<WideExtra>,
+    /// The overflow constraints (no free colour), solved one at a time.
     constraints: Vec<ContactConstraint>,
+    colouring: Colouring,
     islands: islands::Islands,
     stats: Stats,
     // Scratch reused by every step.
@@ -99,7 +110,10 @@ impl SoftStep {
             bodies: vec![SolverBody::AT_REST],
             broad: BroadPhase::default(),
             contacts: ContactSet::default(),
+            wide: Vec::new(),
+            wide_extra: Vec::new(),
             constraints: Vec::new(),
+            colouring: Colouring::default(),
             islands: islands::Islands::default(),
             stats: Stats::default(),
             wrenches: Vec::new(),
@@ -265,6 +279,7 @@ impl SoftStep {
 
             let started = core.profiler.start();
             contact_solver::warm_start(&mut self.constraints, &mut self.bodies);
+            wide_solver::warm_start(&mut self.wide, &mut self.bodies);
             core.profiler.stop(Phase::WarmStart, started);
 
             let started = core.profiler.start();
@@ -274,6 +289,12 @@ impl SoftStep {
                 inv_h,
                 settings.push_out_speed,
                 true,
+            );
+            wide_solver::solve(
+                &mut self.wide,
+                &mut self.bodies,
+                inv_h,
+                settings.push_out_speed,
             );
             core.profiler.stop(Phase::Solve, started);
 
@@ -289,6 +310,7 @@ impl SoftStep {
                 settings.push_out_speed,
                 false,
             );
+            wide_solver::relax(&mut self.wide, &mut self.bodies, inv_h);
             core.profiler.stop(Phase::Relax, started);
             self.stats.evaluations += 1;
 
@@ -306,10 +328,17 @@ impl SoftStep {
             &mut self.bodies,
             settings.restitution_threshold,
         );
+        wide_solver::restitution(
+            &mut self.wide,
+            &self.wide_extra,
+            &mut self.bodies,
+            settings.restitution_threshold,
+        );
         core.profiler.stop(Phase::Restitution, started);
 
         let started = core.profiler.start();
         contact_solver::store_impulses(&self.constraints, &mut self.contacts.contacts);
+        wide_solver::store_impulses(&self.wide, &self.wide_extra, &mut self.contacts.contacts);
         let step = self.stats.steps;
         self.write_states(core, t0, step)?;
         core.profiler.stop(Phase::Store, started);
@@ -462,7 +491,9 @@ impl SoftStep {
         }
     }
 
-    /// Stage 3: a constraint per touching contact with an awake body.
+    /// Stage 3: a constraint per touching contact with an awake body,
+    /// coloured ([`colouring`]) and packed four by four for the wide
+    /// solver; those that found no colour stay scalar (the overflow).
     #[inline(never)]
     fn prepare(&mut self, core: &mut WorldCore, h: f64) {
         let settings = &self.settings;
@@ -472,8 +503,9 @@ impl SoftStep {
         let soft = Softness::new(hertz, settings.contact_damping_ratio, h);
         let static_soft = Softness::new(2.0 * hertz, settings.contact_damping_ratio, h);
         let warm = if settings.warm_starting { 1.0 } else { 0.0 };
-        self.constraints.clear();
+        self.colouring.clear(self.sims.len());
         let mut points = 0;
+        let mut touching = 0;
         for (index, c) in self.contacts.contacts.iter().enumerate() {
             if c.count == 0 {
                 continue;
@@ -482,6 +514,16 @@ impl SoftStep {
             if !sa.moving() && !sb.moving() {
                 continue;
             }
+            let dynamic = |id: BodyId, s: &BodySim| (s.kind == BodyKind::Dynamic).then_some(id);
+            self.colouring
+                .add(index, dynamic(c.body_a, sa), dynamic(c.body_b, sb));
+            points += c.count;
+            touching += 1;
+        }
+        let (sims, contacts, bodies) = (&self.sims, &self.contacts.contacts, &self.bodies);
+        let constraint = |index: usize| {
+            let c = &contacts[index];
+            let (sa, sb) = (&sims[c.body_a], &sims[c.body_b]);
             let mass = PairMass {
                 a: solver_index(c.body_a, sa.kind),
                 b: solver_index(c.body_b, sb.kind),
@@ -495,19 +537,31 @@ impl SoftStep {
             } else {
                 soft
             };
-            points += c.count;
-            self.constraints.push(contact_solver::prepare(
-                c,
-                index,
-                mass,
-                softness,
-                &self.bodies,
-                warm,
-            ));
+            contact_solver::prepare(c, index, mass, softness, bodies, warm)
+        };
+        self.constraints.clear();
+        self.constraints
+            .extend(self.colouring.overflow.iter().map(|&i| constraint(i)));
+        // Every record starts as four padding lanes; each constraint is
+        // written into its lane in place.
+        let records: usize = self.colouring.in_order().map(|c| c.len().div_ceil(4)).sum();
+        self.wide.clear();
+        self.wide.resize(records, WideConstraint::default());
+        self.wide_extra.clear();
+        self.wide_extra.resize(records, WideExtra::default());
+        let mut record = 0;
+        for colour in self.colouring.in_order() {
+            for four in colour.chunks(4) {
+                let lanes = (&mut self.wide[record], &mut self.wide_extra[record]);
+                for (l, &i) in four.iter().enumerate() {
+                    wide_solver::set_lane((&mut *lanes.0, &mut *lanes.1), l, &constraint(i));
+                }
+                record += 1;
+            }
         }
         let profile = &mut core.profiler.profile;
         profile.contacts += self.contacts.contacts.len() as u64;
-        profile.touching += self.constraints.len() as u64;
+        profile.touching += touching as u64;
         profile.points += points as u64;
     }
 

@@ -1,0 +1,517 @@
+//! The contact solver four constraints at a time (Box2D v3's SIMD path of
+//! `contact_solver.c`, written anew for f64): the constraints of one colour
+//! ([`super::colouring`]) share no dynamic body, so four of them are packed
+//! side by side, one per lane of [`F64x4`], and every pass (warm start,
+//! solve, relax, restitution) runs on the four at once.
+//!
+//! Each pass gathers the two bodies of each lane (velocities, motion since
+//! the step began), applies the scalar solver's formulas lane by lane, and
+//! scatters the velocities back. The formulas and their order of operations
+//! are those of [`super::contact_solver`], the reference implementation: a
+//! lane gives the same bits as the scalar code on the same constraint, and
+//! solving a colour here gives what solving its constraints one after the
+//! other would give (tested below).
+//!
+//! Layout: what the passes read and write every substep is in
+//! [`WideConstraint`] (structure of arrays, 992 bytes per four constraints);
+//! what only restitution and the store read is in [`WideExtra`]. A
+//! constraint of one point has a second point with zero mass, and a colour
+//! whose size is not a multiple of four has padding lanes between the
+//! static dummy body and itself, with zero masses: both give zero impulses
+//! and change nothing.
+
+use super::bodies::SolverBody;
+use super::contact_solver::ContactConstraint;
+use super::contacts::Contact;
+use super::lanes::F64x4;
+
+/// One point of four constraints.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct WidePoint {
+    /// Anchors from each centre of mass (m).
+    pub ra_x: F64x4,
+    pub ra_y: F64x4,
+    pub rb_x: F64x4,
+    pub rb_y: F64x4,
+    /// Separation minus n·(r_B − r_A) at the step's start (m).
+    pub base_separation: F64x4,
+    /// Effective masses along the normal and the tangent (kg).
+    pub normal_mass: F64x4,
+    pub tangent_mass: F64x4,
+    /// Accumulated impulses (N·s).
+    pub normal_impulse: F64x4,
+    pub tangent_impulse: F64x4,
+    /// Sum of the normal impulses applied this step (N·s).
+    pub total_normal_impulse: F64x4,
+}
+
+/// Four constraints of one colour, one per lane: what every substep reads.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct WideConstraint {
+    /// Solver indices of the bodies (0: the static dummy).
+    pub a: [u32; 4],
+    pub b: [u32; 4],
+    /// Unit normal from A to B.
+    pub normal_x: F64x4,
+    pub normal_y: F64x4,
+    pub friction: F64x4,
+    pub inv_mass_a: F64x4,
+    pub inv_inertia_a: F64x4,
+    pub inv_mass_b: F64x4,
+    pub inv_inertia_b: F64x4,
+    /// Softness ([`super::Softness`]) of each lane.
+    pub bias_rate: F64x4,
+    pub mass_scale: F64x4,
+    pub impulse_scale: F64x4,
+    pub points: [WidePoint; 2],
+}
+
+/// What restitution and the store read of four constraints.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct WideExtra {
+    /// Contact index of each lane; `None` for a padding lane.
+    pub contact: [Option<u32>; 4],
+    /// Points of each lane's contact.
+    pub count: [u8; 4],
+    pub restitution: F64x4,
+    /// Normal velocity of each point before the solve (m/s).
+    pub normal_velocity: [F64x4; 2],
+}
+
+/// Packs up to four constraints of one colour (no dynamic body twice) into
+/// lanes; missing lanes are padding.
+#[cfg(test)]
+pub(crate) fn pack(lanes: &[ContactConstraint]) -> (WideConstraint, WideExtra) {
+    let mut w = WideConstraint::default();
+    let mut e = WideExtra::default();
+    for (l, c) in lanes.iter().enumerate() {
+        set_lane((&mut w, &mut e), l, c);
+    }
+    (w, e)
+}
+
+/// Writes constraint `c` into lane `l` of `(w, e)` (whose lanes start as
+/// padding: [`Default`]).
+#[inline(always)]
+pub(crate) fn set_lane(
+    (w, e): (&mut WideConstraint, &mut WideExtra),
+    l: usize,
+    c: &ContactConstraint,
+) {
+    let index = |i: usize| u32::try_from(i).expect("fewer than 2³² bodies and contacts");
+    w.a[l] = index(c.a);
+    w.b[l] = index(c.b);
+    w.normal_x.set_lane(l, c.normal.x);
+    w.normal_y.set_lane(l, c.normal.y);
+    w.friction.set_lane(l, c.friction);
+    w.inv_mass_a.set_lane(l, c.inv_mass_a);
+    w.inv_inertia_a.set_lane(l, c.inv_inertia_a);
+    w.inv_mass_b.set_lane(l, c.inv_mass_b);
+    w.inv_inertia_b.set_lane(l, c.inv_inertia_b);
+    w.bias_rate.set_lane(l, c.softness.bias_rate);
+    w.mass_scale.set_lane(l, c.softness.mass_scale);
+    w.impulse_scale.set_lane(l, c.softness.impulse_scale);
+    e.contact[l] = Some(index(c.contact));
+    e.count[l] = c.count as u8;
+    e.restitution.set_lane(l, c.restitution);
+    for (k, cp) in c.points[..c.count].iter().enumerate() {
+        let p = &mut w.points[k];
+        p.ra_x.set_lane(l, cp.ra.x);
+        p.ra_y.set_lane(l, cp.ra.y);
+        p.rb_x.set_lane(l, cp.rb.x);
+        p.rb_y.set_lane(l, cp.rb.y);
+        p.base_separation.set_lane(l, cp.base_separation);
+        p.normal_mass.set_lane(l, cp.normal_mass);
+        p.tangent_mass.set_lane(l, cp.tangent_mass);
+        p.normal_impulse.set_lane(l, cp.normal_impulse);
+        p.tangent_impulse.set_lane(l, cp.tangent_impulse);
+        p.total_normal_impulse.set_lane(l, cp.total_normal_impulse);
+        e.normal_velocity[k].set_lane(l, cp.normal_velocity);
+    }
+}
+
+/// Four bodies' velocities and motion since the step began.
+#[derive(Debug, Clone, Copy)]
+struct WideBody {
+    vx: F64x4,
+    vy: F64x4,
+    w: F64x4,
+    dpx: F64x4,
+    dpy: F64x4,
+    /// cos and sin of the rotation since the step began.
+    c: F64x4,
+    s: F64x4,
+}
+
+impl WideBody {
+    /// ω × r + v at anchors `(rx, ry)`: the velocity of the anchored point.
+    #[inline(always)]
+    fn point_velocity(&self, rx: F64x4, ry: F64x4) -> (F64x4, F64x4) {
+        (self.vx + -self.w * ry, self.vy + self.w * rx)
+    }
+
+    /// `(rx, ry)` turned by the rotation since the step began.
+    #[inline(always)]
+    fn rotate(&self, rx: F64x4, ry: F64x4) -> (F64x4, F64x4) {
+        (self.c * rx - self.s * ry, self.s * rx + self.c * ry)
+    }
+}
+
+/// Reads the bodies of the four lanes.
+#[inline(always)]
+fn gather(bodies: &[SolverBody], index: &[u32; 4]) -> WideBody {
+    let b = index.map(|i| &bodies[i as usize]);
+    let lane = |f: fn(&SolverBody) -> f64| F64x4::new([f(b[0]), f(b[1]), f(b[2]), f(b[3])]);
+    WideBody {
+        vx: lane(|b| b.v.x),
+        vy: lane(|b| b.v.y),
+        w: lane(|b| b.w),
+        dpx: lane(|b| b.dp.x),
+        dpy: lane(|b| b.dp.y),
+        c: lane(|b| b.dq.0),
+        s: lane(|b| b.dq.1),
+    }
+}
+
+/// Writes back the velocities of the four lanes. A body met in two lanes
+/// is static or kinematic, whose velocity no lane changed, so the order of
+/// the writes does not matter.
+#[inline(always)]
+fn scatter(bodies: &mut [SolverBody], index: &[u32; 4], w: &WideBody) {
+    for (l, &i) in index.iter().enumerate() {
+        let b = &mut bodies[i as usize];
+        b.v.x = w.vx.lane(l);
+        b.v.y = w.vy.lane(l);
+        b.w = w.w.lane(l);
+    }
+}
+
+/// Applies impulse `(px, py)` at anchors `ra`, `rb`: −P on A, +P on B.
+#[inline(always)]
+fn apply(
+    c: &WideConstraint,
+    (a, b): (&mut WideBody, &mut WideBody),
+    (ra_x, ra_y, rb_x, rb_y): (F64x4, F64x4, F64x4, F64x4),
+    (px, py): (F64x4, F64x4),
+) {
+    a.vx -= c.inv_mass_a * px;
+    a.vy -= c.inv_mass_a * py;
+    a.w -= c.inv_inertia_a * (ra_x * py - ra_y * px);
+    b.vx += c.inv_mass_b * px;
+    b.vy += c.inv_mass_b * py;
+    b.w += c.inv_inertia_b * (rb_x * py - rb_y * px);
+}
+
+/// Applies every constraint's accumulated impulses.
+#[inline(never)]
+pub(crate) fn warm_start(constraints: &mut [WideConstraint], bodies: &mut [SolverBody]) {
+    for c in constraints.iter_mut() {
+        let (mut a, mut b) = (gather(bodies, &c.a), gather(bodies, &c.b));
+        let (tx, ty) = (c.normal_y, -c.normal_x);
+        for k in 0..2 {
+            let p = c.points[k];
+            let px = p.normal_impulse * c.normal_x + p.tangent_impulse * tx;
+            let py = p.normal_impulse * c.normal_y + p.tangent_impulse * ty;
+            c.points[k].total_normal_impulse += p.normal_impulse;
+            let r = (p.ra_x, p.ra_y, p.rb_x, p.rb_y);
+            apply(c, (&mut a, &mut b), r, (px, py));
+        }
+        scatter(bodies, &c.a, &a);
+        scatter(bodies, &c.b, &b);
+    }
+}
+
+/// The solve pass, with the soft bias (see [`super::contact_solver::solve`]).
+#[inline(never)]
+pub(crate) fn solve(
+    constraints: &mut [WideConstraint],
+    bodies: &mut [SolverBody],
+    inv_h: f64,
+    push_out_speed: f64,
+) {
+    pass::<true>(constraints, bodies, inv_h, push_out_speed);
+}
+
+/// The relax pass: without bias, with friction.
+#[inline(never)]
+pub(crate) fn relax(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
+    pass::<false>(constraints, bodies, inv_h, 0.0);
+}
+
+/// One pass of sequential impulses over four lanes at a time.
+#[inline(always)]
+fn pass<const BIAS: bool>(
+    constraints: &mut [WideConstraint],
+    bodies: &mut [SolverBody],
+    inv_h: f64,
+    push_out_speed: f64,
+) {
+    let inv_h = F64x4::splat(inv_h);
+    let min_bias = F64x4::splat(-push_out_speed);
+    let one = F64x4::splat(1.0);
+    for c in constraints.iter_mut() {
+        let (mut a, mut b) = (gather(bodies, &c.a), gather(bodies, &c.b));
+        let (nx, ny) = (c.normal_x, c.normal_y);
+        let dpx = b.dpx - a.dpx;
+        let dpy = b.dpy - a.dpy;
+        let (bias_rate, mass_scale, impulse_scale) = if BIAS {
+            (c.mass_scale * c.bias_rate, c.mass_scale, c.impulse_scale)
+        } else {
+            (F64x4::ZERO, one, F64x4::ZERO)
+        };
+        for k in 0..2 {
+            let p = c.points[k];
+            // Current separation from the motion since the step began.
+            let (rbx, rby) = b.rotate(p.rb_x, p.rb_y);
+            let (rax, ray) = a.rotate(p.ra_x, p.ra_y);
+            let dsx = dpx + rbx - rax;
+            let dsy = dpy + rby - ray;
+            let s = p.base_separation + (dsx * nx + dsy * ny);
+            let speculative = s.gt(F64x4::ZERO);
+            let bias = speculative.select(s * inv_h, (bias_rate * s).max(min_bias));
+            let point_mass_scale = speculative.select(one, mass_scale);
+            let point_impulse_scale = speculative.select(F64x4::ZERO, impulse_scale);
+            let (vax, vay) = a.point_velocity(p.ra_x, p.ra_y);
+            let (vbx, vby) = b.point_velocity(p.rb_x, p.rb_y);
+            let vn = (vbx - vax) * nx + (vby - vay) * ny;
+            let impulse = -p.normal_mass * (point_mass_scale * vn + bias)
+                - point_impulse_scale * p.normal_impulse;
+            let accumulated = (p.normal_impulse + impulse).max(F64x4::ZERO);
+            let impulse = accumulated - p.normal_impulse;
+            let q = &mut c.points[k];
+            q.normal_impulse = accumulated;
+            q.total_normal_impulse += impulse;
+            let r = (p.ra_x, p.ra_y, p.rb_x, p.rb_y);
+            apply(c, (&mut a, &mut b), r, (impulse * nx, impulse * ny));
+        }
+        if !BIAS {
+            let (tx, ty) = (ny, -nx);
+            for k in 0..2 {
+                let p = c.points[k];
+                let (vax, vay) = a.point_velocity(p.ra_x, p.ra_y);
+                let (vbx, vby) = b.point_velocity(p.rb_x, p.rb_y);
+                let vt = (vbx - vax) * tx + (vby - vay) * ty;
+                let max_friction = c.friction * p.normal_impulse;
+                let accumulated =
+                    (p.tangent_impulse - p.tangent_mass * vt).clamp(-max_friction, max_friction);
+                let impulse = accumulated - p.tangent_impulse;
+                c.points[k].tangent_impulse = accumulated;
+                let r = (p.ra_x, p.ra_y, p.rb_x, p.rb_y);
+                apply(c, (&mut a, &mut b), r, (impulse * tx, impulse * ty));
+            }
+        }
+        scatter(bodies, &c.a, &a);
+        scatter(bodies, &c.b, &b);
+    }
+}
+
+/// The restitution pass (see [`super::contact_solver::restitution`]).
+#[inline(never)]
+pub(crate) fn restitution(
+    constraints: &mut [WideConstraint],
+    extras: &[WideExtra],
+    bodies: &mut [SolverBody],
+    threshold: f64,
+) {
+    let min_approach = F64x4::splat(-threshold);
+    for (c, e) in constraints.iter_mut().zip(extras) {
+        if e.restitution.eq(F64x4::ZERO).all() {
+            continue;
+        }
+        let (mut a, mut b) = (gather(bodies, &c.a), gather(bodies, &c.b));
+        let (nx, ny) = (c.normal_x, c.normal_y);
+        for k in 0..2 {
+            let p = c.points[k];
+            let relative = e.normal_velocity[k];
+            // No restitution, slow approach, or no push during the solve:
+            // no bounce.
+            let skip = relative
+                .gt(min_approach)
+                .or(p.total_normal_impulse.eq(F64x4::ZERO))
+                .or(e.restitution.eq(F64x4::ZERO));
+            let (vax, vay) = a.point_velocity(p.ra_x, p.ra_y);
+            let (vbx, vby) = b.point_velocity(p.rb_x, p.rb_y);
+            let vn = (vbx - vax) * nx + (vby - vay) * ny;
+            let impulse = -p.normal_mass * (vn + e.restitution * relative);
+            let accumulated = (p.normal_impulse + impulse).max(F64x4::ZERO);
+            let impulse = skip.select(F64x4::ZERO, accumulated - p.normal_impulse);
+            let q = &mut c.points[k];
+            q.normal_impulse = skip.select(p.normal_impulse, accumulated);
+            q.total_normal_impulse =
+                skip.select(p.total_normal_impulse, p.total_normal_impulse + impulse);
+            let r = (p.ra_x, p.ra_y, p.rb_x, p.rb_y);
+            apply(c, (&mut a, &mut b), r, (impulse * nx, impulse * ny));
+        }
+        scatter(bodies, &c.a, &a);
+        scatter(bodies, &c.b, &b);
+    }
+}
+
+/// Copies the impulses of every lane back into its contact.
+#[inline(never)]
+pub(crate) fn store_impulses(
+    constraints: &[WideConstraint],
+    extras: &[WideExtra],
+    contacts: &mut [Contact],
+) {
+    for (c, e) in constraints.iter().zip(extras) {
+        for l in 0..4 {
+            let Some(index) = e.contact[l] else {
+                continue;
+            };
+            let contact = &mut contacts[index as usize];
+            let count = usize::from(e.count[l]);
+            for (k, p) in contact.points[..count].iter_mut().enumerate() {
+                let q = &c.points[k];
+                p.normal_impulse = q.normal_impulse.lane(l);
+                p.tangent_impulse = q.tangent_impulse.lane(l);
+                p.total_normal_impulse = q.total_normal_impulse.lane(l);
+                p.normal_velocity = e.normal_velocity[k].lane(l);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::colouring::Colouring;
+    use super::super::contact_solver::{self, ConstraintPoint};
+    use super::super::softness::Softness;
+    use super::*;
+    use nalgebra::Vector2;
+
+    /// A deterministic stream of numbers in [−1, 1) (a linear congruential
+    /// generator: the test needs variety, not quality).
+    struct Numbers(u64);
+
+    impl Numbers {
+        fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        }
+    }
+
+    /// Twelve moving bodies and the static dummy, a chain of contacts
+    /// between neighbours and one with the ground per body, with varied
+    /// anchors, separations (overlapping and speculative), impulses and
+    /// softness.
+    fn scene() -> (Vec<SolverBody>, Vec<ContactConstraint>) {
+        let mut n = Numbers(7);
+        let mut bodies = vec![SolverBody::AT_REST];
+        for _ in 0..12 {
+            let dtheta = 0.01 * n.next();
+            bodies.push(SolverBody {
+                v: Vector2::new(n.next(), n.next()),
+                w: n.next(),
+                dp: Vector2::new(0.01 * n.next(), 0.01 * n.next()),
+                dtheta,
+                dq: (dtheta.cos(), dtheta.sin()),
+            });
+        }
+        let soft = Softness::new(30.0, 10.0, 1.0 / 240.0);
+        let mut constraints = Vec::new();
+        let pairs = (1..12).map(|i| (i, i + 1)).chain((1..13).map(|i| (0, i)));
+        for (contact, (a, b)) in pairs.enumerate() {
+            let angle = n.next();
+            let normal = Vector2::new(angle.sin(), angle.cos());
+            let mut point = |k: usize| ConstraintPoint {
+                ra: Vector2::new(0.5 * n.next(), 0.5 * n.next()),
+                rb: Vector2::new(0.5 * n.next(), 0.5 * n.next()),
+                base_separation: 0.01 * n.next(),
+                normal_mass: 1.0 + n.next(),
+                tangent_mass: 1.0 + n.next(),
+                normal_impulse: (k as f64 + n.next()).max(0.0),
+                tangent_impulse: 0.1 * n.next(),
+                total_normal_impulse: 0.0,
+                normal_velocity: -2.0 * n.next().abs(),
+            };
+            let points = [point(0), point(1)];
+            let static_a = a == 0;
+            constraints.push(ContactConstraint {
+                a,
+                b,
+                contact,
+                normal,
+                friction: 0.6,
+                restitution: if contact % 3 == 0 { 0.5 } else { 0.0 },
+                inv_mass_a: if static_a { 0.0 } else { 1.0 },
+                inv_inertia_a: if static_a { 0.0 } else { 6.0 },
+                inv_mass_b: 0.5,
+                inv_inertia_b: 3.0,
+                softness: if static_a {
+                    Softness::new(60.0, 10.0, 1.0 / 240.0)
+                } else {
+                    soft
+                },
+                count: 1 + contact % 2,
+                points,
+            });
+        }
+        (bodies, constraints)
+    }
+
+    #[test]
+    fn a_colour_solved_in_lanes_gives_the_bits_of_the_scalar_solver() {
+        let (bodies, constraints) = scene();
+        let mut colouring = Colouring::default();
+        colouring.clear(13);
+        for (i, c) in constraints.iter().enumerate() {
+            let dynamic = |k: usize| (k != 0).then_some(k);
+            colouring.add(i, dynamic(c.a), dynamic(c.b));
+        }
+        assert!(colouring.overflow.is_empty());
+        // The scalar reference visits the constraints colour after colour,
+        // the order the lanes solve them in.
+        let mut scalar: Vec<ContactConstraint> = colouring
+            .in_order()
+            .flatten()
+            .map(|&i| constraints[i])
+            .collect();
+        let (mut wide, mut extra) = (Vec::new(), Vec::new());
+        for colour in colouring.in_order() {
+            for four in colour.chunks(4) {
+                let lanes: Vec<_> = four.iter().map(|&i| constraints[i]).collect();
+                let (w, e) = pack(&lanes);
+                wide.push(w);
+                extra.push(e);
+            }
+        }
+        let (mut scalar_bodies, mut wide_bodies) = (bodies.clone(), bodies);
+        let (inv_h, push_out) = (240.0, 3.0);
+        for _ in 0..3 {
+            contact_solver::warm_start(&mut scalar, &mut scalar_bodies);
+            warm_start(&mut wide, &mut wide_bodies);
+            contact_solver::solve(&mut scalar, &mut scalar_bodies, inv_h, push_out, true);
+            solve(&mut wide, &mut wide_bodies, inv_h, push_out);
+            contact_solver::solve(&mut scalar, &mut scalar_bodies, inv_h, push_out, false);
+            relax(&mut wide, &mut wide_bodies, inv_h);
+        }
+        contact_solver::restitution(&mut scalar, &mut scalar_bodies, 1.0);
+        restitution(&mut wide, &extra, &mut wide_bodies, 1.0);
+        // Same operations in the same order on the same data: equal bits.
+        assert_eq!(scalar_bodies, wide_bodies);
+        let mut contacts: Vec<Contact> = Vec::new();
+        let mut set = super::super::contacts::ContactSet::default();
+        for (i, c) in constraints.iter().enumerate() {
+            set.create((2 * i, 2 * i + 1), (c.a, c.b), 0.6, 0.0);
+        }
+        contacts.append(&mut set.contacts);
+        for c in &mut contacts {
+            c.count = 2;
+        }
+        let mut reference = contacts.clone();
+        contact_solver::store_impulses(&scalar, &mut reference);
+        store_impulses(&wide, &extra, &mut contacts);
+        assert_eq!(reference, contacts);
+        // Restitution acted somewhere (the test covers it).
+        assert!(
+            scalar
+                .iter()
+                .zip(&constraints)
+                .any(|(c, _)| c.restitution > 0.0 && c.points[0].normal_velocity < -1.0)
+        );
+    }
+}
