@@ -625,7 +625,7 @@ impl SoftStep {
             r.dp += h * r.v;
             if r.w != 0.0 {
                 r.dtheta += h * r.w;
-                let (s, c) = r.dtheta.sin_cos();
+                let (s, c) = bodies::small_sin_cos(r.dtheta);
                 r.dq = (c, s);
             }
         }
