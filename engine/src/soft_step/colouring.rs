@@ -36,17 +36,35 @@ pub(crate) const COLOURS: usize = 23;
 /// static or kinematic body.
 pub(crate) const DYNAMIC_COLOURS: usize = COLOURS - 3;
 
-/// The colours of one step: per colour, the items (contact indices) it
-/// holds, in the order they were added; and the overflow.
+/// Where the wide solver keeps a constraint.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Slot {
+    /// Lane `lane` of wide record `record`.
+    Lane { record: usize, lane: usize },
+    /// Position in the overflow list.
+    Overflow(usize),
+}
+
+/// The colours of one step: per constraint (in the order they were added),
+/// its colour and its position in that colour; the colours' sizes.
+///
+/// Colour `c` occupies the wide records from `first_record[c]` to
+/// `first_record[c + 1]` (excluded), its k-th constraint in lane k mod 4
+/// of record `first_record[c] + k / 4`: the records are colour after
+/// colour, the solve order.
 #[derive(Debug, Default)]
 pub(crate) struct Colouring {
     /// Per world body, a bit per colour: set when a constraint of that
     /// colour holds the body (dynamic bodies only).
     used: Vec<u32>,
-    /// Per colour, its items.
-    pub colours: Vec<Vec<usize>>,
-    /// Items that found no free colour.
-    pub overflow: Vec<usize>,
+    /// Per added constraint, its colour (`COLOURS` for the overflow) and
+    /// its position in it.
+    placed: Vec<(u8, u32)>,
+    /// Constraints per colour, then the overflow's.
+    counts: [usize; COLOURS + 1],
+    /// First record of each colour, and the record count at the end (set
+    /// by [`Colouring::finish`]).
+    first_record: [usize; COLOURS + 1],
 }
 
 /// Colours `0..DYNAMIC_COLOURS` as bits.
@@ -60,17 +78,15 @@ impl Colouring {
     pub(crate) fn clear(&mut self, body_count: usize) {
         self.used.clear();
         self.used.resize(body_count, 0);
-        self.colours.resize_with(COLOURS, Vec::new);
-        for list in &mut self.colours {
-            list.clear();
-        }
-        self.overflow.clear();
+        self.placed.clear();
+        self.counts = [0; COLOURS + 1];
+        self.first_record = [0; COLOURS + 1];
     }
 
-    /// Adds `item`, a constraint on the dynamic bodies among `a` and `b`
-    /// (`None` for a static or kinematic body; at least one is dynamic),
-    /// to the first colour free of both, or to the overflow.
-    pub(crate) fn add(&mut self, item: usize, a: Option<BodyId>, b: Option<BodyId>) {
+    /// Adds the next constraint, on the dynamic bodies among `a` and `b`
+    /// (`None` for a static or kinematic body; at least one is dynamic), to
+    /// the first colour free of both, or to the overflow.
+    pub(crate) fn add(&mut self, a: Option<BodyId>, b: Option<BodyId>) {
         let colour = match (a, b) {
             (Some(a), Some(b)) => {
                 // The lowest colour whose bit is clear in both bodies.
@@ -84,20 +100,62 @@ impl Colouring {
             }
             (None, None) => Some(COLOURS - 1),
         };
-        match colour {
+        let colour = match colour {
             Some(c) => {
                 for body in [a, b].into_iter().flatten() {
                     self.used[body] |= 1 << c;
                 }
-                self.colours[c].push(item);
+                c
             }
-            None => self.overflow.push(item),
+            None => COLOURS,
+        };
+        let position = self.counts[colour];
+        self.counts[colour] += 1;
+        self.placed.push((colour as u8, position as u32));
+    }
+
+    /// Lays the colours out in records once every constraint was added;
+    /// returns the number of records.
+    pub(crate) fn finish(&mut self) -> usize {
+        let mut record = 0;
+        for c in 0..COLOURS {
+            self.first_record[c] = record;
+            record += self.counts[c].div_ceil(4);
+        }
+        self.first_record[COLOURS] = record;
+        record
+    }
+
+    /// Where the `i`-th added constraint goes (after [`Colouring::finish`]).
+    #[inline]
+    pub(crate) fn slot(&self, i: usize) -> Slot {
+        let (colour, position) = self.placed[i];
+        let (colour, position) = (usize::from(colour), position as usize);
+        if colour == COLOURS {
+            Slot::Overflow(position)
+        } else {
+            Slot::Lane {
+                record: self.first_record[colour] + position / 4,
+                lane: position % 4,
+            }
         }
     }
 
-    /// The colours' items, colour after colour (the solve order).
-    pub(crate) fn in_order(&self) -> impl Iterator<Item = &[usize]> {
-        self.colours.iter().map(Vec::as_slice)
+    /// The number of constraints in the overflow.
+    #[cfg(test)]
+    pub(crate) fn overflow(&self) -> usize {
+        self.counts[COLOURS]
+    }
+
+    /// The padding lanes, `(record, lane)`: the lanes after the last
+    /// constraint of each colour in its last record.
+    pub(crate) fn padding(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        (0..COLOURS).flat_map(move |c| {
+            let used = self.counts[c] % 4;
+            let last = self.first_record[c + 1].wrapping_sub(1);
+            let lanes = if used == 0 { 4..4 } else { used..4 };
+            lanes.map(move |lane| (last, lane))
+        })
     }
 }
 
@@ -105,15 +163,22 @@ impl Colouring {
 mod tests {
     use super::*;
 
-    /// The colour of each item, `None` for the overflow.
-    fn colours_of(c: &Colouring, items: usize) -> Vec<Option<usize>> {
-        (0..items)
-            .map(|item| c.colours.iter().position(|list| list.contains(&item)))
+    /// The colour of each added constraint, `None` for the overflow.
+    fn colours_of(c: &Colouring) -> Vec<Option<usize>> {
+        (0..c.placed.len())
+            .map(|i| match c.slot(i) {
+                Slot::Lane { record, .. } => Some(
+                    (0..COLOURS)
+                        .rfind(|&k| c.first_record[k] <= record && c.counts[k] > 0)
+                        .unwrap(),
+                ),
+                Slot::Overflow(_) => None,
+            })
             .collect()
     }
 
     #[test]
-    fn no_colour_holds_a_dynamic_body_twice() {
+    fn no_record_holds_a_dynamic_body_twice() {
         // A chain of 10 bodies (pairs i, i+1) and every body on the ground.
         let mut c = Colouring::default();
         c.clear(10);
@@ -124,22 +189,38 @@ mod tests {
         for i in 0..10 {
             pairs.push((Some(i), None));
         }
-        for (item, &(a, b)) in pairs.iter().enumerate() {
-            c.add(item, a, b);
+        for &(a, b) in &pairs {
+            c.add(a, b);
         }
-        assert!(c.overflow.is_empty());
-        for list in &c.colours {
-            let mut seen = Vec::new();
-            for &item in list {
-                for body in [pairs[item].0, pairs[item].1].into_iter().flatten() {
-                    assert!(!seen.contains(&body), "body {body} twice in a colour");
-                    seen.push(body);
-                }
+        let records = c.finish();
+        assert_eq!(c.overflow(), 0);
+        let mut lanes: Vec<Vec<(usize, usize)>> = vec![Vec::new(); records];
+        for (i, &(a, b)) in pairs.iter().enumerate() {
+            let Slot::Lane { record, lane } = c.slot(i) else {
+                panic!("overflow")
+            };
+            for body in [a, b].into_iter().flatten() {
+                assert!(
+                    lanes[record].iter().all(|&(_, other)| other != body),
+                    "body {body} twice in record {record}"
+                );
+                lanes[record].push((lane, body));
             }
         }
+        // Every lane is used once; the others are padding.
+        let mut taken: Vec<(usize, usize)> = (0..pairs.len())
+            .map(|i| match c.slot(i) {
+                Slot::Lane { record, lane } => (record, lane),
+                Slot::Overflow(_) => unreachable!(),
+            })
+            .chain(c.padding())
+            .collect();
+        taken.sort();
+        taken.dedup();
+        assert_eq!(taken.len(), 4 * records);
         // The chain alternates between colours 0 and 1; the ground
         // contacts take the last colour, free of the chain's.
-        let colours = colours_of(&c, pairs.len());
+        let colours = colours_of(&c);
         assert!(colours[..9].iter().all(|&k| k == Some(0) || k == Some(1)));
         assert!(colours[9..].iter().all(|&k| k == Some(COLOURS - 1)));
     }
@@ -152,13 +233,19 @@ mod tests {
         let n = DYNAMIC_COLOURS + 2;
         c.clear(n + 1);
         for i in 0..n {
-            c.add(i, Some(0), Some(i + 1));
+            c.add(Some(0), Some(i + 1));
         }
-        assert_eq!(c.overflow, [n - 2, n - 1]);
+        c.finish();
+        assert_eq!(c.overflow(), 2);
+        assert_eq!(
+            (c.slot(n - 2), c.slot(n - 1)),
+            (Slot::Overflow(0), Slot::Overflow(1))
+        );
         // Clearing starts afresh without the old bits.
         c.clear(n + 1);
-        c.add(0, Some(0), Some(1));
-        assert_eq!(c.colours[0], [0]);
-        assert!(c.overflow.is_empty());
+        c.add(Some(0), Some(1));
+        assert_eq!(c.finish(), 1);
+        assert_eq!(c.slot(0), Slot::Lane { record: 0, lane: 0 });
+        assert_eq!(c.overflow(), 0);
     }
 }

@@ -64,7 +64,7 @@ use crate::integrators::Stats;
 use crate::world_core::{WorldCore, check_energy_value};
 use bodies::{BodySim, SolverBody, solver_body, solver_index};
 use broad_phase::BroadPhase;
-use colouring::Colouring;
+use colouring::{Colouring, Slot};
 use contact_solver::{ContactConstraint, PairMass};
 use contacts::{ContactSet, Side, TouchChange};
 use geometry::Collider;
@@ -90,6 +90,9 @@ pub struct SoftStep {
     /// The overflow constraints (no free colour), solved one at a time.
     constraints: Vec<ContactConstraint>,
     colouring: Colouring,
+    /// The contact of each constraint, in contact order (the colouring's
+    /// order).
+    constrained: Vec<usize>,
     islands: islands::Islands,
     stats: Stats,
     // Scratch reused by every step.
@@ -114,6 +117,7 @@ impl SoftStep {
             wide_extra: Vec::new(),
             constraints: Vec::new(),
             colouring: Colouring::default(),
+            constrained: Vec::new(),
             islands: islands::Islands::default(),
             stats: Stats::default(),
             wrenches: Vec::new(),
@@ -337,8 +341,7 @@ impl SoftStep {
         core.profiler.stop(Phase::Restitution, started);
 
         let started = core.profiler.start();
-        contact_solver::store_impulses(&self.constraints, &mut self.contacts.contacts);
-        wide_solver::store_impulses(&self.wide, &self.wide_extra, &mut self.contacts.contacts);
+        self.store_impulses();
         let step = self.stats.steps;
         self.write_states(core, t0, step)?;
         core.profiler.stop(Phase::Store, started);
@@ -504,8 +507,8 @@ impl SoftStep {
         let static_soft = Softness::new(2.0 * hertz, settings.contact_damping_ratio, h);
         let warm = if settings.warm_starting { 1.0 } else { 0.0 };
         self.colouring.clear(self.sims.len());
+        self.constrained.clear();
         let mut points = 0;
-        let mut touching = 0;
         for (index, c) in self.contacts.contacts.iter().enumerate() {
             if c.count == 0 {
                 continue;
@@ -516,12 +519,21 @@ impl SoftStep {
             }
             let dynamic = |id: BodyId, s: &BodySim| (s.kind == BodyKind::Dynamic).then_some(id);
             self.colouring
-                .add(index, dynamic(c.body_a, sa), dynamic(c.body_b, sb));
+                .add(dynamic(c.body_a, sa), dynamic(c.body_b, sb));
+            self.constrained.push(index);
             points += c.count;
-            touching += 1;
         }
+        let touching = self.constrained.len();
+        let records = self.colouring.finish();
+        // The records of the last step are overwritten lane by lane, every
+        // field; only new ones are initialised first.
+        self.wide.resize(records, WideConstraint::default());
+        self.wide_extra.resize(records, WideExtra::default());
+        self.constraints.clear();
         let (sims, contacts, bodies) = (&self.sims, &self.contacts.contacts, &self.bodies);
-        let constraint = |index: usize| {
+        // In contact order, so that the contacts are read in memory order;
+        // each colour's records are written in order too.
+        for (i, &index) in self.constrained.iter().enumerate() {
             let c = &contacts[index];
             let (sa, sb) = (&sims[c.body_a], &sims[c.body_b]);
             let mass = PairMass {
@@ -537,32 +549,43 @@ impl SoftStep {
             } else {
                 soft
             };
-            contact_solver::prepare(c, index, mass, softness, bodies, warm)
-        };
-        self.constraints.clear();
-        self.constraints
-            .extend(self.colouring.overflow.iter().map(|&i| constraint(i)));
-        // Every record starts as four padding lanes; each constraint is
-        // written into its lane in place.
-        let records: usize = self.colouring.in_order().map(|c| c.len().div_ceil(4)).sum();
-        self.wide.clear();
-        self.wide.resize(records, WideConstraint::default());
-        self.wide_extra.clear();
-        self.wide_extra.resize(records, WideExtra::default());
-        let mut record = 0;
-        for colour in self.colouring.in_order() {
-            for four in colour.chunks(4) {
-                let lanes = (&mut self.wide[record], &mut self.wide_extra[record]);
-                for (l, &i) in four.iter().enumerate() {
-                    wide_solver::set_lane((&mut *lanes.0, &mut *lanes.1), l, &constraint(i));
-                }
-                record += 1;
+            let constraint = contact_solver::prepare(c, index, mass, softness, bodies, warm);
+            match self.colouring.slot(i) {
+                Slot::Lane { record, lane } => wide_solver::set_lane(
+                    (&mut self.wide[record], &mut self.wide_extra[record]),
+                    lane,
+                    &constraint,
+                ),
+                // Overflow positions come in order.
+                Slot::Overflow(_) => self.constraints.push(constraint),
             }
+        }
+        for (record, lane) in self.colouring.padding() {
+            wide_solver::set_padding_lane(
+                (&mut self.wide[record], &mut self.wide_extra[record]),
+                lane,
+            );
         }
         let profile = &mut core.profiler.profile;
         profile.contacts += self.contacts.contacts.len() as u64;
         profile.touching += touching as u64;
         profile.points += points as u64;
+    }
+
+    /// Stage 6 (first part): the impulses back into the contacts, for the
+    /// next step's warm start and for the reports, in contact order.
+    fn store_impulses(&mut self) {
+        contact_solver::store_impulses(&self.constraints, &mut self.contacts.contacts);
+        for (i, &index) in self.constrained.iter().enumerate() {
+            if let Slot::Lane { record, lane } = self.colouring.slot(i) {
+                let contact = &mut self.contacts.contacts[index];
+                wide_solver::store_lane(
+                    (&self.wide[record], &self.wide_extra[record]),
+                    lane,
+                    contact,
+                );
+            }
+        }
     }
 
     /// v += h (g + F/m), ω += h τ/I for every awake dynamic body; the force

@@ -21,7 +21,7 @@
 //! and change nothing.
 
 use super::bodies::SolverBody;
-use super::contact_solver::ContactConstraint;
+use super::contact_solver::{ConstraintPoint, ContactConstraint};
 use super::contacts::Contact;
 use super::lanes::F64x4;
 
@@ -69,36 +69,20 @@ pub(crate) struct WideConstraint {
 /// What restitution and the store read of four constraints.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct WideExtra {
-    /// Contact index of each lane; `None` for a padding lane.
-    pub contact: [Option<u32>; 4],
-    /// Points of each lane's contact.
-    pub count: [u8; 4],
     pub restitution: F64x4,
     /// Normal velocity of each point before the solve (m/s).
     pub normal_velocity: [F64x4; 2],
 }
 
-/// Packs up to four constraints of one colour (no dynamic body twice) into
-/// lanes; missing lanes are padding.
-#[cfg(test)]
-pub(crate) fn pack(lanes: &[ContactConstraint]) -> (WideConstraint, WideExtra) {
-    let mut w = WideConstraint::default();
-    let mut e = WideExtra::default();
-    for (l, c) in lanes.iter().enumerate() {
-        set_lane((&mut w, &mut e), l, c);
-    }
-    (w, e)
-}
-
-/// Writes constraint `c` into lane `l` of `(w, e)` (whose lanes start as
-/// padding: [`Default`]).
+/// Writes constraint `c` into lane `l` of `(w, e)`, every field of the lane
+/// (a missing second point as zeros).
 #[inline(always)]
 pub(crate) fn set_lane(
     (w, e): (&mut WideConstraint, &mut WideExtra),
     l: usize,
     c: &ContactConstraint,
 ) {
-    let index = |i: usize| u32::try_from(i).expect("fewer than 2³² bodies and contacts");
+    let index = |i: usize| u32::try_from(i).expect("fewer than 2³² bodies");
     w.a[l] = index(c.a);
     w.b[l] = index(c.b);
     w.normal_x.set_lane(l, c.normal.x);
@@ -111,10 +95,13 @@ pub(crate) fn set_lane(
     w.bias_rate.set_lane(l, c.softness.bias_rate);
     w.mass_scale.set_lane(l, c.softness.mass_scale);
     w.impulse_scale.set_lane(l, c.softness.impulse_scale);
-    e.contact[l] = Some(index(c.contact));
-    e.count[l] = c.count as u8;
     e.restitution.set_lane(l, c.restitution);
-    for (k, cp) in c.points[..c.count].iter().enumerate() {
+    for k in 0..2 {
+        let cp = if k < c.count {
+            c.points[k]
+        } else {
+            ConstraintPoint::default()
+        };
         let p = &mut w.points[k];
         p.ra_x.set_lane(l, cp.ra.x);
         p.ra_y.set_lane(l, cp.ra.y);
@@ -128,6 +115,27 @@ pub(crate) fn set_lane(
         p.total_normal_impulse.set_lane(l, cp.total_normal_impulse);
         e.normal_velocity[k].set_lane(l, cp.normal_velocity);
     }
+}
+
+/// Makes lane `l` of `(w, e)` padding: between the static dummy and itself,
+/// zero masses and zero points, so it gives zero impulses.
+pub(crate) fn set_padding_lane((w, e): (&mut WideConstraint, &mut WideExtra), l: usize) {
+    let padding = ContactConstraint {
+        a: 0,
+        b: 0,
+        contact: 0,
+        normal: nalgebra::Vector2::zeros(),
+        friction: 0.0,
+        restitution: 0.0,
+        inv_mass_a: 0.0,
+        inv_inertia_a: 0.0,
+        inv_mass_b: 0.0,
+        inv_inertia_b: 0.0,
+        softness: super::Softness::RIGID,
+        count: 0,
+        points: [ConstraintPoint::default(); 2],
+    };
+    set_lane((w, e), l, &padding);
 }
 
 /// Four bodies' velocities and motion since the step began.
@@ -347,34 +355,22 @@ pub(crate) fn restitution(
     }
 }
 
-/// Copies the impulses of every lane back into its contact.
-#[inline(never)]
-pub(crate) fn store_impulses(
-    constraints: &[WideConstraint],
-    extras: &[WideExtra],
-    contacts: &mut [Contact],
-) {
-    for (c, e) in constraints.iter().zip(extras) {
-        for l in 0..4 {
-            let Some(index) = e.contact[l] else {
-                continue;
-            };
-            let contact = &mut contacts[index as usize];
-            let count = usize::from(e.count[l]);
-            for (k, p) in contact.points[..count].iter_mut().enumerate() {
-                let q = &c.points[k];
-                p.normal_impulse = q.normal_impulse.lane(l);
-                p.tangent_impulse = q.tangent_impulse.lane(l);
-                p.total_normal_impulse = q.total_normal_impulse.lane(l);
-                p.normal_velocity = e.normal_velocity[k].lane(l);
-            }
-        }
+/// Copies the impulses of lane `l` of `(w, e)` back into its contact.
+#[inline]
+pub(crate) fn store_lane((w, e): (&WideConstraint, &WideExtra), l: usize, contact: &mut Contact) {
+    let count = contact.count;
+    for (k, p) in contact.points[..count].iter_mut().enumerate() {
+        let q = &w.points[k];
+        p.normal_impulse = q.normal_impulse.lane(l);
+        p.tangent_impulse = q.tangent_impulse.lane(l);
+        p.total_normal_impulse = q.total_normal_impulse.lane(l);
+        p.normal_velocity = e.normal_velocity[k].lane(l);
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::super::colouring::Colouring;
+    use super::super::colouring::{Colouring, Slot};
     use super::super::contact_solver::{self, ConstraintPoint};
     use super::super::softness::Softness;
     use super::*;
@@ -458,27 +454,30 @@ mod tests {
         let (bodies, constraints) = scene();
         let mut colouring = Colouring::default();
         colouring.clear(13);
-        for (i, c) in constraints.iter().enumerate() {
+        for c in &constraints {
             let dynamic = |k: usize| (k != 0).then_some(k);
-            colouring.add(i, dynamic(c.a), dynamic(c.b));
+            colouring.add(dynamic(c.a), dynamic(c.b));
         }
-        assert!(colouring.overflow.is_empty());
-        // The scalar reference visits the constraints colour after colour,
-        // the order the lanes solve them in.
-        let mut scalar: Vec<ContactConstraint> = colouring
-            .in_order()
-            .flatten()
-            .map(|&i| constraints[i])
-            .collect();
-        let (mut wide, mut extra) = (Vec::new(), Vec::new());
-        for colour in colouring.in_order() {
-            for four in colour.chunks(4) {
-                let lanes: Vec<_> = four.iter().map(|&i| constraints[i]).collect();
-                let (w, e) = pack(&lanes);
-                wide.push(w);
-                extra.push(e);
-            }
+        let records = colouring.finish();
+        assert_eq!(colouring.overflow(), 0);
+        let mut wide = vec![WideConstraint::default(); records];
+        let mut extra = vec![WideExtra::default(); records];
+        let mut order = vec![(0, 0); constraints.len()];
+        for (i, c) in constraints.iter().enumerate() {
+            let Slot::Lane { record, lane } = colouring.slot(i) else {
+                unreachable!("no overflow")
+            };
+            set_lane((&mut wide[record], &mut extra[record]), lane, c);
+            order[i] = (record, lane);
         }
+        for (record, lane) in colouring.padding() {
+            set_padding_lane((&mut wide[record], &mut extra[record]), lane);
+        }
+        // The scalar reference visits the constraints in the order the
+        // lanes solve them in: record after record, lane after lane.
+        let mut by_lane: Vec<usize> = (0..constraints.len()).collect();
+        by_lane.sort_by_key(|&i| order[i]);
+        let mut scalar: Vec<ContactConstraint> = by_lane.iter().map(|&i| constraints[i]).collect();
         let (mut scalar_bodies, mut wide_bodies) = (bodies.clone(), bodies);
         let (inv_h, push_out) = (240.0, 3.0);
         for _ in 0..3 {
@@ -493,18 +492,17 @@ mod tests {
         restitution(&mut wide, &extra, &mut wide_bodies, 1.0);
         // Same operations in the same order on the same data: equal bits.
         assert_eq!(scalar_bodies, wide_bodies);
-        let mut contacts: Vec<Contact> = Vec::new();
         let mut set = super::super::contacts::ContactSet::default();
         for (i, c) in constraints.iter().enumerate() {
             set.create((2 * i, 2 * i + 1), (c.a, c.b), 0.6, 0.0);
+            set.contacts[i].count = c.count;
         }
-        contacts.append(&mut set.contacts);
-        for c in &mut contacts {
-            c.count = 2;
-        }
-        let mut reference = contacts.clone();
+        let mut reference = set.contacts.clone();
         contact_solver::store_impulses(&scalar, &mut reference);
-        store_impulses(&wide, &extra, &mut contacts);
+        let mut contacts = set.contacts;
+        for (i, &(record, lane)) in order.iter().enumerate() {
+            store_lane((&wide[record], &extra[record]), lane, &mut contacts[i]);
+        }
         assert_eq!(reference, contacts);
         // Restitution acted somewhere (the test covers it).
         assert!(
