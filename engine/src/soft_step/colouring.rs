@@ -25,6 +25,7 @@
 //! one at a time by the scalar solver ([`super::contact_solver`]) before
 //! the colours.
 
+use super::lanes::LANES;
 use crate::body::BodyId;
 
 /// Number of colours (Box2D's `B2_GRAPH_COLOR_COUNT − 1`; its last colour
@@ -120,7 +121,7 @@ impl Colouring {
         let mut record = 0;
         for c in 0..COLOURS {
             self.first_record[c] = record;
-            record += self.counts[c].div_ceil(4);
+            record += self.counts[c].div_ceil(LANES);
         }
         self.first_record[COLOURS] = record;
         record
@@ -135,8 +136,8 @@ impl Colouring {
             Slot::Overflow(position)
         } else {
             Slot::Lane {
-                record: self.first_record[colour] + position / 4,
-                lane: position % 4,
+                record: self.first_record[colour] + position / LANES,
+                lane: position % LANES,
             }
         }
     }
@@ -151,9 +152,9 @@ impl Colouring {
     /// constraint of each colour in its last record.
     pub(crate) fn padding(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
         (0..COLOURS).flat_map(move |c| {
-            let used = self.counts[c] % 4;
+            let used = self.counts[c] % LANES;
             let last = self.first_record[c + 1].wrapping_sub(1);
-            let lanes = if used == 0 { 4..4 } else { used..4 };
+            let lanes = if used == 0 { LANES..LANES } else { used..LANES };
             lanes.map(move |lane| (last, lane))
         })
     }
@@ -217,7 +218,7 @@ mod tests {
             .collect();
         taken.sort();
         taken.dedup();
-        assert_eq!(taken.len(), 4 * records);
+        assert_eq!(taken.len(), LANES * records);
         // The chain alternates between colours 0 and 1; the ground
         // contacts take the last colour, free of the chain's.
         let colours = colours_of(&c);

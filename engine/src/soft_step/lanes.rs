@@ -18,6 +18,9 @@
 use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
 use wide::f64x4;
 
+/// Number of lanes: constraints solved at once.
+pub(crate) const LANES: usize = 4;
+
 /// Four f64 lanes (the unit is each use's).
 #[derive(Clone, Copy, PartialEq, Default)]
 pub(crate) struct F64x4(f64x4);
@@ -45,7 +48,7 @@ impl F64x4 {
 
     /// The lanes of `a`.
     #[inline(always)]
-    pub fn new(a: [f64; 4]) -> Self {
+    pub fn new(a: [f64; LANES]) -> Self {
         F64x4(f64x4::new(a))
     }
 

@@ -23,7 +23,7 @@
 use super::bodies::SolverBody;
 use super::contact_solver::{ConstraintPoint, ContactConstraint};
 use super::contacts::Contact;
-use super::lanes::F64x4;
+use super::lanes::{F64x4, LANES};
 
 /// One point of four constraints.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -49,8 +49,8 @@ pub(crate) struct WidePoint {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct WideConstraint {
     /// Solver indices of the bodies (0: the static dummy).
-    pub a: [u32; 4],
-    pub b: [u32; 4],
+    pub a: [u32; LANES],
+    pub b: [u32; LANES],
     /// Unit normal from A to B.
     pub normal_x: F64x4,
     pub normal_y: F64x4,
@@ -167,9 +167,9 @@ impl WideBody {
 
 /// Reads the bodies of the four lanes.
 #[inline(always)]
-fn gather(bodies: &[SolverBody], index: &[u32; 4]) -> WideBody {
+fn gather(bodies: &[SolverBody], index: &[u32; LANES]) -> WideBody {
     let b = index.map(|i| &bodies[i as usize]);
-    let lane = |f: fn(&SolverBody) -> f64| F64x4::new([f(b[0]), f(b[1]), f(b[2]), f(b[3])]);
+    let lane = |f: fn(&SolverBody) -> f64| F64x4::new(b.map(f));
     WideBody {
         vx: lane(|b| b.v.x),
         vy: lane(|b| b.v.y),
@@ -185,7 +185,7 @@ fn gather(bodies: &[SolverBody], index: &[u32; 4]) -> WideBody {
 /// is static or kinematic, whose velocity no lane changed, so the order of
 /// the writes does not matter.
 #[inline(always)]
-fn scatter(bodies: &mut [SolverBody], index: &[u32; 4], w: &WideBody) {
+fn scatter(bodies: &mut [SolverBody], index: &[u32; LANES], w: &WideBody) {
     for (l, &i) in index.iter().enumerate() {
         let b = &mut bodies[i as usize];
         b.v.x = w.vx.lane(l);
