@@ -138,17 +138,12 @@ pub(crate) fn set_padding_lane((w, e): (&mut WideConstraint, &mut WideExtra), l:
     set_lane((w, e), l, &padding);
 }
 
-/// Four bodies' velocities and motion since the step began.
+/// Four bodies' velocities: what the passes change.
 #[derive(Debug, Clone, Copy)]
 struct WideBody {
     vx: F64x4,
     vy: F64x4,
     w: F64x4,
-    dpx: F64x4,
-    dpy: F64x4,
-    /// cos and sin of the rotation since the step began.
-    c: F64x4,
-    s: F64x4,
 }
 
 impl WideBody {
@@ -157,15 +152,9 @@ impl WideBody {
     fn point_velocity(&self, rx: F64x4, ry: F64x4) -> (F64x4, F64x4) {
         (self.vx + -self.w * ry, self.vy + self.w * rx)
     }
-
-    /// `(rx, ry)` turned by the rotation since the step began.
-    #[inline(always)]
-    fn rotate(&self, rx: F64x4, ry: F64x4) -> (F64x4, F64x4) {
-        (self.c * rx - self.s * ry, self.s * rx + self.c * ry)
-    }
 }
 
-/// Reads the bodies of the four lanes.
+/// Reads the velocities of the four lanes' bodies.
 #[inline(always)]
 fn gather(bodies: &[SolverBody], index: &[u32; LANES]) -> WideBody {
     let b = index.map(|i| &bodies[i as usize]);
@@ -174,10 +163,6 @@ fn gather(bodies: &[SolverBody], index: &[u32; LANES]) -> WideBody {
         vx: lane(|b| b.v.x),
         vy: lane(|b| b.v.y),
         w: lane(|b| b.w),
-        dpx: lane(|b| b.dp.x),
-        dpy: lane(|b| b.dp.y),
-        c: lane(|b| b.dq.0),
-        s: lane(|b| b.dq.1),
     }
 }
 
@@ -194,20 +179,67 @@ fn scatter(bodies: &mut [SolverBody], index: &[u32; LANES], w: &WideBody) {
     }
 }
 
+/// The current separation of both points of the four lanes, from the
+/// bodies' motion since the step began: s = s0 + n·(Δp_B + R(Δθ_B) r_B −
+/// Δp_A − R(Δθ_A) r_A) (the passes change velocities only, so this is
+/// computed once per pass, before the impulses).
+#[inline(always)]
+fn separations(bodies: &[SolverBody], c: &WideConstraint) -> [F64x4; 2] {
+    let (a, b) = (
+        c.a.map(|i| &bodies[i as usize]),
+        c.b.map(|i| &bodies[i as usize]),
+    );
+    let lane = |s: &[&SolverBody; LANES], f: fn(&SolverBody) -> f64| F64x4::new(s.map(f));
+    let dpx = lane(&b, |b| b.dp.x) - lane(&a, |b| b.dp.x);
+    let dpy = lane(&b, |b| b.dp.y) - lane(&a, |b| b.dp.y);
+    let (ca, sa) = (lane(&a, |b| b.dq.0), lane(&a, |b| b.dq.1));
+    let (cb, sb) = (lane(&b, |b| b.dq.0), lane(&b, |b| b.dq.1));
+    let (nx, ny) = (c.normal_x, c.normal_y);
+    let point = |p: &WidePoint| {
+        let (rbx, rby) = (cb * p.rb_x - sb * p.rb_y, sb * p.rb_x + cb * p.rb_y);
+        let (rax, ray) = (ca * p.ra_x - sa * p.ra_y, sa * p.ra_x + ca * p.ra_y);
+        let dsx = dpx + rbx - rax;
+        let dsy = dpy + rby - ray;
+        p.base_separation + (dsx * nx + dsy * ny)
+    };
+    [point(&c.points[0]), point(&c.points[1])]
+}
+
+/// The inverse masses of four constraints' bodies.
+#[derive(Clone, Copy)]
+struct Masses {
+    a: F64x4,
+    ia: F64x4,
+    b: F64x4,
+    ib: F64x4,
+}
+
+impl Masses {
+    #[inline(always)]
+    fn of(c: &WideConstraint) -> Self {
+        Masses {
+            a: c.inv_mass_a,
+            ia: c.inv_inertia_a,
+            b: c.inv_mass_b,
+            ib: c.inv_inertia_b,
+        }
+    }
+}
+
 /// Applies impulse `(px, py)` at anchors `ra`, `rb`: −P on A, +P on B.
 #[inline(always)]
 fn apply(
-    c: &WideConstraint,
+    m: &Masses,
     (a, b): (&mut WideBody, &mut WideBody),
     (ra_x, ra_y, rb_x, rb_y): (F64x4, F64x4, F64x4, F64x4),
     (px, py): (F64x4, F64x4),
 ) {
-    a.vx -= c.inv_mass_a * px;
-    a.vy -= c.inv_mass_a * py;
-    a.w -= c.inv_inertia_a * (ra_x * py - ra_y * px);
-    b.vx += c.inv_mass_b * px;
-    b.vy += c.inv_mass_b * py;
-    b.w += c.inv_inertia_b * (rb_x * py - rb_y * px);
+    a.vx -= m.a * px;
+    a.vy -= m.a * py;
+    a.w -= m.ia * (ra_x * py - ra_y * px);
+    b.vx += m.b * px;
+    b.vy += m.b * py;
+    b.w += m.ib * (rb_x * py - rb_y * px);
 }
 
 /// Applies every constraint's accumulated impulses.
@@ -215,14 +247,15 @@ fn apply(
 pub(crate) fn warm_start(constraints: &mut [WideConstraint], bodies: &mut [SolverBody]) {
     for c in constraints.iter_mut() {
         let (mut a, mut b) = (gather(bodies, &c.a), gather(bodies, &c.b));
-        let (tx, ty) = (c.normal_y, -c.normal_x);
-        for k in 0..2 {
-            let p = c.points[k];
-            let px = p.normal_impulse * c.normal_x + p.tangent_impulse * tx;
-            let py = p.normal_impulse * c.normal_y + p.tangent_impulse * ty;
-            c.points[k].total_normal_impulse += p.normal_impulse;
+        let m = Masses::of(c);
+        let (nx, ny) = (c.normal_x, c.normal_y);
+        let (tx, ty) = (ny, -nx);
+        for p in &mut c.points {
+            let px = p.normal_impulse * nx + p.tangent_impulse * tx;
+            let py = p.normal_impulse * ny + p.tangent_impulse * ty;
+            p.total_normal_impulse += p.normal_impulse;
             let r = (p.ra_x, p.ra_y, p.rb_x, p.rb_y);
-            apply(c, (&mut a, &mut b), r, (px, py));
+            apply(&m, (&mut a, &mut b), r, (px, py));
         }
         scatter(bodies, &c.a, &a);
         scatter(bodies, &c.b, &b);
@@ -258,23 +291,16 @@ fn pass<const BIAS: bool>(
     let min_bias = F64x4::splat(-push_out_speed);
     let one = F64x4::splat(1.0);
     for c in constraints.iter_mut() {
+        let separation = separations(bodies, c);
         let (mut a, mut b) = (gather(bodies, &c.a), gather(bodies, &c.b));
+        let m = Masses::of(c);
         let (nx, ny) = (c.normal_x, c.normal_y);
-        let dpx = b.dpx - a.dpx;
-        let dpy = b.dpy - a.dpy;
         let (bias_rate, mass_scale, impulse_scale) = if BIAS {
             (c.mass_scale * c.bias_rate, c.mass_scale, c.impulse_scale)
         } else {
             (F64x4::ZERO, one, F64x4::ZERO)
         };
-        for k in 0..2 {
-            let p = c.points[k];
-            // Current separation from the motion since the step began.
-            let (rbx, rby) = b.rotate(p.rb_x, p.rb_y);
-            let (rax, ray) = a.rotate(p.ra_x, p.ra_y);
-            let dsx = dpx + rbx - rax;
-            let dsy = dpy + rby - ray;
-            let s = p.base_separation + (dsx * nx + dsy * ny);
+        for (p, s) in c.points.iter_mut().zip(separation) {
             let speculative = s.gt(F64x4::ZERO);
             let bias = speculative.select(s * inv_h, (bias_rate * s).max(min_bias));
             let point_mass_scale = speculative.select(one, mass_scale);
@@ -286,26 +312,25 @@ fn pass<const BIAS: bool>(
                 - point_impulse_scale * p.normal_impulse;
             let accumulated = (p.normal_impulse + impulse).max(F64x4::ZERO);
             let impulse = accumulated - p.normal_impulse;
-            let q = &mut c.points[k];
-            q.normal_impulse = accumulated;
-            q.total_normal_impulse += impulse;
+            p.normal_impulse = accumulated;
+            p.total_normal_impulse += impulse;
             let r = (p.ra_x, p.ra_y, p.rb_x, p.rb_y);
-            apply(c, (&mut a, &mut b), r, (impulse * nx, impulse * ny));
+            apply(&m, (&mut a, &mut b), r, (impulse * nx, impulse * ny));
         }
         if !BIAS {
+            let friction = c.friction;
             let (tx, ty) = (ny, -nx);
-            for k in 0..2 {
-                let p = c.points[k];
+            for p in &mut c.points {
                 let (vax, vay) = a.point_velocity(p.ra_x, p.ra_y);
                 let (vbx, vby) = b.point_velocity(p.rb_x, p.rb_y);
                 let vt = (vbx - vax) * tx + (vby - vay) * ty;
-                let max_friction = c.friction * p.normal_impulse;
+                let max_friction = friction * p.normal_impulse;
                 let accumulated =
                     (p.tangent_impulse - p.tangent_mass * vt).clamp(-max_friction, max_friction);
                 let impulse = accumulated - p.tangent_impulse;
-                c.points[k].tangent_impulse = accumulated;
+                p.tangent_impulse = accumulated;
                 let r = (p.ra_x, p.ra_y, p.rb_x, p.rb_y);
-                apply(c, (&mut a, &mut b), r, (impulse * tx, impulse * ty));
+                apply(&m, (&mut a, &mut b), r, (impulse * tx, impulse * ty));
             }
         }
         scatter(bodies, &c.a, &a);
@@ -327,10 +352,9 @@ pub(crate) fn restitution(
             continue;
         }
         let (mut a, mut b) = (gather(bodies, &c.a), gather(bodies, &c.b));
+        let m = Masses::of(c);
         let (nx, ny) = (c.normal_x, c.normal_y);
-        for k in 0..2 {
-            let p = c.points[k];
-            let relative = e.normal_velocity[k];
+        for (p, &relative) in c.points.iter_mut().zip(&e.normal_velocity) {
             // No restitution, slow approach, or no push during the solve:
             // no bounce.
             let skip = relative
@@ -343,12 +367,11 @@ pub(crate) fn restitution(
             let impulse = -p.normal_mass * (vn + e.restitution * relative);
             let accumulated = (p.normal_impulse + impulse).max(F64x4::ZERO);
             let impulse = skip.select(F64x4::ZERO, accumulated - p.normal_impulse);
-            let q = &mut c.points[k];
-            q.normal_impulse = skip.select(p.normal_impulse, accumulated);
-            q.total_normal_impulse =
+            p.normal_impulse = skip.select(p.normal_impulse, accumulated);
+            p.total_normal_impulse =
                 skip.select(p.total_normal_impulse, p.total_normal_impulse + impulse);
             let r = (p.ra_x, p.ra_y, p.rb_x, p.rb_y);
-            apply(c, (&mut a, &mut b), r, (impulse * nx, impulse * ny));
+            apply(&m, (&mut a, &mut b), r, (impulse * nx, impulse * ny));
         }
         scatter(bodies, &c.a, &a);
         scatter(bodies, &c.b, &b);
