@@ -2,9 +2,12 @@
 //! ([`super::wide_solver`]), which works on four constraints at once.
 //!
 //! [`F64x4`] wraps the `wide` crate's `f64x4` (packed SSE2 instructions on
-//! the x86-64 baseline, two lanes per instruction; one AVX instruction when
-//! the build enables AVX), with the few operations the solver uses. Each
-//! operation is, in every lane, exactly the IEEE operation the scalar
+//! the x86-64 baseline, two lanes per instruction), with the few
+//! operations the solver uses. It is the layout of the solver's records in
+//! memory and the arithmetic of every CPU; [`Lanes`] is that arithmetic as
+//! a trait, so that the passes also compile for AVX registers
+//! ([`super::lanes_avx`]), which the solver uses when the CPU has AVX.
+//! Each operation is, in every lane, exactly the IEEE operation the scalar
 //! solver performs (no fused multiply-add, no reassociation), so a lane
 //! gives the same bits as the scalar code on the same data; what the lanes
 //! buy besides fewer instructions is four independent dependency chains,
@@ -43,9 +46,6 @@ impl std::fmt::Debug for Mask4 {
 }
 
 impl F64x4 {
-    /// Every lane zero.
-    pub const ZERO: F64x4 = F64x4(f64x4::ZERO);
-
     /// The lanes of `a`.
     #[inline(always)]
     pub fn new(a: [f64; LANES]) -> Self {
@@ -83,12 +83,6 @@ impl F64x4 {
         F64x4(self.0.fast_min(other.0))
     }
 
-    /// Each lane clamped to `[lo, hi]` (lo ≤ hi), as `f64::clamp`.
-    #[inline(always)]
-    pub fn clamp(self, lo: Self, hi: Self) -> Self {
-        self.max(lo).min(hi)
-    }
-
     /// Lanes where `self > other`.
     #[inline(always)]
     pub fn gt(self, other: Self) -> Mask4 {
@@ -119,6 +113,107 @@ impl Mask4 {
     #[inline(always)]
     pub fn all(self) -> bool {
         self.0.all()
+    }
+}
+
+/// The lane arithmetic the wide solver's passes are written in, so that
+/// they compile both for [`F64x4`] (SSE2, any x86-64 CPU) and for
+/// [`super::lanes_avx::Avx4`] (AVX, chosen at run time when the CPU has it).
+/// Every operation is lane by lane and is the scalar IEEE operation; both
+/// implementations give the same bits. The records keep [`F64x4`] in
+/// memory; a pass loads its fields into `Self` and stores them back.
+pub(crate) trait Lanes:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+{
+    /// A lane-wise condition.
+    type Mask: Copy;
+    /// Reads `x`.
+    fn load(x: &F64x4) -> Self;
+    /// Writes into `x`.
+    fn store(self, x: &mut F64x4);
+    /// `x` in every lane.
+    fn splat(x: f64) -> Self;
+    /// The lanes of `a`.
+    fn from_array(a: [f64; LANES]) -> Self;
+    /// The lanes as an array.
+    fn to_array(self) -> [f64; LANES];
+    /// `self > other ? self : other` per lane (x86's `maxpd`).
+    fn max(self, other: Self) -> Self;
+    /// `self < other ? self : other` per lane (x86's `minpd`).
+    fn min(self, other: Self) -> Self;
+    /// Lanes where `self > other`.
+    fn gt(self, other: Self) -> Self::Mask;
+    /// Lanes where `self == other`.
+    fn eq(self, other: Self) -> Self::Mask;
+    /// `yes` where `mask` holds, `no` elsewhere.
+    fn select(mask: Self::Mask, yes: Self, no: Self) -> Self;
+    /// Lanes where either condition holds.
+    fn or(a: Self::Mask, b: Self::Mask) -> Self::Mask;
+    /// Whether the condition holds in every lane.
+    fn all(mask: Self::Mask) -> bool;
+
+    /// Each lane clamped to `[lo, hi]` (lo ≤ hi), as `f64::clamp`.
+    #[inline(always)]
+    fn clamp(self, lo: Self, hi: Self) -> Self {
+        self.max(lo).min(hi)
+    }
+}
+
+impl Lanes for F64x4 {
+    type Mask = Mask4;
+    #[inline(always)]
+    fn load(x: &F64x4) -> Self {
+        *x
+    }
+    #[inline(always)]
+    fn store(self, x: &mut F64x4) {
+        *x = self;
+    }
+    #[inline(always)]
+    fn splat(x: f64) -> Self {
+        F64x4::splat(x)
+    }
+    #[inline(always)]
+    fn from_array(a: [f64; LANES]) -> Self {
+        F64x4::new(a)
+    }
+    #[inline(always)]
+    fn to_array(self) -> [f64; LANES] {
+        self.0.to_array()
+    }
+    #[inline(always)]
+    fn max(self, other: Self) -> Self {
+        F64x4::max(self, other)
+    }
+    #[inline(always)]
+    fn min(self, other: Self) -> Self {
+        F64x4::min(self, other)
+    }
+    #[inline(always)]
+    fn gt(self, other: Self) -> Mask4 {
+        F64x4::gt(self, other)
+    }
+    #[inline(always)]
+    fn eq(self, other: Self) -> Mask4 {
+        F64x4::eq(self, other)
+    }
+    #[inline(always)]
+    fn select(mask: Mask4, yes: Self, no: Self) -> Self {
+        mask.select(yes, no)
+    }
+    #[inline(always)]
+    fn or(a: Mask4, b: Mask4) -> Mask4 {
+        a.or(b)
+    }
+    #[inline(always)]
+    fn all(mask: Mask4) -> bool {
+        mask.all()
     }
 }
 

@@ -47,6 +47,8 @@ mod continuous;
 mod geometry;
 mod islands;
 mod lanes;
+#[cfg(target_arch = "x86_64")]
+mod lanes_avx;
 mod manifold;
 mod settings;
 mod softness;

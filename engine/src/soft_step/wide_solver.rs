@@ -23,7 +23,9 @@
 use super::bodies::SolverBody;
 use super::contact_solver::{ConstraintPoint, ContactConstraint};
 use super::contacts::Contact;
-use super::lanes::{F64x4, LANES};
+use super::lanes::{F64x4, LANES, Lanes};
+#[cfg(target_arch = "x86_64")]
+use super::lanes_avx::{self, Avx4};
 
 /// One point of four constraints.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -139,30 +141,37 @@ pub(crate) fn set_padding_lane((w, e): (&mut WideConstraint, &mut WideExtra), l:
 }
 
 /// Four bodies' velocities: what the passes change.
-#[derive(Debug, Clone, Copy)]
-struct WideBody {
-    vx: F64x4,
-    vy: F64x4,
-    w: F64x4,
+#[derive(Clone, Copy)]
+struct WideBody<L> {
+    vx: L,
+    vy: L,
+    w: L,
 }
 
-impl WideBody {
+impl<L: Lanes> WideBody<L> {
     /// ω × r + v at anchors `(rx, ry)`: the velocity of the anchored point.
     #[inline(always)]
-    fn point_velocity(&self, rx: F64x4, ry: F64x4) -> (F64x4, F64x4) {
+    fn point_velocity(&self, rx: L, ry: L) -> (L, L) {
         (self.vx + -self.w * ry, self.vy + self.w * rx)
     }
 }
 
+/// Field `f` of the four lanes' bodies. (Plain functions, not closures,
+/// in the generic pass code: a closure is compiled without the AVX
+/// feature of the function it sits in, so it would not be inlined there.)
+#[inline(always)]
+fn field<L: Lanes>(b: &[&SolverBody; LANES], f: fn(&SolverBody) -> f64) -> L {
+    L::from_array([f(b[0]), f(b[1]), f(b[2]), f(b[3])])
+}
+
 /// Reads the velocities of the four lanes' bodies.
 #[inline(always)]
-fn gather(bodies: &[SolverBody], index: &[u32; LANES]) -> WideBody {
-    let b = index.map(|i| &bodies[i as usize]);
-    let lane = |f: fn(&SolverBody) -> f64| F64x4::new(b.map(f));
+fn gather<L: Lanes>(bodies: &[SolverBody], index: &[u32; LANES]) -> WideBody<L> {
+    let b = [0, 1, 2, 3].map(|l| &bodies[index[l] as usize]);
     WideBody {
-        vx: lane(|b| b.v.x),
-        vy: lane(|b| b.v.y),
-        w: lane(|b| b.w),
+        vx: field(&b, |b| b.v.x),
+        vy: field(&b, |b| b.v.y),
+        w: field(&b, |b| b.w),
     }
 }
 
@@ -170,12 +179,13 @@ fn gather(bodies: &[SolverBody], index: &[u32; LANES]) -> WideBody {
 /// is static or kinematic, whose velocity no lane changed, so the order of
 /// the writes does not matter.
 #[inline(always)]
-fn scatter(bodies: &mut [SolverBody], index: &[u32; LANES], w: &WideBody) {
+fn scatter<L: Lanes>(bodies: &mut [SolverBody], index: &[u32; LANES], w: &WideBody<L>) {
+    let (vx, vy, omega) = (w.vx.to_array(), w.vy.to_array(), w.w.to_array());
     for (l, &i) in index.iter().enumerate() {
         let b = &mut bodies[i as usize];
-        b.v.x = w.vx.lane(l);
-        b.v.y = w.vy.lane(l);
-        b.w = w.w.lane(l);
+        b.v.x = vx[l];
+        b.v.y = vy[l];
+        b.w = omega[l];
     }
 }
 
@@ -184,78 +194,163 @@ fn scatter(bodies: &mut [SolverBody], index: &[u32; LANES], w: &WideBody) {
 /// Δp_A − R(Δθ_A) r_A) (the passes change velocities only, so this is
 /// computed once per pass, before the impulses).
 #[inline(always)]
-fn separations(bodies: &[SolverBody], c: &WideConstraint) -> [F64x4; 2] {
-    let (a, b) = (
-        c.a.map(|i| &bodies[i as usize]),
-        c.b.map(|i| &bodies[i as usize]),
-    );
-    let lane = |s: &[&SolverBody; LANES], f: fn(&SolverBody) -> f64| F64x4::new(s.map(f));
-    let dpx = lane(&b, |b| b.dp.x) - lane(&a, |b| b.dp.x);
-    let dpy = lane(&b, |b| b.dp.y) - lane(&a, |b| b.dp.y);
-    let (ca, sa) = (lane(&a, |b| b.dq.0), lane(&a, |b| b.dq.1));
-    let (cb, sb) = (lane(&b, |b| b.dq.0), lane(&b, |b| b.dq.1));
-    let (nx, ny) = (c.normal_x, c.normal_y);
-    let point = |p: &WidePoint| {
-        let (rbx, rby) = (cb * p.rb_x - sb * p.rb_y, sb * p.rb_x + cb * p.rb_y);
-        let (rax, ray) = (ca * p.ra_x - sa * p.ra_y, sa * p.ra_x + ca * p.ra_y);
-        let dsx = dpx + rbx - rax;
-        let dsy = dpy + rby - ray;
-        p.base_separation + (dsx * nx + dsy * ny)
+fn separations<L: Lanes>(bodies: &[SolverBody], c: &WideConstraint) -> [L; 2] {
+    let a = [0, 1, 2, 3].map(|l| &bodies[c.a[l] as usize]);
+    let b = [0, 1, 2, 3].map(|l| &bodies[c.b[l] as usize]);
+    let motion = Motion {
+        dpx: field::<L>(&b, |b| b.dp.x) - field(&a, |b| b.dp.x),
+        dpy: field::<L>(&b, |b| b.dp.y) - field(&a, |b| b.dp.y),
+        ca: field(&a, |b| b.dq.0),
+        sa: field(&a, |b| b.dq.1),
+        cb: field(&b, |b| b.dq.0),
+        sb: field(&b, |b| b.dq.1),
+        nx: L::load(&c.normal_x),
+        ny: L::load(&c.normal_y),
     };
-    [point(&c.points[0]), point(&c.points[1])]
+    [
+        motion.separation(&c.points[0]),
+        motion.separation(&c.points[1]),
+    ]
+}
+
+/// The relative motion of four pairs of bodies since the step began, and
+/// their normals.
+#[derive(Clone, Copy)]
+struct Motion<L> {
+    /// Δp_B − Δp_A.
+    dpx: L,
+    dpy: L,
+    /// cos and sin of each body's rotation since the step began.
+    ca: L,
+    sa: L,
+    cb: L,
+    sb: L,
+    nx: L,
+    ny: L,
+}
+
+impl<L: Lanes> Motion<L> {
+    /// The current separation of point `p`.
+    #[inline(always)]
+    fn separation(&self, p: &WidePoint) -> L {
+        let (ra_x, ra_y) = (L::load(&p.ra_x), L::load(&p.ra_y));
+        let (rb_x, rb_y) = (L::load(&p.rb_x), L::load(&p.rb_y));
+        let (cb, sb, ca, sa) = (self.cb, self.sb, self.ca, self.sa);
+        let (rbx, rby) = (cb * rb_x - sb * rb_y, sb * rb_x + cb * rb_y);
+        let (rax, ray) = (ca * ra_x - sa * ra_y, sa * ra_x + ca * ra_y);
+        let dsx = self.dpx + rbx - rax;
+        let dsy = self.dpy + rby - ray;
+        L::load(&p.base_separation) + (dsx * self.nx + dsy * self.ny)
+    }
 }
 
 /// The inverse masses of four constraints' bodies.
 #[derive(Clone, Copy)]
-struct Masses {
-    a: F64x4,
-    ia: F64x4,
-    b: F64x4,
-    ib: F64x4,
+struct Masses<L> {
+    a: L,
+    ia: L,
+    b: L,
+    ib: L,
 }
 
-impl Masses {
+impl<L: Lanes> Masses<L> {
     #[inline(always)]
     fn of(c: &WideConstraint) -> Self {
         Masses {
-            a: c.inv_mass_a,
-            ia: c.inv_inertia_a,
-            b: c.inv_mass_b,
-            ib: c.inv_inertia_b,
+            a: L::load(&c.inv_mass_a),
+            ia: L::load(&c.inv_inertia_a),
+            b: L::load(&c.inv_mass_b),
+            ib: L::load(&c.inv_inertia_b),
         }
     }
 }
 
-/// Applies impulse `(px, py)` at anchors `ra`, `rb`: −P on A, +P on B.
+/// A point's anchors, loaded.
+#[derive(Clone, Copy)]
+struct Anchors<L> {
+    ra_x: L,
+    ra_y: L,
+    rb_x: L,
+    rb_y: L,
+}
+
+impl<L: Lanes> Anchors<L> {
+    #[inline(always)]
+    fn of(p: &WidePoint) -> Self {
+        Anchors {
+            ra_x: L::load(&p.ra_x),
+            ra_y: L::load(&p.ra_y),
+            rb_x: L::load(&p.rb_x),
+            rb_y: L::load(&p.rb_y),
+        }
+    }
+
+    /// The velocity of the point on B relative to the point on A.
+    #[inline(always)]
+    fn relative_velocity(&self, (a, b): (&WideBody<L>, &WideBody<L>)) -> (L, L) {
+        let (vax, vay) = a.point_velocity(self.ra_x, self.ra_y);
+        let (vbx, vby) = b.point_velocity(self.rb_x, self.rb_y);
+        (vbx - vax, vby - vay)
+    }
+}
+
+/// Applies impulse `(px, py)` at anchors `r`: −P on A, +P on B.
 #[inline(always)]
-fn apply(
-    m: &Masses,
-    (a, b): (&mut WideBody, &mut WideBody),
-    (ra_x, ra_y, rb_x, rb_y): (F64x4, F64x4, F64x4, F64x4),
-    (px, py): (F64x4, F64x4),
+fn apply<L: Lanes>(
+    m: &Masses<L>,
+    (a, b): (&mut WideBody<L>, &mut WideBody<L>),
+    r: &Anchors<L>,
+    (px, py): (L, L),
 ) {
     a.vx -= m.a * px;
     a.vy -= m.a * py;
-    a.w -= m.ia * (ra_x * py - ra_y * px);
+    a.w -= m.ia * (r.ra_x * py - r.ra_y * px);
     b.vx += m.b * px;
     b.vy += m.b * py;
-    b.w += m.ib * (rb_x * py - rb_y * px);
+    b.w += m.ib * (r.rb_x * py - r.rb_y * px);
+}
+
+/// Runs `$generic::<lane type>(args)` with AVX lanes when the CPU has AVX,
+/// with SSE2 lanes otherwise; `$avx` is the AVX-compiled instance.
+macro_rules! dispatch {
+    ($generic:ident, $avx:ident, ($($arg:ident: $ty:ty),*)) => {
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx")]
+        fn $avx($($arg: $ty),*) {
+            $generic::<Avx4>($($arg),*)
+        }
+
+        #[cfg(target_arch = "x86_64")]
+        if lanes_avx::detected() {
+            // SAFETY: the CPU has AVX (just checked), which is all `$avx`
+            // requires.
+            unsafe { $avx($($arg),*) };
+            return;
+        }
+        $generic::<F64x4>($($arg),*);
+    };
 }
 
 /// Applies every constraint's accumulated impulses.
 #[inline(never)]
 pub(crate) fn warm_start(constraints: &mut [WideConstraint], bodies: &mut [SolverBody]) {
+    dispatch!(warm_start_with, warm_start_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody]));
+}
+
+#[inline(always)]
+fn warm_start_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: &mut [SolverBody]) {
     for c in constraints.iter_mut() {
-        let (mut a, mut b) = (gather(bodies, &c.a), gather(bodies, &c.b));
+        let (mut a, mut b) = (gather::<L>(bodies, &c.a), gather::<L>(bodies, &c.b));
         let m = Masses::of(c);
-        let (nx, ny) = (c.normal_x, c.normal_y);
+        let (nx, ny) = (L::load(&c.normal_x), L::load(&c.normal_y));
         let (tx, ty) = (ny, -nx);
         for p in &mut c.points {
-            let px = p.normal_impulse * nx + p.tangent_impulse * tx;
-            let py = p.normal_impulse * ny + p.tangent_impulse * ty;
-            p.total_normal_impulse += p.normal_impulse;
-            let r = (p.ra_x, p.ra_y, p.rb_x, p.rb_y);
-            apply(&m, (&mut a, &mut b), r, (px, py));
+            let (normal_impulse, tangent_impulse) =
+                (L::load(&p.normal_impulse), L::load(&p.tangent_impulse));
+            let px = normal_impulse * nx + tangent_impulse * tx;
+            let py = normal_impulse * ny + tangent_impulse * ty;
+            (L::load(&p.total_normal_impulse) + normal_impulse).store(&mut p.total_normal_impulse);
+            apply(&m, (&mut a, &mut b), &Anchors::of(p), (px, py));
         }
         scatter(bodies, &c.a, &a);
         scatter(bodies, &c.b, &b);
@@ -270,67 +365,87 @@ pub(crate) fn solve(
     inv_h: f64,
     push_out_speed: f64,
 ) {
-    pass::<true>(constraints, bodies, inv_h, push_out_speed);
+    dispatch!(solve_with, solve_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64, push_out_speed: f64));
 }
 
-/// The relax pass: without bias, with friction.
-#[inline(never)]
-pub(crate) fn relax(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
-    pass::<false>(constraints, bodies, inv_h, 0.0);
-}
-
-/// One pass of sequential impulses over four lanes at a time.
 #[inline(always)]
-fn pass<const BIAS: bool>(
+fn solve_with<L: Lanes>(
     constraints: &mut [WideConstraint],
     bodies: &mut [SolverBody],
     inv_h: f64,
     push_out_speed: f64,
 ) {
-    let inv_h = F64x4::splat(inv_h);
-    let min_bias = F64x4::splat(-push_out_speed);
-    let one = F64x4::splat(1.0);
+    pass::<L, true>(constraints, bodies, inv_h, push_out_speed);
+}
+
+/// The relax pass: without bias, with friction.
+#[inline(never)]
+pub(crate) fn relax(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
+    dispatch!(relax_with, relax_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64));
+}
+
+#[inline(always)]
+fn relax_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
+    pass::<L, false>(constraints, bodies, inv_h, 0.0);
+}
+
+/// One pass of sequential impulses over four lanes at a time.
+#[inline(always)]
+fn pass<L: Lanes, const BIAS: bool>(
+    constraints: &mut [WideConstraint],
+    bodies: &mut [SolverBody],
+    inv_h: f64,
+    push_out_speed: f64,
+) {
+    let inv_h = L::splat(inv_h);
+    let min_bias = L::splat(-push_out_speed);
+    let (zero, one) = (L::splat(0.0), L::splat(1.0));
     for c in constraints.iter_mut() {
-        let separation = separations(bodies, c);
-        let (mut a, mut b) = (gather(bodies, &c.a), gather(bodies, &c.b));
+        let separation = separations::<L>(bodies, c);
+        let (mut a, mut b) = (gather::<L>(bodies, &c.a), gather::<L>(bodies, &c.b));
         let m = Masses::of(c);
-        let (nx, ny) = (c.normal_x, c.normal_y);
+        let (nx, ny) = (L::load(&c.normal_x), L::load(&c.normal_y));
         let (bias_rate, mass_scale, impulse_scale) = if BIAS {
-            (c.mass_scale * c.bias_rate, c.mass_scale, c.impulse_scale)
+            let mass_scale = L::load(&c.mass_scale);
+            (
+                mass_scale * L::load(&c.bias_rate),
+                mass_scale,
+                L::load(&c.impulse_scale),
+            )
         } else {
-            (F64x4::ZERO, one, F64x4::ZERO)
+            (zero, one, zero)
         };
         for (p, s) in c.points.iter_mut().zip(separation) {
-            let speculative = s.gt(F64x4::ZERO);
-            let bias = speculative.select(s * inv_h, (bias_rate * s).max(min_bias));
-            let point_mass_scale = speculative.select(one, mass_scale);
-            let point_impulse_scale = speculative.select(F64x4::ZERO, impulse_scale);
-            let (vax, vay) = a.point_velocity(p.ra_x, p.ra_y);
-            let (vbx, vby) = b.point_velocity(p.rb_x, p.rb_y);
-            let vn = (vbx - vax) * nx + (vby - vay) * ny;
-            let impulse = -p.normal_mass * (point_mass_scale * vn + bias)
-                - point_impulse_scale * p.normal_impulse;
-            let accumulated = (p.normal_impulse + impulse).max(F64x4::ZERO);
-            let impulse = accumulated - p.normal_impulse;
-            p.normal_impulse = accumulated;
-            p.total_normal_impulse += impulse;
-            let r = (p.ra_x, p.ra_y, p.rb_x, p.rb_y);
-            apply(&m, (&mut a, &mut b), r, (impulse * nx, impulse * ny));
+            let speculative = s.gt(zero);
+            let bias = L::select(speculative, s * inv_h, (bias_rate * s).max(min_bias));
+            let point_mass_scale = L::select(speculative, one, mass_scale);
+            let point_impulse_scale = L::select(speculative, zero, impulse_scale);
+            let r = Anchors::of(p);
+            let (dvx, dvy) = r.relative_velocity((&a, &b));
+            let vn = dvx * nx + dvy * ny;
+            let normal_impulse = L::load(&p.normal_impulse);
+            let impulse = -L::load(&p.normal_mass) * (point_mass_scale * vn + bias)
+                - point_impulse_scale * normal_impulse;
+            let accumulated = (normal_impulse + impulse).max(zero);
+            let impulse = accumulated - normal_impulse;
+            accumulated.store(&mut p.normal_impulse);
+            (L::load(&p.total_normal_impulse) + impulse).store(&mut p.total_normal_impulse);
+            apply(&m, (&mut a, &mut b), &r, (impulse * nx, impulse * ny));
         }
         if !BIAS {
-            let friction = c.friction;
+            let friction = L::load(&c.friction);
             let (tx, ty) = (ny, -nx);
             for p in &mut c.points {
-                let (vax, vay) = a.point_velocity(p.ra_x, p.ra_y);
-                let (vbx, vby) = b.point_velocity(p.rb_x, p.rb_y);
-                let vt = (vbx - vax) * tx + (vby - vay) * ty;
-                let max_friction = friction * p.normal_impulse;
-                let accumulated =
-                    (p.tangent_impulse - p.tangent_mass * vt).clamp(-max_friction, max_friction);
-                let impulse = accumulated - p.tangent_impulse;
-                p.tangent_impulse = accumulated;
-                let r = (p.ra_x, p.ra_y, p.rb_x, p.rb_y);
-                apply(&m, (&mut a, &mut b), r, (impulse * tx, impulse * ty));
+                let r = Anchors::of(p);
+                let (dvx, dvy) = r.relative_velocity((&a, &b));
+                let vt = dvx * tx + dvy * ty;
+                let max_friction = friction * L::load(&p.normal_impulse);
+                let tangent_impulse = L::load(&p.tangent_impulse);
+                let accumulated = (tangent_impulse - L::load(&p.tangent_mass) * vt)
+                    .clamp(-max_friction, max_friction);
+                let impulse = accumulated - tangent_impulse;
+                accumulated.store(&mut p.tangent_impulse);
+                apply(&m, (&mut a, &mut b), &r, (impulse * tx, impulse * ty));
             }
         }
         scatter(bodies, &c.a, &a);
@@ -346,32 +461,45 @@ pub(crate) fn restitution(
     bodies: &mut [SolverBody],
     threshold: f64,
 ) {
-    let min_approach = F64x4::splat(-threshold);
+    dispatch!(restitution_with, restitution_avx, (constraints: &mut [WideConstraint], extras: &[WideExtra], bodies: &mut [SolverBody], threshold: f64));
+}
+
+#[inline(always)]
+fn restitution_with<L: Lanes>(
+    constraints: &mut [WideConstraint],
+    extras: &[WideExtra],
+    bodies: &mut [SolverBody],
+    threshold: f64,
+) {
+    let min_approach = L::splat(-threshold);
+    let zero = L::splat(0.0);
     for (c, e) in constraints.iter_mut().zip(extras) {
-        if e.restitution.eq(F64x4::ZERO).all() {
+        let restitution = L::load(&e.restitution);
+        if L::all(restitution.eq(zero)) {
             continue;
         }
-        let (mut a, mut b) = (gather(bodies, &c.a), gather(bodies, &c.b));
+        let (mut a, mut b) = (gather::<L>(bodies, &c.a), gather::<L>(bodies, &c.b));
         let m = Masses::of(c);
-        let (nx, ny) = (c.normal_x, c.normal_y);
-        for (p, &relative) in c.points.iter_mut().zip(&e.normal_velocity) {
+        let (nx, ny) = (L::load(&c.normal_x), L::load(&c.normal_y));
+        for (p, relative) in c.points.iter_mut().zip(&e.normal_velocity) {
+            let relative = L::load(relative);
+            let total = L::load(&p.total_normal_impulse);
             // No restitution, slow approach, or no push during the solve:
             // no bounce.
-            let skip = relative
-                .gt(min_approach)
-                .or(p.total_normal_impulse.eq(F64x4::ZERO))
-                .or(e.restitution.eq(F64x4::ZERO));
-            let (vax, vay) = a.point_velocity(p.ra_x, p.ra_y);
-            let (vbx, vby) = b.point_velocity(p.rb_x, p.rb_y);
-            let vn = (vbx - vax) * nx + (vby - vay) * ny;
-            let impulse = -p.normal_mass * (vn + e.restitution * relative);
-            let accumulated = (p.normal_impulse + impulse).max(F64x4::ZERO);
-            let impulse = skip.select(F64x4::ZERO, accumulated - p.normal_impulse);
-            p.normal_impulse = skip.select(p.normal_impulse, accumulated);
-            p.total_normal_impulse =
-                skip.select(p.total_normal_impulse, p.total_normal_impulse + impulse);
-            let r = (p.ra_x, p.ra_y, p.rb_x, p.rb_y);
-            apply(&m, (&mut a, &mut b), r, (impulse * nx, impulse * ny));
+            let skip = L::or(
+                L::or(relative.gt(min_approach), total.eq(zero)),
+                restitution.eq(zero),
+            );
+            let r = Anchors::of(p);
+            let (dvx, dvy) = r.relative_velocity((&a, &b));
+            let vn = dvx * nx + dvy * ny;
+            let normal_impulse = L::load(&p.normal_impulse);
+            let impulse = -L::load(&p.normal_mass) * (vn + restitution * relative);
+            let accumulated = (normal_impulse + impulse).max(zero);
+            let impulse = L::select(skip, zero, accumulated - normal_impulse);
+            L::select(skip, normal_impulse, accumulated).store(&mut p.normal_impulse);
+            L::select(skip, total, total + impulse).store(&mut p.total_normal_impulse);
+            apply(&m, (&mut a, &mut b), &r, (impulse * nx, impulse * ny));
         }
         scatter(bodies, &c.a, &a);
         scatter(bodies, &c.b, &b);
@@ -501,20 +629,14 @@ mod tests {
         let mut by_lane: Vec<usize> = (0..constraints.len()).collect();
         by_lane.sort_by_key(|&i| order[i]);
         let mut scalar: Vec<ContactConstraint> = by_lane.iter().map(|&i| constraints[i]).collect();
-        let (mut scalar_bodies, mut wide_bodies) = (bodies.clone(), bodies);
         let (inv_h, push_out) = (240.0, 3.0);
+        let mut scalar_bodies = bodies.clone();
         for _ in 0..3 {
             contact_solver::warm_start(&mut scalar, &mut scalar_bodies);
-            warm_start(&mut wide, &mut wide_bodies);
             contact_solver::solve(&mut scalar, &mut scalar_bodies, inv_h, push_out, true);
-            solve(&mut wide, &mut wide_bodies, inv_h, push_out);
             contact_solver::solve(&mut scalar, &mut scalar_bodies, inv_h, push_out, false);
-            relax(&mut wide, &mut wide_bodies, inv_h);
         }
         contact_solver::restitution(&mut scalar, &mut scalar_bodies, 1.0);
-        restitution(&mut wide, &extra, &mut wide_bodies, 1.0);
-        // Same operations in the same order on the same data: equal bits.
-        assert_eq!(scalar_bodies, wide_bodies);
         let mut set = super::super::contacts::ContactSet::default();
         for (i, c) in constraints.iter().enumerate() {
             set.create((2 * i, 2 * i + 1), (c.a, c.b), 0.6, 0.0);
@@ -522,11 +644,34 @@ mod tests {
         }
         let mut reference = set.contacts.clone();
         contact_solver::store_impulses(&scalar, &mut reference);
-        let mut contacts = set.contacts;
-        for (i, &(record, lane)) in order.iter().enumerate() {
-            store_lane((&wide[record], &extra[record]), lane, &mut contacts[i]);
+        // The SSE2 lanes (every x86-64 CPU), then the lanes this CPU runs
+        // (AVX when it has it): same operations in the same order on the
+        // same data as the scalar solver, so equal bits.
+        for sse2 in [true, false] {
+            let (mut wide, mut wide_bodies) = (wide.clone(), bodies.clone());
+            for _ in 0..3 {
+                if sse2 {
+                    warm_start_with::<F64x4>(&mut wide, &mut wide_bodies);
+                    solve_with::<F64x4>(&mut wide, &mut wide_bodies, inv_h, push_out);
+                    relax_with::<F64x4>(&mut wide, &mut wide_bodies, inv_h);
+                } else {
+                    warm_start(&mut wide, &mut wide_bodies);
+                    solve(&mut wide, &mut wide_bodies, inv_h, push_out);
+                    relax(&mut wide, &mut wide_bodies, inv_h);
+                }
+            }
+            if sse2 {
+                restitution_with::<F64x4>(&mut wide, &extra, &mut wide_bodies, 1.0);
+            } else {
+                restitution(&mut wide, &extra, &mut wide_bodies, 1.0);
+            }
+            assert_eq!(scalar_bodies, wide_bodies, "SSE2 only: {sse2}");
+            let mut contacts = set.contacts.clone();
+            for (i, &(record, lane)) in order.iter().enumerate() {
+                store_lane((&wide[record], &extra[record]), lane, &mut contacts[i]);
+            }
+            assert_eq!(reference, contacts, "SSE2 only: {sse2}");
         }
-        assert_eq!(reference, contacts);
         // Restitution acted somewhere (the test covers it).
         assert!(
             scalar
