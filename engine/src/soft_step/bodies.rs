@@ -85,6 +85,33 @@ pub(crate) fn small_sin_cos(x: f64) -> (f64, f64) {
     (s, c)
 }
 
+/// What the prepare stage reads of a body, copied from its [`BodySim`]
+/// at the start of each step into a compact array (24 bytes a body instead
+/// of the whole record), since prepare reads two bodies per contact in no
+/// particular order.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct BodyMass {
+    /// 1/m (1/kg); 0 for static and kinematic bodies.
+    pub inv_mass: f64,
+    /// 1/I (1/(kg·m²)).
+    pub inv_inertia: f64,
+    pub kind: BodyKind,
+    /// Whether the solver moves it ([`BodySim::moving`]).
+    pub moving: bool,
+}
+
+impl BodyMass {
+    /// The prepare stage's view of `sim`.
+    pub(crate) fn of(sim: &BodySim) -> Self {
+        BodyMass {
+            inv_mass: sim.inv_mass,
+            inv_inertia: sim.inv_inertia,
+            kind: sim.kind,
+            moving: sim.moving(),
+        }
+    }
+}
+
 /// What the soft step keeps about a body besides its velocity.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct BodySim {

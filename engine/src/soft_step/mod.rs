@@ -64,7 +64,7 @@ use crate::events::EventRecord;
 use crate::forces::{ForceContext, Wrench};
 use crate::integrators::Stats;
 use crate::world_core::{WorldCore, check_energy_value};
-use bodies::{BodySim, SolverBody, solver_body, solver_index};
+use bodies::{BodyMass, BodySim, SolverBody, solver_body, solver_index};
 use broad_phase::BroadPhase;
 use colouring::{Colouring, Slot};
 use contact_solver::{ContactConstraint, PairMass};
@@ -79,6 +79,8 @@ use wide_solver::{WideConstraint, WideExtra};
 pub struct SoftStep {
     settings: SoftStepSettings,
     sims: Vec<BodySim>,
+    /// The prepare stage's copy of the bodies' masses (see [`BodyMass`]).
+    masses: Vec<BodyMass>,
     /// One per convex shape; a body's are contiguous.
     colliders: Vec<Collider>,
     /// Solver records; index 0 is the static dummy, body `i` is `i + 1`.
@@ -111,6 +113,7 @@ impl SoftStep {
         let mut model = Self {
             settings,
             sims: Vec::new(),
+            masses: Vec::new(),
             colliders: Vec::new(),
             bodies: vec![SolverBody::AT_REST],
             broad: BroadPhase::default(),
@@ -486,6 +489,8 @@ impl SoftStep {
     /// the motion since the step began.
     #[inline(never)]
     fn load_bodies(&mut self, core: &WorldCore) {
+        self.masses.clear();
+        self.masses.extend(self.sims.iter().map(BodyMass::of));
         for (id, sim) in self.sims.iter().enumerate() {
             let record = &mut self.bodies[id + 1];
             *record = if sim.moving() {
@@ -515,11 +520,11 @@ impl SoftStep {
             if c.count == 0 {
                 continue;
             }
-            let (sa, sb) = (&self.sims[c.body_a], &self.sims[c.body_b]);
-            if !sa.moving() && !sb.moving() {
+            let (sa, sb) = (&self.masses[c.body_a], &self.masses[c.body_b]);
+            if !sa.moving && !sb.moving {
                 continue;
             }
-            let dynamic = |id: BodyId, s: &BodySim| (s.kind == BodyKind::Dynamic).then_some(id);
+            let dynamic = |id: BodyId, s: &BodyMass| (s.kind == BodyKind::Dynamic).then_some(id);
             self.colouring
                 .add(dynamic(c.body_a, sa), dynamic(c.body_b, sb));
             self.constrained.push(index);
@@ -532,12 +537,12 @@ impl SoftStep {
         self.wide.resize(records, WideConstraint::default());
         self.wide_extra.resize(records, WideExtra::default());
         self.constraints.clear();
-        let (sims, contacts, bodies) = (&self.sims, &self.contacts.contacts, &self.bodies);
+        let (masses, contacts, bodies) = (&self.masses, &self.contacts.contacts, &self.bodies);
         // In contact order, so that the contacts are read in memory order;
         // each colour's records are written in order too.
         for (i, &index) in self.constrained.iter().enumerate() {
             let c = &contacts[index];
-            let (sa, sb) = (&sims[c.body_a], &sims[c.body_b]);
+            let (sa, sb) = (&masses[c.body_a], &masses[c.body_b]);
             let mass = PairMass {
                 a: solver_index(c.body_a, sa.kind),
                 b: solver_index(c.body_b, sb.kind),
