@@ -25,6 +25,13 @@
 //! The solve is matrix-free: each point's effective mass is a scalar, and
 //! the constraints are visited in order (projected Gauss–Seidel), so the
 //! cost is linear in the number of points and nothing is allocated.
+//!
+//! This is the reference implementation, one constraint at a time. The
+//! step runs it on the overflow of the colouring (constraints that found
+//! no colour, usually none); the coloured constraints go through
+//! [`super::wide_solver`], which applies these same formulas, in the same
+//! order of operations, to four constraints at once and is tested to give
+//! the same bits.
 
 use super::bodies::SolverBody;
 use super::contacts::Contact;

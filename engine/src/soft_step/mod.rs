@@ -16,27 +16,95 @@
 //!    speculative points within [`SoftStepSettings::speculative_distance`]),
 //!    each point keeping the impulses of last step's point with the same id;
 //!    pairs whose enlarged boxes parted are destroyed;
-//! 3. **prepare**: a constraint per touching contact ([`contact_solver`]):
-//!    anchors, effective masses, inherited impulses, approach speed;
+//! 3. **prepare** ([`prepare`]): the touching contacts of awake bodies are
+//!    coloured ([`colouring`]: no two constraints of a colour share a
+//!    dynamic body) and each becomes a constraint ([`contact_solver`]:
+//!    anchors, effective masses, inherited impulses, approach speed),
+//!    written into its lane of a four-lane record of its colour
+//!    ([`wide_solver`]); the few that find no colour (the overflow) stay
+//!    scalar;
 //! 4. n times: **integrate velocities** (gravity and every force generator
 //!    active in the step, evaluated at the substep's start state),
 //!    **warm start**, **solve** with the soft bias
 //!    ([`softness`]), **integrate positions** (symplectic Euler:
 //!    x += h v, θ += h ω), **relax** (solve again without bias, with
-//!    friction);
+//!    friction); each solver pass runs the overflow one constraint at a
+//!    time ([`contact_solver`]), then the records, colour after colour,
+//!    four constraints at a time ([`wide_solver`]);
 //! 5. **restitution**: points that approached faster than the threshold
-//!    bounce with their restitution;
-//! 6. **store**: impulses back into the contacts, states into the world,
-//!    bounding boxes into the broad phase;
-//! 7. **continuous**: fast bodies swept against static ones
-//!    ([`continuous`]);
+//!    bounce with their restitution (overflow, then records);
+//! 6. **store**: impulses back into the contacts, states into the world;
+//! 7. **continuous**: bounding boxes into the broad phase, fast bodies
+//!    swept against static ones ([`continuous`]);
 //! 8. **sleep** (when on): islands at rest fall asleep ([`islands`]).
 //!
 //! Events (landing, apex) are located inside each substep by linear
-//! interpolation, exact for positions (they move linearly in a substep).
+//! interpolation, exact for positions (they move linearly in a substep;
+//! [`events`]).
 //!
 //! Nothing is allocated per step once the contact and constraint arrays
 //! have grown to the scene's size.
+//!
+//! # Speed
+//!
+//! The solver passes dominate: on a pyramid of boxes each pass visits
+//! every contact, 12 times a step (4 substeps of warm start, solve,
+//! relax). Visited one at a time (projected Gauss–Seidel, the scalar
+//! [`contact_solver`]) each constraint is a long chain of dependent
+//! floating-point operations through its two bodies' velocities, so the
+//! CPU mostly waits. What was done, each kept because it paid when
+//! measured (instruction counts from callgrind, repeatable on a shared
+//! machine; times are noisier):
+//!
+//! - **Graph colouring and lanes** (Box2D v3's `constraint_graph.c` and the
+//!   SIMD path of `contact_solver.c`): constraints of one colour share no
+//!   dynamic body, so four of them are solved at once, one per lane of
+//!   [`lanes::F64x4`], in records laid out structure-of-arrays: four
+//!   independent chains instead of one, and packed instructions. Within a
+//!   record the lanes are independent, so the result is exactly that of
+//!   the scalar solver visiting the constraints colour after colour, and
+//!   the lanes give its bits (tested); the scalar solver stays as the
+//!   reference and runs the overflow. The colouring is redone each step,
+//!   greedily in contact order with a colour mask per body (a few
+//!   instructions per constraint, deterministic, no bookkeeping when
+//!   contacts begin or end touching).
+//! - **AVX when the CPU has it**: the build targets the x86-64 baseline
+//!   (SSE2, two f64 per instruction and two-operand forms); the passes are
+//!   generic over the lane arithmetic ([`lanes::Lanes`]) and compiled a
+//!   second time for AVX registers ([`lanes_avx`], four f64 per
+//!   instruction), chosen at run time. No fused multiply-add, so both give
+//!   the same bits: which one runs does not change the simulation. Two
+//!   lanes (f64x2) were measured too: 7% fewer instructions than four on
+//!   SSE2 but 8–10% slower.
+//! - **Trigonometry**: the rotation since the step began, (cos, sin) of
+//!   Δθ, from Taylor polynomials for |Δθ| ≤ 1/4 (within 0.6 ulp, see
+//!   [`bodies`]) instead of `sin_cos` per body per substep; the angle
+//!   itself is still accumulated exactly.
+//! - **Memory**: constraints prepared and stored in contact (memory)
+//!   order, each written in place into its lane (no per-step zeroing or
+//!   copying of records); what prepare reads of the bodies in a compact
+//!   per-step array; polygon points inline in their colliders (a pointer to
+//!   a separate block cost a cache miss per body in the bounding-box
+//!   update); the engine crate in one codegen unit (release profile).
+//!
+//! Instructions per step (callgrind, 100 steps after the first, this
+//! module's stages as functions; base 20: 210 boxes, base 100: 5050):
+//!
+//! | stage | base 20 before | after | base 100 before | after |
+//! |---|---:|---:|---:|---:|
+//! | warm start | 281 k | 125 k | 7.12 M | 3.08 M |
+//! | solve | 716 k | 235 k | 18.2 M | 5.81 M |
+//! | relax | 1 065 k | 294 k | 27.0 M | 7.29 M |
+//! | prepare (with colouring) | 213 k | 284 k | 5.37 M | 7.19 M |
+//! | collide | 238 k | 221 k | 6.02 M | 5.59 M |
+//! | integrate positions | 102 k | 46 k | 2.43 M | 1.10 M |
+//! | whole step | 2.76 M | 1.36 M | 71.6 M | 35.2 M |
+//!
+//! What is left, by the profile: the passes are still about half the
+//! step; prepare (colouring plus the lane writes) and collide (mostly
+//! recycled manifolds) about a fifth and a sixth on large scenes, where
+//! they are bound by memory traffic over the contacts (some 330 bytes
+//! each) rather than by instructions.
 
 mod bodies;
 mod broad_phase;
@@ -44,12 +112,14 @@ mod colouring;
 mod contact_solver;
 mod contacts;
 mod continuous;
+mod events;
 mod geometry;
 mod islands;
 mod lanes;
 #[cfg(target_arch = "x86_64")]
 mod lanes_avx;
 mod manifold;
+mod prepare;
 mod settings;
 mod softness;
 mod wide_solver;
@@ -64,10 +134,10 @@ use crate::events::EventRecord;
 use crate::forces::{ForceContext, Wrench};
 use crate::integrators::Stats;
 use crate::world_core::{WorldCore, check_energy_value};
-use bodies::{BodyMass, BodySim, SolverBody, solver_body, solver_index};
+use bodies::{BodyMass, BodySim, SolverBody, solver_body};
 use broad_phase::BroadPhase;
-use colouring::{Colouring, Slot};
-use contact_solver::{ContactConstraint, PairMass};
+use colouring::Colouring;
+use contact_solver::ContactConstraint;
 use contacts::{ContactSet, Side, TouchChange};
 use geometry::Collider;
 use nalgebra::{Isometry2, Translation2, UnitComplex, Vector2};
@@ -485,116 +555,6 @@ impl SoftStep {
         }
     }
 
-    /// Copies the world's velocities into the solver records and resets
-    /// the motion since the step began.
-    #[inline(never)]
-    fn load_bodies(&mut self, core: &WorldCore) {
-        self.masses.clear();
-        self.masses.extend(self.sims.iter().map(BodyMass::of));
-        for (id, sim) in self.sims.iter().enumerate() {
-            let record = &mut self.bodies[id + 1];
-            *record = if sim.moving() {
-                solver_body(&core.states[id], sim.kind)
-            } else {
-                SolverBody::AT_REST
-            };
-        }
-    }
-
-    /// Stage 3: a constraint per touching contact with an awake body,
-    /// coloured ([`colouring`]) and packed four by four for the wide
-    /// solver; those that found no colour stay scalar (the overflow).
-    #[inline(never)]
-    fn prepare(&mut self, core: &mut WorldCore, h: f64) {
-        let settings = &self.settings;
-        // Contact stiffness capped at a quarter of the substep's Nyquist
-        // frequency (1/(8h)), twice as stiff against static bodies.
-        let hertz = settings.contact_hertz.min(0.125 / h);
-        let soft = Softness::new(hertz, settings.contact_damping_ratio, h);
-        let static_soft = Softness::new(2.0 * hertz, settings.contact_damping_ratio, h);
-        let warm = if settings.warm_starting { 1.0 } else { 0.0 };
-        self.colouring.clear(self.sims.len());
-        self.constrained.clear();
-        let mut points = 0;
-        for (index, c) in self.contacts.contacts.iter().enumerate() {
-            if c.count == 0 {
-                continue;
-            }
-            let (sa, sb) = (&self.masses[c.body_a], &self.masses[c.body_b]);
-            if !sa.moving && !sb.moving {
-                continue;
-            }
-            let dynamic = |id: BodyId, s: &BodyMass| (s.kind == BodyKind::Dynamic).then_some(id);
-            self.colouring
-                .add(dynamic(c.body_a, sa), dynamic(c.body_b, sb));
-            self.constrained.push(index);
-            points += c.count;
-        }
-        let touching = self.constrained.len();
-        let records = self.colouring.finish();
-        // The records of the last step are overwritten lane by lane, every
-        // field; only new ones are initialised first.
-        self.wide.resize(records, WideConstraint::default());
-        self.wide_extra.resize(records, WideExtra::default());
-        self.constraints.clear();
-        let (masses, contacts, bodies) = (&self.masses, &self.contacts.contacts, &self.bodies);
-        // In contact order, so that the contacts are read in memory order;
-        // each colour's records are written in order too.
-        for (i, &index) in self.constrained.iter().enumerate() {
-            let c = &contacts[index];
-            let (sa, sb) = (&masses[c.body_a], &masses[c.body_b]);
-            let mass = PairMass {
-                a: solver_index(c.body_a, sa.kind),
-                b: solver_index(c.body_b, sb.kind),
-                inv_mass_a: sa.inv_mass,
-                inv_inertia_a: sa.inv_inertia,
-                inv_mass_b: sb.inv_mass,
-                inv_inertia_b: sb.inv_inertia,
-            };
-            let softness = if sa.kind == BodyKind::Static || sb.kind == BodyKind::Static {
-                static_soft
-            } else {
-                soft
-            };
-            let constraint = contact_solver::prepare(c, index, mass, softness, bodies, warm);
-            match self.colouring.slot(i) {
-                Slot::Lane { record, lane } => wide_solver::set_lane(
-                    (&mut self.wide[record], &mut self.wide_extra[record]),
-                    lane,
-                    &constraint,
-                ),
-                // Overflow positions come in order.
-                Slot::Overflow(_) => self.constraints.push(constraint),
-            }
-        }
-        for (record, lane) in self.colouring.padding() {
-            wide_solver::set_padding_lane(
-                (&mut self.wide[record], &mut self.wide_extra[record]),
-                lane,
-            );
-        }
-        let profile = &mut core.profiler.profile;
-        profile.contacts += self.contacts.contacts.len() as u64;
-        profile.touching += touching as u64;
-        profile.points += points as u64;
-    }
-
-    /// Stage 6 (first part): the impulses back into the contacts, for the
-    /// next step's warm start and for the reports, in contact order.
-    fn store_impulses(&mut self) {
-        contact_solver::store_impulses(&self.constraints, &mut self.contacts.contacts);
-        for (i, &index) in self.constrained.iter().enumerate() {
-            if let Slot::Lane { record, lane } = self.colouring.slot(i) {
-                let contact = &mut self.contacts.contacts[index];
-                wide_solver::store_lane(
-                    (&self.wide[record], &self.wide_extra[record]),
-                    lane,
-                    contact,
-                );
-            }
-        }
-    }
-
     /// v += h (g + F/m), ω += h τ/I for every awake dynamic body; the force
     /// generators (other than uniform fields) see the state at the
     /// substep's start, at time `t_sub`, active as at `middle`.
@@ -856,85 +816,5 @@ impl SoftStep {
             0.0,
         );
         self.bodies[id + 1] = SolverBody::AT_REST;
-    }
-
-    /// Events crossed during the substep `(t_a, t_b)`, located by linear
-    /// interpolation between its start and end states; returns whether a
-    /// terminal one stopped the world (its state written to `core`).
-    fn locate_events(
-        &mut self,
-        core: &mut WorldCore,
-        (t_a, t_b): (f64, f64),
-        found: &mut Vec<EventRecord>,
-    ) -> bool {
-        let state_at = |records: &[SolverBody], id: BodyId| {
-            let r = &records[id + 1];
-            let s = core.states[id];
-            if self.sims[id].moving() {
-                BodyState {
-                    position: s.position + r.dp,
-                    angle: s.angle + r.dtheta,
-                    velocity: r.v,
-                    angular_velocity: r.w,
-                }
-            } else {
-                s
-            }
-        };
-        let mut hits: Vec<(f64, usize)> = Vec::new();
-        for (index, spec) in core.events.iter().enumerate() {
-            let ga = spec.quantity.of(&state_at(&self.substep_start, spec.body)) - spec.level;
-            let gb = spec.quantity.of(&state_at(&self.bodies, spec.body)) - spec.level;
-            if spec.crossing.detects(ga, gb) {
-                let f = if gb == ga { 1.0 } else { ga / (ga - gb) };
-                hits.push((f, index));
-            }
-        }
-        if hits.is_empty() {
-            return false;
-        }
-        hits.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let mut stop: Option<(f64, Vec<BodyState>)> = None;
-        let interpolate = |f: f64| -> Vec<BodyState> {
-            (0..core.states.len())
-                .map(|id| {
-                    let (a, b) = (
-                        state_at(&self.substep_start, id),
-                        state_at(&self.bodies, id),
-                    );
-                    BodyState {
-                        position: a.position + f * (b.position - a.position),
-                        angle: a.angle + f * (b.angle - a.angle),
-                        velocity: a.velocity + f * (b.velocity - a.velocity),
-                        angular_velocity: a.angular_velocity
-                            + f * (b.angular_velocity - a.angular_velocity),
-                    }
-                })
-                .collect()
-        };
-        for (f, index) in hits {
-            let t = if f >= 1.0 { t_b } else { t_a + f * (t_b - t_a) };
-            let states = interpolate(f);
-            let spec = &core.events[index];
-            let terminal = spec.terminal;
-            found.push(EventRecord {
-                name: spec.name.clone(),
-                t,
-                states: states.clone(),
-            });
-            if terminal {
-                stop = Some((t, states));
-                break;
-            }
-        }
-        match stop {
-            Some((t, states)) => {
-                core.states = states;
-                core.time = t;
-                core.stopped = true;
-                true
-            }
-            None => false,
-        }
     }
 }
