@@ -114,6 +114,7 @@ mod contacts;
 mod continuous;
 mod events;
 mod geometry;
+mod integrate;
 mod islands;
 mod lanes;
 #[cfg(target_arch = "x86_64")]
@@ -131,7 +132,7 @@ use crate::body::{BodyId, BodyKind, BodyState};
 use crate::contact::pipeline::Phase;
 use crate::error::{EngineError, Result};
 use crate::events::EventRecord;
-use crate::forces::{ForceContext, Wrench};
+use crate::forces::Wrench;
 use crate::integrators::Stats;
 use crate::world_core::{WorldCore, check_energy_value};
 use bodies::{BodyMass, BodySim, SolverBody, solver_body};
@@ -551,72 +552,6 @@ impl SoftStep {
                         self.islands.unlink(a);
                     }
                 }
-            }
-        }
-    }
-
-    /// v += h (g + F/m), ω += h τ/I for every awake dynamic body; the force
-    /// generators (other than uniform fields) see the state at the
-    /// substep's start, at time `t_sub`, active as at `middle`.
-    #[inline(never)]
-    fn integrate_velocities(
-        &mut self,
-        core: &WorldCore,
-        h: f64,
-        gravity: Vector2<f64>,
-        general: Option<(f64, f64)>,
-    ) {
-        if let Some((t_sub, middle)) = general {
-            self.force_states.clone_from(&core.states);
-            for (id, sim) in self.sims.iter().enumerate() {
-                if sim.moving() {
-                    let r = &self.bodies[id + 1];
-                    let s = &mut self.force_states[id];
-                    s.position += r.dp;
-                    s.angle += r.dtheta;
-                    s.velocity = r.v;
-                    s.angular_velocity = r.w;
-                }
-            }
-            self.wrenches.clear();
-            self.wrenches.resize(core.bodies.len(), Wrench::default());
-            let ctx = ForceContext {
-                t: t_sub,
-                bodies: &core.bodies,
-                states: &self.force_states,
-            };
-            for f in &core.forces {
-                if f.window.contains(middle) && f.force.uniform_acceleration().is_none() {
-                    f.force.apply(&ctx, &mut self.wrenches);
-                }
-            }
-        }
-        for (id, sim) in self.sims.iter().enumerate() {
-            if sim.kind != BodyKind::Dynamic || sim.asleep {
-                continue;
-            }
-            let r = &mut self.bodies[id + 1];
-            r.v += h * gravity;
-            if general.is_some() {
-                let w = &self.wrenches[id];
-                r.v += (h * sim.inv_mass) * w.force;
-                r.w += h * sim.inv_inertia * w.torque;
-            }
-        }
-    }
-
-    /// x += h v, θ += h ω (symplectic Euler) for every awake moving body.
-    #[inline(never)]
-    fn integrate_positions(&mut self, h: f64) {
-        for (sim, r) in self.sims.iter().zip(&mut self.bodies[1..]) {
-            if !sim.moving() {
-                continue;
-            }
-            r.dp += h * r.v;
-            if r.w != 0.0 {
-                r.dtheta += h * r.w;
-                let (s, c) = bodies::small_sin_cos(r.dtheta);
-                r.dq = (c, s);
             }
         }
     }
