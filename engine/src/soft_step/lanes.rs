@@ -19,7 +19,7 @@
 //! `wide`, whose operations are the SSE2 intrinsics themselves.
 
 use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
-use wide::f64x4;
+use wide::{CmpEq, CmpGt, f64x4};
 
 /// Number of lanes: constraints solved at once.
 pub(crate) const LANES: usize = 4;
@@ -61,13 +61,13 @@ impl F64x4 {
     /// Lane `l` (0 to 3).
     #[inline(always)]
     pub fn lane(&self, l: usize) -> f64 {
-        self.0.as_array()[l]
+        self.0.as_array_ref()[l]
     }
 
     /// Sets lane `l` (0 to 3) to `x`.
     #[inline(always)]
     pub fn set_lane(&mut self, l: usize, x: f64) {
-        self.0.as_mut_array()[l] = x;
+        self.0.as_array_mut()[l] = x;
     }
 
     /// The larger of each pair of lanes: `self > other ? self : other`
@@ -86,13 +86,13 @@ impl F64x4 {
     /// Lanes where `self > other`.
     #[inline(always)]
     pub fn gt(self, other: Self) -> Mask4 {
-        Mask4(self.0.simd_gt(other.0))
+        Mask4(self.0.cmp_gt(other.0))
     }
 
     /// Lanes where `self == other`.
     #[inline(always)]
     pub fn eq(self, other: Self) -> Mask4 {
-        Mask4(self.0.simd_eq(other.0))
+        Mask4(self.0.cmp_eq(other.0))
     }
 }
 
@@ -100,7 +100,7 @@ impl Mask4 {
     /// `yes` in the lanes where the condition holds, `no` elsewhere.
     #[inline(always)]
     pub fn select(self, yes: F64x4, no: F64x4) -> F64x4 {
-        F64x4(self.0.bitselect(yes.0, no.0))
+        F64x4(self.0.blend(yes.0, no.0))
     }
 
     /// Lanes where either condition holds.
@@ -243,9 +243,11 @@ impl Mul for F64x4 {
 
 impl Neg for F64x4 {
     type Output = F64x4;
+    /// Flips the sign bit, as the scalar `-x` (`wide`'s own negation is
+    /// 0 − x, which gives +0 for +0).
     #[inline(always)]
     fn neg(self) -> F64x4 {
-        F64x4(-self.0)
+        F64x4(self.0 ^ f64x4::splat(-0.0))
     }
 }
 
@@ -283,6 +285,8 @@ mod tests {
             assert_eq!(a.clamp(-b.max(-b), b.max(-b)).lane(i), x.clamp(-hi, hi));
             assert_eq!(a.gt(b).select(a, b).lane(i), if x > y { x } else { y });
         }
+        // Negation flips the sign bit, zeros included, as the scalar `-x`.
+        assert_eq!((-F64x4::splat(0.0)).lane(0).to_bits(), (-0.0f64).to_bits());
         let mut c = a;
         c.set_lane(2, 7.0);
         assert_eq!(c.lane(2), 7.0);

@@ -314,9 +314,15 @@ fn apply<L: Lanes>(
 /// with SSE2 lanes otherwise; `$avx` is the AVX-compiled instance.
 macro_rules! dispatch {
     ($generic:ident, $avx:ident, ($($arg:ident: $ty:ty),*)) => {
+        /// The AVX instance.
+        ///
+        /// # Safety
+        /// The CPU must have AVX. (An `unsafe fn`, not a safe one with a
+        /// target feature, which needs Rust 1.86: the workspace's minimum
+        /// is 1.85.)
         #[cfg(target_arch = "x86_64")]
         #[target_feature(enable = "avx")]
-        fn $avx($($arg: $ty),*) {
+        unsafe fn $avx($($arg: $ty),*) {
             $generic::<Avx4>($($arg),*)
         }
 
