@@ -25,6 +25,13 @@
 //! The solve is matrix-free: each point's effective mass is a scalar, and
 //! the constraints are visited in order (projected Gauss–Seidel), so the
 //! cost is linear in the number of points and nothing is allocated.
+//!
+//! This is the reference implementation, one constraint at a time. The
+//! step runs it on the overflow of the colouring (constraints that found
+//! no colour, usually none); the coloured constraints go through
+//! [`super::wide_solver`], which applies these same formulas, in the same
+//! order of operations, to four constraints at once and is tested to give
+//! the same bits.
 
 use super::bodies::SolverBody;
 use super::contacts::Contact;
@@ -175,6 +182,7 @@ fn store(bodies: &mut [SolverBody], c: &ContactConstraint, va: SolverBody, vb: S
 }
 
 /// Applies every constraint's accumulated impulses.
+#[inline(never)]
 pub(crate) fn warm_start(constraints: &mut [ContactConstraint], bodies: &mut [SolverBody]) {
     for c in constraints.iter_mut() {
         let (mut a, mut b) = load(bodies, c.a, c.b);
@@ -196,6 +204,7 @@ pub(crate) fn warm_start(constraints: &mut [ContactConstraint], bodies: &mut [So
 /// (relax) the pass removes the bias velocity and solves friction.
 /// Speculative points (s > 0) may close their gap in one substep of
 /// length 1/`inv_h` and no more.
+#[inline(never)]
 pub(crate) fn solve(
     constraints: &mut [ContactConstraint],
     bodies: &mut [SolverBody],
@@ -267,6 +276,7 @@ pub(crate) fn solve(
 /// The restitution pass: every point that approached faster than
 /// `threshold` (m/s) before the solve and pushed during it gets the normal
 /// velocity −e × its approach speed (the impulse stays ≥ 0).
+#[inline(never)]
 pub(crate) fn restitution(
     constraints: &mut [ContactConstraint],
     bodies: &mut [SolverBody],
@@ -302,6 +312,7 @@ pub(crate) fn restitution(
 
 /// Copies the impulses back into the contacts, for the next step's warm
 /// start and for the reports.
+#[inline(never)]
 pub(crate) fn store_impulses(constraints: &[ContactConstraint], contacts: &mut [Contact]) {
     for c in constraints {
         let contact = &mut contacts[c.contact];

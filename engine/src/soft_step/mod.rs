@@ -16,38 +16,114 @@
 //!    speculative points within [`SoftStepSettings::speculative_distance`]),
 //!    each point keeping the impulses of last step's point with the same id;
 //!    pairs whose enlarged boxes parted are destroyed;
-//! 3. **prepare**: a constraint per touching contact ([`contact_solver`]):
-//!    anchors, effective masses, inherited impulses, approach speed;
+//! 3. **prepare** ([`prepare`]): the touching contacts of awake bodies are
+//!    coloured ([`colouring`]: no two constraints of a colour share a
+//!    dynamic body) and each becomes a constraint ([`contact_solver`]:
+//!    anchors, effective masses, inherited impulses, approach speed),
+//!    written into its lane of a four-lane record of its colour
+//!    ([`wide_solver`]); the few that find no colour (the overflow) stay
+//!    scalar;
 //! 4. n times: **integrate velocities** (gravity and every force generator
 //!    active in the step, evaluated at the substep's start state),
 //!    **warm start**, **solve** with the soft bias
 //!    ([`softness`]), **integrate positions** (symplectic Euler:
 //!    x += h v, θ += h ω), **relax** (solve again without bias, with
-//!    friction);
+//!    friction); each solver pass runs the overflow one constraint at a
+//!    time ([`contact_solver`]), then the records, colour after colour,
+//!    four constraints at a time ([`wide_solver`]);
 //! 5. **restitution**: points that approached faster than the threshold
-//!    bounce with their restitution;
-//! 6. **store**: impulses back into the contacts, states into the world,
-//!    bounding boxes into the broad phase;
-//! 7. **continuous**: fast bodies swept against static ones
-//!    ([`continuous`]);
+//!    bounce with their restitution (overflow, then records);
+//! 6. **store**: impulses back into the contacts, states into the world;
+//! 7. **continuous**: bounding boxes into the broad phase, fast bodies
+//!    swept against static ones ([`continuous`]);
 //! 8. **sleep** (when on): islands at rest fall asleep ([`islands`]).
 //!
 //! Events (landing, apex) are located inside each substep by linear
-//! interpolation, exact for positions (they move linearly in a substep).
+//! interpolation, exact for positions (they move linearly in a substep;
+//! [`events`]).
 //!
 //! Nothing is allocated per step once the contact and constraint arrays
 //! have grown to the scene's size.
+//!
+//! # Speed
+//!
+//! The solver passes dominate: on a pyramid of boxes each pass visits
+//! every contact, 12 times a step (4 substeps of warm start, solve,
+//! relax). Visited one at a time (projected Gauss–Seidel, the scalar
+//! [`contact_solver`]) each constraint is a long chain of dependent
+//! floating-point operations through its two bodies' velocities, so the
+//! CPU mostly waits. What was done, each kept because it paid when
+//! measured (instruction counts from callgrind, repeatable on a shared
+//! machine; times are noisier):
+//!
+//! - **Graph colouring and lanes** (Box2D v3's `constraint_graph.c` and the
+//!   SIMD path of `contact_solver.c`): constraints of one colour share no
+//!   dynamic body, so four of them are solved at once, one per lane of
+//!   [`lanes::F64x4`], in records laid out structure-of-arrays: four
+//!   independent chains instead of one, and packed instructions. Within a
+//!   record the lanes are independent, so the result is exactly that of
+//!   the scalar solver visiting the constraints colour after colour, and
+//!   the lanes give its bits (tested); the scalar solver stays as the
+//!   reference and runs the overflow. The colouring is redone each step,
+//!   greedily in contact order with a colour mask per body (a few
+//!   instructions per constraint, deterministic, no bookkeeping when
+//!   contacts begin or end touching).
+//! - **AVX when the CPU has it**: the build targets the x86-64 baseline
+//!   (SSE2, two f64 per instruction and two-operand forms); the passes are
+//!   generic over the lane arithmetic ([`lanes::Lanes`]) and compiled a
+//!   second time for AVX registers ([`lanes_avx`], four f64 per
+//!   instruction), chosen at run time. No fused multiply-add, so both give
+//!   the same bits: which one runs does not change the simulation. Two
+//!   lanes (f64x2) were measured too: 7% fewer instructions than four on
+//!   SSE2 but 8–10% slower.
+//! - **Trigonometry**: the rotation since the step began, (cos, sin) of
+//!   Δθ, from Taylor polynomials for |Δθ| ≤ 1/4 (within 0.6 ulp, see
+//!   [`bodies`]) instead of `sin_cos` per body per substep; the angle
+//!   itself is still accumulated exactly.
+//! - **Memory**: constraints prepared and stored in contact (memory)
+//!   order, each written in place into its lane (no per-step zeroing or
+//!   copying of records); what prepare reads of the bodies in a compact
+//!   per-step array; polygon points inline in their colliders (a pointer to
+//!   a separate block cost a cache miss per body in the bounding-box
+//!   update); the engine crate in one codegen unit (release profile).
+//!
+//! Instructions per step (callgrind, 100 steps after the first, this
+//! module's stages as functions; base 20: 210 boxes, base 100: 5050):
+//!
+//! | stage | base 20 before | after | base 100 before | after |
+//! |---|---:|---:|---:|---:|
+//! | warm start | 281 k | 125 k | 7.12 M | 3.08 M |
+//! | solve | 716 k | 235 k | 18.2 M | 5.81 M |
+//! | relax | 1 065 k | 294 k | 27.0 M | 7.29 M |
+//! | prepare (with colouring) | 213 k | 284 k | 5.37 M | 7.19 M |
+//! | collide | 238 k | 221 k | 6.02 M | 5.59 M |
+//! | integrate positions | 102 k | 46 k | 2.43 M | 1.10 M |
+//! | whole step | 2.76 M | 1.36 M | 71.6 M | 35.2 M |
+//!
+//! What is left, by the profile: the passes are still about half the
+//! step; prepare (colouring plus the lane writes) and collide (mostly
+//! recycled manifolds) about a fifth and a sixth on large scenes, where
+//! they are bound by memory traffic over the contacts (some 330 bytes
+//! each) rather than by instructions.
 
 mod bodies;
 mod broad_phase;
+mod colouring;
 mod contact_solver;
 mod contacts;
 mod continuous;
+mod events;
 mod geometry;
+mod integrate;
 mod islands;
+mod lanes;
+#[cfg(target_arch = "x86_64")]
+mod lanes_avx;
 mod manifold;
+mod prepare;
 mod settings;
 mod softness;
+mod wide_solver;
 
 pub use settings::SoftStepSettings;
 pub use softness::Softness;
@@ -56,15 +132,17 @@ use crate::body::{BodyId, BodyKind, BodyState};
 use crate::contact::pipeline::Phase;
 use crate::error::{EngineError, Result};
 use crate::events::EventRecord;
-use crate::forces::{ForceContext, Wrench};
+use crate::forces::Wrench;
 use crate::integrators::Stats;
 use crate::world_core::{WorldCore, check_energy_value};
-use bodies::{BodySim, SolverBody, solver_body, solver_index};
+use bodies::{BodyMass, BodySim, SolverBody, solver_body};
 use broad_phase::BroadPhase;
-use contact_solver::{ContactConstraint, PairMass};
+use colouring::Colouring;
+use contact_solver::ContactConstraint;
 use contacts::{ContactSet, Side, TouchChange};
 use geometry::Collider;
 use nalgebra::{Isometry2, Translation2, UnitComplex, Vector2};
+use wide_solver::{WideConstraint, WideExtra};
 
 /// The soft step's state: per-body solver records, broad phase, contacts,
 /// constraints, islands.
@@ -72,13 +150,24 @@ use nalgebra::{Isometry2, Translation2, UnitComplex, Vector2};
 pub struct SoftStep {
     settings: SoftStepSettings,
     sims: Vec<BodySim>,
+    /// The prepare stage's copy of the bodies' masses (see [`BodyMass`]).
+    masses: Vec<BodyMass>,
     /// One per convex shape; a body's are contiguous.
     colliders: Vec<Collider>,
     /// Solver records; index 0 is the static dummy, body `i` is `i + 1`.
     bodies: Vec<SolverBody>,
     broad: BroadPhase,
     contacts: ContactSet,
+    /// The constraints of the step's colours, four per record, colour
+    /// after colour.
+    wide: Vec<WideConstraint>,
+    wide_extra: Vec<WideExtra>,
+    /// The overflow constraints (no free colour), solved one at a time.
     constraints: Vec<ContactConstraint>,
+    colouring: Colouring,
+    /// The contact of each constraint, in contact order (the colouring's
+    /// order).
+    constrained: Vec<usize>,
     islands: islands::Islands,
     stats: Stats,
     // Scratch reused by every step.
@@ -95,11 +184,16 @@ impl SoftStep {
         let mut model = Self {
             settings,
             sims: Vec::new(),
+            masses: Vec::new(),
             colliders: Vec::new(),
             bodies: vec![SolverBody::AT_REST],
             broad: BroadPhase::default(),
             contacts: ContactSet::default(),
+            wide: Vec::new(),
+            wide_extra: Vec::new(),
             constraints: Vec::new(),
+            colouring: Colouring::default(),
+            constrained: Vec::new(),
             islands: islands::Islands::default(),
             stats: Stats::default(),
             wrenches: Vec::new(),
@@ -265,6 +359,7 @@ impl SoftStep {
 
             let started = core.profiler.start();
             contact_solver::warm_start(&mut self.constraints, &mut self.bodies);
+            wide_solver::warm_start(&mut self.wide, &mut self.bodies);
             core.profiler.stop(Phase::WarmStart, started);
 
             let started = core.profiler.start();
@@ -274,6 +369,12 @@ impl SoftStep {
                 inv_h,
                 settings.push_out_speed,
                 true,
+            );
+            wide_solver::solve(
+                &mut self.wide,
+                &mut self.bodies,
+                inv_h,
+                settings.push_out_speed,
             );
             core.profiler.stop(Phase::Solve, started);
 
@@ -289,6 +390,7 @@ impl SoftStep {
                 settings.push_out_speed,
                 false,
             );
+            wide_solver::relax(&mut self.wide, &mut self.bodies, inv_h);
             core.profiler.stop(Phase::Relax, started);
             self.stats.evaluations += 1;
 
@@ -306,10 +408,16 @@ impl SoftStep {
             &mut self.bodies,
             settings.restitution_threshold,
         );
+        wide_solver::restitution(
+            &mut self.wide,
+            &self.wide_extra,
+            &mut self.bodies,
+            settings.restitution_threshold,
+        );
         core.profiler.stop(Phase::Restitution, started);
 
         let started = core.profiler.start();
-        contact_solver::store_impulses(&self.constraints, &mut self.contacts.contacts);
+        self.store_impulses();
         let step = self.stats.steps;
         self.write_states(core, t0, step)?;
         core.profiler.stop(Phase::Store, started);
@@ -335,6 +443,7 @@ impl SoftStep {
     }
 
     /// Stage 1: contacts for the new overlapping pairs of colliders.
+    #[inline(never)]
     fn update_pairs(&mut self) {
         let sims = &self.sims;
         let colliders = &self.colliders;
@@ -362,6 +471,7 @@ impl SoftStep {
     }
 
     /// Stage 2: manifolds; destroys the contacts whose fat boxes parted.
+    #[inline(never)]
     fn collide(&mut self, core: &WorldCore) {
         let settings = self.settings;
         self.contacts.changes.clear();
@@ -446,133 +556,9 @@ impl SoftStep {
         }
     }
 
-    /// Copies the world's velocities into the solver records and resets
-    /// the motion since the step began.
-    fn load_bodies(&mut self, core: &WorldCore) {
-        for (id, sim) in self.sims.iter().enumerate() {
-            let record = &mut self.bodies[id + 1];
-            *record = if sim.moving() {
-                solver_body(&core.states[id], sim.kind)
-            } else {
-                SolverBody::AT_REST
-            };
-        }
-    }
-
-    /// Stage 3: a constraint per touching contact with an awake body.
-    fn prepare(&mut self, core: &mut WorldCore, h: f64) {
-        let settings = &self.settings;
-        // Contact stiffness capped at a quarter of the substep's Nyquist
-        // frequency (1/(8h)), twice as stiff against static bodies.
-        let hertz = settings.contact_hertz.min(0.125 / h);
-        let soft = Softness::new(hertz, settings.contact_damping_ratio, h);
-        let static_soft = Softness::new(2.0 * hertz, settings.contact_damping_ratio, h);
-        let warm = if settings.warm_starting { 1.0 } else { 0.0 };
-        self.constraints.clear();
-        let mut points = 0;
-        for (index, c) in self.contacts.contacts.iter().enumerate() {
-            if c.count == 0 {
-                continue;
-            }
-            let (sa, sb) = (&self.sims[c.body_a], &self.sims[c.body_b]);
-            if !sa.moving() && !sb.moving() {
-                continue;
-            }
-            let mass = PairMass {
-                a: solver_index(c.body_a, sa.kind),
-                b: solver_index(c.body_b, sb.kind),
-                inv_mass_a: sa.inv_mass,
-                inv_inertia_a: sa.inv_inertia,
-                inv_mass_b: sb.inv_mass,
-                inv_inertia_b: sb.inv_inertia,
-            };
-            let softness = if sa.kind == BodyKind::Static || sb.kind == BodyKind::Static {
-                static_soft
-            } else {
-                soft
-            };
-            points += c.count;
-            self.constraints.push(contact_solver::prepare(
-                c,
-                index,
-                mass,
-                softness,
-                &self.bodies,
-                warm,
-            ));
-        }
-        let profile = &mut core.profiler.profile;
-        profile.contacts += self.contacts.contacts.len() as u64;
-        profile.touching += self.constraints.len() as u64;
-        profile.points += points as u64;
-    }
-
-    /// v += h (g + F/m), ω += h τ/I for every awake dynamic body; the force
-    /// generators (other than uniform fields) see the state at the
-    /// substep's start, at time `t_sub`, active as at `middle`.
-    fn integrate_velocities(
-        &mut self,
-        core: &WorldCore,
-        h: f64,
-        gravity: Vector2<f64>,
-        general: Option<(f64, f64)>,
-    ) {
-        if let Some((t_sub, middle)) = general {
-            self.force_states.clone_from(&core.states);
-            for (id, sim) in self.sims.iter().enumerate() {
-                if sim.moving() {
-                    let r = &self.bodies[id + 1];
-                    let s = &mut self.force_states[id];
-                    s.position += r.dp;
-                    s.angle += r.dtheta;
-                    s.velocity = r.v;
-                    s.angular_velocity = r.w;
-                }
-            }
-            self.wrenches.clear();
-            self.wrenches.resize(core.bodies.len(), Wrench::default());
-            let ctx = ForceContext {
-                t: t_sub,
-                bodies: &core.bodies,
-                states: &self.force_states,
-            };
-            for f in &core.forces {
-                if f.window.contains(middle) && f.force.uniform_acceleration().is_none() {
-                    f.force.apply(&ctx, &mut self.wrenches);
-                }
-            }
-        }
-        for (id, sim) in self.sims.iter().enumerate() {
-            if sim.kind != BodyKind::Dynamic || sim.asleep {
-                continue;
-            }
-            let r = &mut self.bodies[id + 1];
-            r.v += h * gravity;
-            if general.is_some() {
-                let w = &self.wrenches[id];
-                r.v += (h * sim.inv_mass) * w.force;
-                r.w += h * sim.inv_inertia * w.torque;
-            }
-        }
-    }
-
-    /// x += h v, θ += h ω (symplectic Euler) for every awake moving body.
-    fn integrate_positions(&mut self, h: f64) {
-        for (sim, r) in self.sims.iter().zip(&mut self.bodies[1..]) {
-            if !sim.moving() {
-                continue;
-            }
-            r.dp += h * r.v;
-            if r.w != 0.0 {
-                r.dtheta += h * r.w;
-                let (s, c) = r.dtheta.sin_cos();
-                r.dq = (c, s);
-            }
-        }
-    }
-
     /// Stage 6: the solver's motion into the world's states, with the
     /// non-finite guard naming the body.
+    #[inline(never)]
     fn write_states(&mut self, core: &mut WorldCore, t0: f64, step: u64) -> Result<()> {
         for (id, sim) in self.sims.iter().enumerate() {
             if !sim.moving() {
@@ -607,6 +593,7 @@ impl SoftStep {
 
     /// Stage 7: bounding boxes into the broad phase, fast bodies swept
     /// against static ones, sleep timers.
+    #[inline(never)]
     fn finalize_bodies(&mut self, core: &mut WorldCore, dt: f64) {
         let settings = self.settings;
         for id in 0..self.sims.len() {
@@ -684,6 +671,7 @@ impl SoftStep {
 
     /// Stage 8: islands whose every body has been at rest for the time to
     /// sleep fall asleep.
+    #[inline(never)]
     fn sleep(&mut self, core: &mut WorldCore) {
         self.touching_pairs.clear();
         for c in &self.contacts.contacts {
@@ -763,85 +751,5 @@ impl SoftStep {
             0.0,
         );
         self.bodies[id + 1] = SolverBody::AT_REST;
-    }
-
-    /// Events crossed during the substep `(t_a, t_b)`, located by linear
-    /// interpolation between its start and end states; returns whether a
-    /// terminal one stopped the world (its state written to `core`).
-    fn locate_events(
-        &mut self,
-        core: &mut WorldCore,
-        (t_a, t_b): (f64, f64),
-        found: &mut Vec<EventRecord>,
-    ) -> bool {
-        let state_at = |records: &[SolverBody], id: BodyId| {
-            let r = &records[id + 1];
-            let s = core.states[id];
-            if self.sims[id].moving() {
-                BodyState {
-                    position: s.position + r.dp,
-                    angle: s.angle + r.dtheta,
-                    velocity: r.v,
-                    angular_velocity: r.w,
-                }
-            } else {
-                s
-            }
-        };
-        let mut hits: Vec<(f64, usize)> = Vec::new();
-        for (index, spec) in core.events.iter().enumerate() {
-            let ga = spec.quantity.of(&state_at(&self.substep_start, spec.body)) - spec.level;
-            let gb = spec.quantity.of(&state_at(&self.bodies, spec.body)) - spec.level;
-            if spec.crossing.detects(ga, gb) {
-                let f = if gb == ga { 1.0 } else { ga / (ga - gb) };
-                hits.push((f, index));
-            }
-        }
-        if hits.is_empty() {
-            return false;
-        }
-        hits.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let mut stop: Option<(f64, Vec<BodyState>)> = None;
-        let interpolate = |f: f64| -> Vec<BodyState> {
-            (0..core.states.len())
-                .map(|id| {
-                    let (a, b) = (
-                        state_at(&self.substep_start, id),
-                        state_at(&self.bodies, id),
-                    );
-                    BodyState {
-                        position: a.position + f * (b.position - a.position),
-                        angle: a.angle + f * (b.angle - a.angle),
-                        velocity: a.velocity + f * (b.velocity - a.velocity),
-                        angular_velocity: a.angular_velocity
-                            + f * (b.angular_velocity - a.angular_velocity),
-                    }
-                })
-                .collect()
-        };
-        for (f, index) in hits {
-            let t = if f >= 1.0 { t_b } else { t_a + f * (t_b - t_a) };
-            let states = interpolate(f);
-            let spec = &core.events[index];
-            let terminal = spec.terminal;
-            found.push(EventRecord {
-                name: spec.name.clone(),
-                t,
-                states: states.clone(),
-            });
-            if terminal {
-                stop = Some((t, states));
-                break;
-            }
-        }
-        match stop {
-            Some((t, states)) => {
-                core.states = states;
-                core.time = t;
-                core.stopped = true;
-                true
-            }
-            None => false,
-        }
     }
 }

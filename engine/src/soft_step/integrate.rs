@@ -1,0 +1,78 @@
+//! The integration stages of each substep: velocities from gravity and
+//! the force generators, then positions from velocities (symplectic Euler),
+//! on the solver's records of the moving bodies ([`super::bodies`]).
+
+use super::SoftStep;
+use super::bodies;
+use crate::body::BodyKind;
+use crate::forces::{ForceContext, Wrench};
+use crate::world_core::WorldCore;
+use nalgebra::Vector2;
+
+impl SoftStep {
+    /// v += h (g + F/m), ω += h τ/I for every awake dynamic body; the force
+    /// generators (other than uniform fields) see the state at the
+    /// substep's start, at time `t_sub`, active as at `middle`.
+    #[inline(never)]
+    pub(super) fn integrate_velocities(
+        &mut self,
+        core: &WorldCore,
+        h: f64,
+        gravity: Vector2<f64>,
+        general: Option<(f64, f64)>,
+    ) {
+        if let Some((t_sub, middle)) = general {
+            self.force_states.clone_from(&core.states);
+            for (id, sim) in self.sims.iter().enumerate() {
+                if sim.moving() {
+                    let r = &self.bodies[id + 1];
+                    let s = &mut self.force_states[id];
+                    s.position += r.dp;
+                    s.angle += r.dtheta;
+                    s.velocity = r.v;
+                    s.angular_velocity = r.w;
+                }
+            }
+            self.wrenches.clear();
+            self.wrenches.resize(core.bodies.len(), Wrench::default());
+            let ctx = ForceContext {
+                t: t_sub,
+                bodies: &core.bodies,
+                states: &self.force_states,
+            };
+            for f in &core.forces {
+                if f.window.contains(middle) && f.force.uniform_acceleration().is_none() {
+                    f.force.apply(&ctx, &mut self.wrenches);
+                }
+            }
+        }
+        for (id, sim) in self.sims.iter().enumerate() {
+            if sim.kind != BodyKind::Dynamic || sim.asleep {
+                continue;
+            }
+            let r = &mut self.bodies[id + 1];
+            r.v += h * gravity;
+            if general.is_some() {
+                let w = &self.wrenches[id];
+                r.v += (h * sim.inv_mass) * w.force;
+                r.w += h * sim.inv_inertia * w.torque;
+            }
+        }
+    }
+
+    /// x += h v, θ += h ω (symplectic Euler) for every awake moving body.
+    #[inline(never)]
+    pub(super) fn integrate_positions(&mut self, h: f64) {
+        for (sim, r) in self.sims.iter().zip(&mut self.bodies[1..]) {
+            if !sim.moving() {
+                continue;
+            }
+            r.dp += h * r.v;
+            if r.w != 0.0 {
+                r.dtheta += h * r.w;
+                let (s, c) = bodies::small_sin_cos(r.dtheta);
+                r.dq = (c, s);
+            }
+        }
+    }
+}

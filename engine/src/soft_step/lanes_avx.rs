@@ -1,0 +1,207 @@
+//! Four f64 lanes in one AVX register, for the wide solver's passes on CPUs
+//! that have AVX (checked at run time: the build targets the x86-64
+//! baseline, SSE2, so [`super::lanes::F64x4`] is what every CPU runs
+//! otherwise).
+//!
+//! Why: with SSE2 a four-lane value takes two registers and each operation
+//! two instructions, and the two-operand SSE2 forms need register copies;
+//! AVX does four lanes per instruction in three-operand form. Only plain
+//! IEEE adds, subtractions, multiplications, comparisons, `maxpd`/`minpd`
+//! and blends are used (no fused multiply-add), so the results are the
+//! same bits as the SSE2 path and the scalar solver: which path runs does
+//! not change the simulation.
+//!
+//! Safety: an [`Avx4`] executes AVX instructions in its operations. Values
+//! of it exist only inside the functions of [`super::wide_solver`] marked
+//! `#[target_feature(enable = "avx")]`, which are entered only after
+//! [`detected`] returned true; that is the invariant every `unsafe` block
+//! here relies on. The type is private to the soft step.
+
+use super::lanes::{F64x4, LANES, Lanes};
+use std::arch::x86_64::{
+    __m256d, _CMP_EQ_OQ, _CMP_GT_OQ, _mm256_add_pd, _mm256_blendv_pd, _mm256_cmp_pd,
+    _mm256_load_pd, _mm256_loadu_pd, _mm256_max_pd, _mm256_min_pd, _mm256_movemask_pd,
+    _mm256_mul_pd, _mm256_or_pd, _mm256_set1_pd, _mm256_store_pd, _mm256_storeu_pd, _mm256_sub_pd,
+    _mm256_xor_pd,
+};
+use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
+
+/// Whether this CPU has AVX (cached by the standard library after the
+/// first call).
+#[inline]
+pub(crate) fn detected() -> bool {
+    std::is_x86_feature_detected!("avx")
+}
+
+/// Four f64 lanes in an AVX register (see the module's safety note).
+#[derive(Clone, Copy)]
+pub(crate) struct Avx4(__m256d);
+
+/// A lane-wise condition: all bits set in the lanes where it holds.
+#[derive(Clone, Copy)]
+pub(crate) struct AvxMask(__m256d);
+
+// `F64x4` is 32 bytes aligned to 32 (the `wide` crate's layout), so its
+// address is valid for an aligned 256-bit load or store.
+const _: () = assert!(
+    std::mem::size_of::<F64x4>() == 32 && std::mem::align_of::<F64x4>() == 32 && LANES == 4
+);
+
+macro_rules! binary {
+    ($trait:ident, $method:ident, $intrinsic:ident) => {
+        impl $trait for Avx4 {
+            type Output = Avx4;
+            #[inline(always)]
+            fn $method(self, other: Avx4) -> Avx4 {
+                // SAFETY: AVX is available (module invariant).
+                Avx4(unsafe { $intrinsic(self.0, other.0) })
+            }
+        }
+    };
+}
+
+binary!(Add, add, _mm256_add_pd);
+binary!(Sub, sub, _mm256_sub_pd);
+binary!(Mul, mul, _mm256_mul_pd);
+
+impl Neg for Avx4 {
+    type Output = Avx4;
+    /// Flips the sign bit, as the scalar `-x`.
+    #[inline(always)]
+    fn neg(self) -> Avx4 {
+        // SAFETY: AVX is available (module invariant).
+        Avx4(unsafe { _mm256_xor_pd(self.0, _mm256_set1_pd(-0.0)) })
+    }
+}
+
+impl AddAssign for Avx4 {
+    #[inline(always)]
+    fn add_assign(&mut self, other: Avx4) {
+        *self = *self + other;
+    }
+}
+
+impl SubAssign for Avx4 {
+    #[inline(always)]
+    fn sub_assign(&mut self, other: Avx4) {
+        *self = *self - other;
+    }
+}
+
+impl Lanes for Avx4 {
+    type Mask = AvxMask;
+
+    #[inline(always)]
+    fn load(x: &F64x4) -> Self {
+        // SAFETY: AVX is available (module invariant); `x` is 32 readable
+        // bytes aligned to 32 (checked above).
+        Avx4(unsafe { _mm256_load_pd((x as *const F64x4).cast::<f64>()) })
+    }
+
+    #[inline(always)]
+    fn store(self, x: &mut F64x4) {
+        // SAFETY: as `load`, for 32 writable bytes.
+        unsafe { _mm256_store_pd((x as *mut F64x4).cast::<f64>(), self.0) }
+    }
+
+    #[inline(always)]
+    fn splat(x: f64) -> Self {
+        // SAFETY: AVX is available (module invariant).
+        Avx4(unsafe { _mm256_set1_pd(x) })
+    }
+
+    #[inline(always)]
+    fn from_array(a: [f64; LANES]) -> Self {
+        // SAFETY: AVX is available (module invariant); `a` is 32 readable
+        // bytes (an unaligned load).
+        Avx4(unsafe { _mm256_loadu_pd(a.as_ptr()) })
+    }
+
+    #[inline(always)]
+    fn to_array(self) -> [f64; LANES] {
+        let mut a = [0.0; LANES];
+        // SAFETY: AVX is available (module invariant); `a` is 32 writable
+        // bytes (an unaligned store).
+        unsafe { _mm256_storeu_pd(a.as_mut_ptr(), self.0) };
+        a
+    }
+
+    #[inline(always)]
+    fn max(self, other: Self) -> Self {
+        // SAFETY: AVX is available (module invariant).
+        Avx4(unsafe { _mm256_max_pd(self.0, other.0) })
+    }
+
+    #[inline(always)]
+    fn min(self, other: Self) -> Self {
+        // SAFETY: AVX is available (module invariant).
+        Avx4(unsafe { _mm256_min_pd(self.0, other.0) })
+    }
+
+    #[inline(always)]
+    fn gt(self, other: Self) -> AvxMask {
+        // SAFETY: AVX is available (module invariant).
+        AvxMask(unsafe { _mm256_cmp_pd::<_CMP_GT_OQ>(self.0, other.0) })
+    }
+
+    #[inline(always)]
+    fn eq(self, other: Self) -> AvxMask {
+        // SAFETY: AVX is available (module invariant).
+        AvxMask(unsafe { _mm256_cmp_pd::<_CMP_EQ_OQ>(self.0, other.0) })
+    }
+
+    #[inline(always)]
+    fn select(mask: AvxMask, yes: Self, no: Self) -> Self {
+        // SAFETY: AVX is available (module invariant).
+        Avx4(unsafe { _mm256_blendv_pd(no.0, yes.0, mask.0) })
+    }
+
+    #[inline(always)]
+    fn or(a: AvxMask, b: AvxMask) -> AvxMask {
+        // SAFETY: AVX is available (module invariant).
+        AvxMask(unsafe { _mm256_or_pd(a.0, b.0) })
+    }
+
+    #[inline(always)]
+    fn all(mask: AvxMask) -> bool {
+        // SAFETY: AVX is available (module invariant).
+        unsafe { _mm256_movemask_pd(mask.0) == 0b1111 }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn avx_lanes_give_the_bits_of_the_sse2_lanes() {
+        if !detected() {
+            return; // Nothing to compare on this CPU.
+        }
+        let (x, y) = ([1.5, -2.0, 0.1, -0.0], [0.5, 4.0, 0.1, 0.0]);
+        let (a, b) = (F64x4::new(x), F64x4::new(y));
+        // The CPU has AVX (checked above): Avx4 values may exist.
+        let (p, q) = (Avx4::from_array(x), Avx4::from_array(y));
+        let same = |avx: Avx4, sse: F64x4| {
+            let bits = |v: [f64; 4]| v.map(f64::to_bits);
+            assert_eq!(bits(avx.to_array()), bits(sse.to_array()));
+        };
+        same(p + q, a + b);
+        same(p - q, a - b);
+        same(p * q, a * b);
+        same(-p, -a);
+        same(p.max(q), Lanes::max(a, b));
+        same(p.min(q), Lanes::min(a, b));
+        same(p.clamp(-q, q), a.clamp(-b, b));
+        same(Avx4::select(p.gt(q), p, q), F64x4::select(a.gt(b), a, b));
+        same(Avx4::select(p.eq(q), p, q), F64x4::select(a.eq(b), a, b));
+        assert_eq!(
+            Avx4::all(Avx4::or(p.gt(q), q.gt(p))),
+            F64x4::all(F64x4::or(a.gt(b), b.gt(a)))
+        );
+        let mut stored = F64x4::default();
+        Avx4::load(&a).store(&mut stored);
+        assert_eq!(stored, a);
+        same(Avx4::splat(3.0), Lanes::splat(3.0));
+    }
+}

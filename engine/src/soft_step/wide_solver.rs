@@ -1,0 +1,689 @@
+//! The contact solver four constraints at a time (Box2D v3's SIMD path of
+//! `contact_solver.c`, written anew for f64): the constraints of one colour
+//! ([`super::colouring`]) share no dynamic body, so four of them are packed
+//! side by side, one per lane of [`F64x4`], and every pass (warm start,
+//! solve, relax, restitution) runs on the four at once.
+//!
+//! Each pass gathers the two bodies of each lane (velocities, motion since
+//! the step began), applies the scalar solver's formulas lane by lane, and
+//! scatters the velocities back. The formulas and their order of operations
+//! are those of [`super::contact_solver`], the reference implementation: a
+//! lane gives the same bits as the scalar code on the same constraint, and
+//! solving a colour here gives what solving its constraints one after the
+//! other would give (tested below).
+//!
+//! Layout: what the passes read and write every substep is in
+//! [`WideConstraint`] (structure of arrays, 992 bytes per four constraints);
+//! what only restitution and the store read is in [`WideExtra`]. A
+//! constraint of one point has a second point with zero mass, and a colour
+//! whose size is not a multiple of four has padding lanes between the
+//! static dummy body and itself, with zero masses: both give zero impulses
+//! and change nothing.
+
+use super::bodies::SolverBody;
+use super::contact_solver::{ConstraintPoint, ContactConstraint};
+use super::contacts::Contact;
+use super::lanes::{F64x4, LANES, Lanes};
+#[cfg(target_arch = "x86_64")]
+use super::lanes_avx::{self, Avx4};
+
+/// One point of four constraints.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct WidePoint {
+    /// Anchors from each centre of mass (m).
+    pub ra_x: F64x4,
+    pub ra_y: F64x4,
+    pub rb_x: F64x4,
+    pub rb_y: F64x4,
+    /// Separation minus n·(r_B − r_A) at the step's start (m).
+    pub base_separation: F64x4,
+    /// Effective masses along the normal and the tangent (kg).
+    pub normal_mass: F64x4,
+    pub tangent_mass: F64x4,
+    /// Accumulated impulses (N·s).
+    pub normal_impulse: F64x4,
+    pub tangent_impulse: F64x4,
+    /// Sum of the normal impulses applied this step (N·s).
+    pub total_normal_impulse: F64x4,
+}
+
+/// Four constraints of one colour, one per lane: what every substep reads.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct WideConstraint {
+    /// Solver indices of the bodies (0: the static dummy).
+    pub a: [u32; LANES],
+    pub b: [u32; LANES],
+    /// Unit normal from A to B.
+    pub normal_x: F64x4,
+    pub normal_y: F64x4,
+    pub friction: F64x4,
+    pub inv_mass_a: F64x4,
+    pub inv_inertia_a: F64x4,
+    pub inv_mass_b: F64x4,
+    pub inv_inertia_b: F64x4,
+    /// Softness ([`super::Softness`]) of each lane.
+    pub bias_rate: F64x4,
+    pub mass_scale: F64x4,
+    pub impulse_scale: F64x4,
+    pub points: [WidePoint; 2],
+}
+
+/// What restitution and the store read of four constraints.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct WideExtra {
+    pub restitution: F64x4,
+    /// Normal velocity of each point before the solve (m/s).
+    pub normal_velocity: [F64x4; 2],
+}
+
+/// Writes constraint `c` into lane `l` of `(w, e)`, every field of the lane
+/// (a missing second point as zeros).
+#[inline(always)]
+pub(crate) fn set_lane(
+    (w, e): (&mut WideConstraint, &mut WideExtra),
+    l: usize,
+    c: &ContactConstraint,
+) {
+    let index = |i: usize| u32::try_from(i).expect("fewer than 2³² bodies");
+    w.a[l] = index(c.a);
+    w.b[l] = index(c.b);
+    w.normal_x.set_lane(l, c.normal.x);
+    w.normal_y.set_lane(l, c.normal.y);
+    w.friction.set_lane(l, c.friction);
+    w.inv_mass_a.set_lane(l, c.inv_mass_a);
+    w.inv_inertia_a.set_lane(l, c.inv_inertia_a);
+    w.inv_mass_b.set_lane(l, c.inv_mass_b);
+    w.inv_inertia_b.set_lane(l, c.inv_inertia_b);
+    w.bias_rate.set_lane(l, c.softness.bias_rate);
+    w.mass_scale.set_lane(l, c.softness.mass_scale);
+    w.impulse_scale.set_lane(l, c.softness.impulse_scale);
+    e.restitution.set_lane(l, c.restitution);
+    for k in 0..2 {
+        let cp = if k < c.count {
+            c.points[k]
+        } else {
+            ConstraintPoint::default()
+        };
+        let p = &mut w.points[k];
+        p.ra_x.set_lane(l, cp.ra.x);
+        p.ra_y.set_lane(l, cp.ra.y);
+        p.rb_x.set_lane(l, cp.rb.x);
+        p.rb_y.set_lane(l, cp.rb.y);
+        p.base_separation.set_lane(l, cp.base_separation);
+        p.normal_mass.set_lane(l, cp.normal_mass);
+        p.tangent_mass.set_lane(l, cp.tangent_mass);
+        p.normal_impulse.set_lane(l, cp.normal_impulse);
+        p.tangent_impulse.set_lane(l, cp.tangent_impulse);
+        p.total_normal_impulse.set_lane(l, cp.total_normal_impulse);
+        e.normal_velocity[k].set_lane(l, cp.normal_velocity);
+    }
+}
+
+/// Makes lane `l` of `(w, e)` padding: between the static dummy and itself,
+/// zero masses and zero points, so it gives zero impulses.
+pub(crate) fn set_padding_lane((w, e): (&mut WideConstraint, &mut WideExtra), l: usize) {
+    let padding = ContactConstraint {
+        a: 0,
+        b: 0,
+        contact: 0,
+        normal: nalgebra::Vector2::zeros(),
+        friction: 0.0,
+        restitution: 0.0,
+        inv_mass_a: 0.0,
+        inv_inertia_a: 0.0,
+        inv_mass_b: 0.0,
+        inv_inertia_b: 0.0,
+        softness: super::Softness::RIGID,
+        count: 0,
+        points: [ConstraintPoint::default(); 2],
+    };
+    set_lane((w, e), l, &padding);
+}
+
+/// Four bodies' velocities: what the passes change.
+#[derive(Clone, Copy)]
+struct WideBody<L> {
+    vx: L,
+    vy: L,
+    w: L,
+}
+
+impl<L: Lanes> WideBody<L> {
+    /// ω × r + v at anchors `(rx, ry)`: the velocity of the anchored point.
+    #[inline(always)]
+    fn point_velocity(&self, rx: L, ry: L) -> (L, L) {
+        (self.vx + -self.w * ry, self.vy + self.w * rx)
+    }
+}
+
+/// Field `f` of the four lanes' bodies. (Plain functions, not closures,
+/// in the generic pass code: a closure is compiled without the AVX
+/// feature of the function it sits in, so it would not be inlined there.)
+#[inline(always)]
+fn field<L: Lanes>(b: &[&SolverBody; LANES], f: fn(&SolverBody) -> f64) -> L {
+    L::from_array([f(b[0]), f(b[1]), f(b[2]), f(b[3])])
+}
+
+/// Reads the velocities of the four lanes' bodies.
+#[inline(always)]
+fn gather<L: Lanes>(bodies: &[SolverBody], index: &[u32; LANES]) -> WideBody<L> {
+    let b = [0, 1, 2, 3].map(|l| &bodies[index[l] as usize]);
+    WideBody {
+        vx: field(&b, |b| b.v.x),
+        vy: field(&b, |b| b.v.y),
+        w: field(&b, |b| b.w),
+    }
+}
+
+/// Writes back the velocities of the four lanes. A body met in two lanes
+/// is static or kinematic, whose velocity no lane changed, so the order of
+/// the writes does not matter.
+#[inline(always)]
+fn scatter<L: Lanes>(bodies: &mut [SolverBody], index: &[u32; LANES], w: &WideBody<L>) {
+    let (vx, vy, omega) = (w.vx.to_array(), w.vy.to_array(), w.w.to_array());
+    for (l, &i) in index.iter().enumerate() {
+        let b = &mut bodies[i as usize];
+        b.v.x = vx[l];
+        b.v.y = vy[l];
+        b.w = omega[l];
+    }
+}
+
+/// The current separation of both points of the four lanes, from the
+/// bodies' motion since the step began: s = s0 + n·(Δp_B + R(Δθ_B) r_B −
+/// Δp_A − R(Δθ_A) r_A) (the passes change velocities only, so this is
+/// computed once per pass, before the impulses).
+#[inline(always)]
+fn separations<L: Lanes>(bodies: &[SolverBody], c: &WideConstraint) -> [L; 2] {
+    let a = [0, 1, 2, 3].map(|l| &bodies[c.a[l] as usize]);
+    let b = [0, 1, 2, 3].map(|l| &bodies[c.b[l] as usize]);
+    let motion = Motion {
+        dpx: field::<L>(&b, |b| b.dp.x) - field(&a, |b| b.dp.x),
+        dpy: field::<L>(&b, |b| b.dp.y) - field(&a, |b| b.dp.y),
+        ca: field(&a, |b| b.dq.0),
+        sa: field(&a, |b| b.dq.1),
+        cb: field(&b, |b| b.dq.0),
+        sb: field(&b, |b| b.dq.1),
+        nx: L::load(&c.normal_x),
+        ny: L::load(&c.normal_y),
+    };
+    [
+        motion.separation(&c.points[0]),
+        motion.separation(&c.points[1]),
+    ]
+}
+
+/// The relative motion of four pairs of bodies since the step began, and
+/// their normals.
+#[derive(Clone, Copy)]
+struct Motion<L> {
+    /// Δp_B − Δp_A.
+    dpx: L,
+    dpy: L,
+    /// cos and sin of each body's rotation since the step began.
+    ca: L,
+    sa: L,
+    cb: L,
+    sb: L,
+    nx: L,
+    ny: L,
+}
+
+impl<L: Lanes> Motion<L> {
+    /// The current separation of point `p`.
+    #[inline(always)]
+    fn separation(&self, p: &WidePoint) -> L {
+        let (ra_x, ra_y) = (L::load(&p.ra_x), L::load(&p.ra_y));
+        let (rb_x, rb_y) = (L::load(&p.rb_x), L::load(&p.rb_y));
+        let (cb, sb, ca, sa) = (self.cb, self.sb, self.ca, self.sa);
+        let (rbx, rby) = (cb * rb_x - sb * rb_y, sb * rb_x + cb * rb_y);
+        let (rax, ray) = (ca * ra_x - sa * ra_y, sa * ra_x + ca * ra_y);
+        let dsx = self.dpx + rbx - rax;
+        let dsy = self.dpy + rby - ray;
+        L::load(&p.base_separation) + (dsx * self.nx + dsy * self.ny)
+    }
+}
+
+/// The inverse masses of four constraints' bodies.
+#[derive(Clone, Copy)]
+struct Masses<L> {
+    a: L,
+    ia: L,
+    b: L,
+    ib: L,
+}
+
+impl<L: Lanes> Masses<L> {
+    #[inline(always)]
+    fn of(c: &WideConstraint) -> Self {
+        Masses {
+            a: L::load(&c.inv_mass_a),
+            ia: L::load(&c.inv_inertia_a),
+            b: L::load(&c.inv_mass_b),
+            ib: L::load(&c.inv_inertia_b),
+        }
+    }
+}
+
+/// A point's anchors, loaded.
+#[derive(Clone, Copy)]
+struct Anchors<L> {
+    ra_x: L,
+    ra_y: L,
+    rb_x: L,
+    rb_y: L,
+}
+
+impl<L: Lanes> Anchors<L> {
+    #[inline(always)]
+    fn of(p: &WidePoint) -> Self {
+        Anchors {
+            ra_x: L::load(&p.ra_x),
+            ra_y: L::load(&p.ra_y),
+            rb_x: L::load(&p.rb_x),
+            rb_y: L::load(&p.rb_y),
+        }
+    }
+
+    /// The velocity of the point on B relative to the point on A.
+    #[inline(always)]
+    fn relative_velocity(&self, (a, b): (&WideBody<L>, &WideBody<L>)) -> (L, L) {
+        let (vax, vay) = a.point_velocity(self.ra_x, self.ra_y);
+        let (vbx, vby) = b.point_velocity(self.rb_x, self.rb_y);
+        (vbx - vax, vby - vay)
+    }
+}
+
+/// Applies impulse `(px, py)` at anchors `r`: −P on A, +P on B.
+#[inline(always)]
+fn apply<L: Lanes>(
+    m: &Masses<L>,
+    (a, b): (&mut WideBody<L>, &mut WideBody<L>),
+    r: &Anchors<L>,
+    (px, py): (L, L),
+) {
+    a.vx -= m.a * px;
+    a.vy -= m.a * py;
+    a.w -= m.ia * (r.ra_x * py - r.ra_y * px);
+    b.vx += m.b * px;
+    b.vy += m.b * py;
+    b.w += m.ib * (r.rb_x * py - r.rb_y * px);
+}
+
+/// Runs `$generic::<lane type>(args)` with AVX lanes when the CPU has AVX,
+/// with SSE2 lanes otherwise; `$avx` is the AVX-compiled instance.
+macro_rules! dispatch {
+    ($generic:ident, $avx:ident, ($($arg:ident: $ty:ty),*)) => {
+        /// The AVX instance.
+        ///
+        /// # Safety
+        /// The CPU must have AVX. (An `unsafe fn`, not a safe one with a
+        /// target feature, which needs Rust 1.86: the workspace's minimum
+        /// is 1.85.)
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx")]
+        unsafe fn $avx($($arg: $ty),*) {
+            $generic::<Avx4>($($arg),*)
+        }
+
+        #[cfg(target_arch = "x86_64")]
+        if lanes_avx::detected() {
+            // SAFETY: the CPU has AVX (just checked), which is all `$avx`
+            // requires.
+            unsafe { $avx($($arg),*) };
+            return;
+        }
+        $generic::<F64x4>($($arg),*);
+    };
+}
+
+/// Applies every constraint's accumulated impulses.
+#[inline(never)]
+pub(crate) fn warm_start(constraints: &mut [WideConstraint], bodies: &mut [SolverBody]) {
+    dispatch!(warm_start_with, warm_start_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody]));
+}
+
+#[inline(always)]
+fn warm_start_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: &mut [SolverBody]) {
+    for c in constraints.iter_mut() {
+        let (mut a, mut b) = (gather::<L>(bodies, &c.a), gather::<L>(bodies, &c.b));
+        let m = Masses::of(c);
+        let (nx, ny) = (L::load(&c.normal_x), L::load(&c.normal_y));
+        let (tx, ty) = (ny, -nx);
+        for p in &mut c.points {
+            let (normal_impulse, tangent_impulse) =
+                (L::load(&p.normal_impulse), L::load(&p.tangent_impulse));
+            let px = normal_impulse * nx + tangent_impulse * tx;
+            let py = normal_impulse * ny + tangent_impulse * ty;
+            (L::load(&p.total_normal_impulse) + normal_impulse).store(&mut p.total_normal_impulse);
+            apply(&m, (&mut a, &mut b), &Anchors::of(p), (px, py));
+        }
+        scatter(bodies, &c.a, &a);
+        scatter(bodies, &c.b, &b);
+    }
+}
+
+/// The solve pass, with the soft bias (see [`super::contact_solver::solve`]).
+#[inline(never)]
+pub(crate) fn solve(
+    constraints: &mut [WideConstraint],
+    bodies: &mut [SolverBody],
+    inv_h: f64,
+    push_out_speed: f64,
+) {
+    dispatch!(solve_with, solve_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64, push_out_speed: f64));
+}
+
+#[inline(always)]
+fn solve_with<L: Lanes>(
+    constraints: &mut [WideConstraint],
+    bodies: &mut [SolverBody],
+    inv_h: f64,
+    push_out_speed: f64,
+) {
+    pass::<L, true>(constraints, bodies, inv_h, push_out_speed);
+}
+
+/// The relax pass: without bias, with friction.
+#[inline(never)]
+pub(crate) fn relax(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
+    dispatch!(relax_with, relax_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64));
+}
+
+#[inline(always)]
+fn relax_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
+    pass::<L, false>(constraints, bodies, inv_h, 0.0);
+}
+
+/// One pass of sequential impulses over four lanes at a time.
+#[inline(always)]
+fn pass<L: Lanes, const BIAS: bool>(
+    constraints: &mut [WideConstraint],
+    bodies: &mut [SolverBody],
+    inv_h: f64,
+    push_out_speed: f64,
+) {
+    let inv_h = L::splat(inv_h);
+    let min_bias = L::splat(-push_out_speed);
+    let (zero, one) = (L::splat(0.0), L::splat(1.0));
+    for c in constraints.iter_mut() {
+        let separation = separations::<L>(bodies, c);
+        let (mut a, mut b) = (gather::<L>(bodies, &c.a), gather::<L>(bodies, &c.b));
+        let m = Masses::of(c);
+        let (nx, ny) = (L::load(&c.normal_x), L::load(&c.normal_y));
+        let (bias_rate, mass_scale, impulse_scale) = if BIAS {
+            let mass_scale = L::load(&c.mass_scale);
+            (
+                mass_scale * L::load(&c.bias_rate),
+                mass_scale,
+                L::load(&c.impulse_scale),
+            )
+        } else {
+            (zero, one, zero)
+        };
+        for (p, s) in c.points.iter_mut().zip(separation) {
+            let speculative = s.gt(zero);
+            let bias = L::select(speculative, s * inv_h, (bias_rate * s).max(min_bias));
+            let point_mass_scale = L::select(speculative, one, mass_scale);
+            let point_impulse_scale = L::select(speculative, zero, impulse_scale);
+            let r = Anchors::of(p);
+            let (dvx, dvy) = r.relative_velocity((&a, &b));
+            let vn = dvx * nx + dvy * ny;
+            let normal_impulse = L::load(&p.normal_impulse);
+            let impulse = -L::load(&p.normal_mass) * (point_mass_scale * vn + bias)
+                - point_impulse_scale * normal_impulse;
+            let accumulated = (normal_impulse + impulse).max(zero);
+            let impulse = accumulated - normal_impulse;
+            accumulated.store(&mut p.normal_impulse);
+            (L::load(&p.total_normal_impulse) + impulse).store(&mut p.total_normal_impulse);
+            apply(&m, (&mut a, &mut b), &r, (impulse * nx, impulse * ny));
+        }
+        if !BIAS {
+            let friction = L::load(&c.friction);
+            let (tx, ty) = (ny, -nx);
+            for p in &mut c.points {
+                let r = Anchors::of(p);
+                let (dvx, dvy) = r.relative_velocity((&a, &b));
+                let vt = dvx * tx + dvy * ty;
+                let max_friction = friction * L::load(&p.normal_impulse);
+                let tangent_impulse = L::load(&p.tangent_impulse);
+                let accumulated = (tangent_impulse - L::load(&p.tangent_mass) * vt)
+                    .clamp(-max_friction, max_friction);
+                let impulse = accumulated - tangent_impulse;
+                accumulated.store(&mut p.tangent_impulse);
+                apply(&m, (&mut a, &mut b), &r, (impulse * tx, impulse * ty));
+            }
+        }
+        scatter(bodies, &c.a, &a);
+        scatter(bodies, &c.b, &b);
+    }
+}
+
+/// The restitution pass (see [`super::contact_solver::restitution`]).
+#[inline(never)]
+pub(crate) fn restitution(
+    constraints: &mut [WideConstraint],
+    extras: &[WideExtra],
+    bodies: &mut [SolverBody],
+    threshold: f64,
+) {
+    dispatch!(restitution_with, restitution_avx, (constraints: &mut [WideConstraint], extras: &[WideExtra], bodies: &mut [SolverBody], threshold: f64));
+}
+
+#[inline(always)]
+fn restitution_with<L: Lanes>(
+    constraints: &mut [WideConstraint],
+    extras: &[WideExtra],
+    bodies: &mut [SolverBody],
+    threshold: f64,
+) {
+    let min_approach = L::splat(-threshold);
+    let zero = L::splat(0.0);
+    for (c, e) in constraints.iter_mut().zip(extras) {
+        let restitution = L::load(&e.restitution);
+        if L::all(restitution.eq(zero)) {
+            continue;
+        }
+        let (mut a, mut b) = (gather::<L>(bodies, &c.a), gather::<L>(bodies, &c.b));
+        let m = Masses::of(c);
+        let (nx, ny) = (L::load(&c.normal_x), L::load(&c.normal_y));
+        for (p, relative) in c.points.iter_mut().zip(&e.normal_velocity) {
+            let relative = L::load(relative);
+            let total = L::load(&p.total_normal_impulse);
+            // No restitution, slow approach, or no push during the solve:
+            // no bounce.
+            let skip = L::or(
+                L::or(relative.gt(min_approach), total.eq(zero)),
+                restitution.eq(zero),
+            );
+            let r = Anchors::of(p);
+            let (dvx, dvy) = r.relative_velocity((&a, &b));
+            let vn = dvx * nx + dvy * ny;
+            let normal_impulse = L::load(&p.normal_impulse);
+            let impulse = -L::load(&p.normal_mass) * (vn + restitution * relative);
+            let accumulated = (normal_impulse + impulse).max(zero);
+            let impulse = L::select(skip, zero, accumulated - normal_impulse);
+            L::select(skip, normal_impulse, accumulated).store(&mut p.normal_impulse);
+            L::select(skip, total, total + impulse).store(&mut p.total_normal_impulse);
+            apply(&m, (&mut a, &mut b), &r, (impulse * nx, impulse * ny));
+        }
+        scatter(bodies, &c.a, &a);
+        scatter(bodies, &c.b, &b);
+    }
+}
+
+/// Copies the impulses of lane `l` of `(w, e)` back into its contact.
+#[inline]
+pub(crate) fn store_lane((w, e): (&WideConstraint, &WideExtra), l: usize, contact: &mut Contact) {
+    let count = contact.count;
+    for (k, p) in contact.points[..count].iter_mut().enumerate() {
+        let q = &w.points[k];
+        p.normal_impulse = q.normal_impulse.lane(l);
+        p.tangent_impulse = q.tangent_impulse.lane(l);
+        p.total_normal_impulse = q.total_normal_impulse.lane(l);
+        p.normal_velocity = e.normal_velocity[k].lane(l);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::colouring::{Colouring, Slot};
+    use super::super::contact_solver::{self, ConstraintPoint};
+    use super::super::softness::Softness;
+    use super::*;
+    use nalgebra::Vector2;
+
+    /// A deterministic stream of numbers in [−1, 1) (a linear congruential
+    /// generator: the test needs variety, not quality).
+    struct Numbers(u64);
+
+    impl Numbers {
+        fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        }
+    }
+
+    /// Twelve moving bodies and the static dummy, a chain of contacts
+    /// between neighbours and one with the ground per body, with varied
+    /// anchors, separations (overlapping and speculative), impulses and
+    /// softness.
+    fn scene() -> (Vec<SolverBody>, Vec<ContactConstraint>) {
+        let mut n = Numbers(7);
+        let mut bodies = vec![SolverBody::AT_REST];
+        for _ in 0..12 {
+            let dtheta = 0.01 * n.next();
+            bodies.push(SolverBody {
+                v: Vector2::new(n.next(), n.next()),
+                w: n.next(),
+                dp: Vector2::new(0.01 * n.next(), 0.01 * n.next()),
+                dtheta,
+                dq: (dtheta.cos(), dtheta.sin()),
+            });
+        }
+        let soft = Softness::new(30.0, 10.0, 1.0 / 240.0);
+        let mut constraints = Vec::new();
+        let pairs = (1..12).map(|i| (i, i + 1)).chain((1..13).map(|i| (0, i)));
+        for (contact, (a, b)) in pairs.enumerate() {
+            let angle = n.next();
+            let normal = Vector2::new(angle.sin(), angle.cos());
+            let mut point = |k: usize| ConstraintPoint {
+                ra: Vector2::new(0.5 * n.next(), 0.5 * n.next()),
+                rb: Vector2::new(0.5 * n.next(), 0.5 * n.next()),
+                base_separation: 0.01 * n.next(),
+                normal_mass: 1.0 + n.next(),
+                tangent_mass: 1.0 + n.next(),
+                normal_impulse: (k as f64 + n.next()).max(0.0),
+                tangent_impulse: 0.1 * n.next(),
+                total_normal_impulse: 0.0,
+                normal_velocity: -2.0 * n.next().abs(),
+            };
+            let points = [point(0), point(1)];
+            let static_a = a == 0;
+            constraints.push(ContactConstraint {
+                a,
+                b,
+                contact,
+                normal,
+                friction: 0.6,
+                restitution: if contact % 3 == 0 { 0.5 } else { 0.0 },
+                inv_mass_a: if static_a { 0.0 } else { 1.0 },
+                inv_inertia_a: if static_a { 0.0 } else { 6.0 },
+                inv_mass_b: 0.5,
+                inv_inertia_b: 3.0,
+                softness: if static_a {
+                    Softness::new(60.0, 10.0, 1.0 / 240.0)
+                } else {
+                    soft
+                },
+                count: 1 + contact % 2,
+                points,
+            });
+        }
+        (bodies, constraints)
+    }
+
+    #[test]
+    fn a_colour_solved_in_lanes_gives_the_bits_of_the_scalar_solver() {
+        let (bodies, constraints) = scene();
+        let mut colouring = Colouring::default();
+        colouring.clear(13);
+        for c in &constraints {
+            let dynamic = |k: usize| (k != 0).then_some(k);
+            colouring.add(dynamic(c.a), dynamic(c.b));
+        }
+        let records = colouring.finish();
+        assert_eq!(colouring.overflow(), 0);
+        let mut wide = vec![WideConstraint::default(); records];
+        let mut extra = vec![WideExtra::default(); records];
+        let mut order = vec![(0, 0); constraints.len()];
+        for (i, c) in constraints.iter().enumerate() {
+            let Slot::Lane { record, lane } = colouring.slot(i) else {
+                unreachable!("no overflow")
+            };
+            set_lane((&mut wide[record], &mut extra[record]), lane, c);
+            order[i] = (record, lane);
+        }
+        for (record, lane) in colouring.padding() {
+            set_padding_lane((&mut wide[record], &mut extra[record]), lane);
+        }
+        // The scalar reference visits the constraints in the order the
+        // lanes solve them in: record after record, lane after lane.
+        let mut by_lane: Vec<usize> = (0..constraints.len()).collect();
+        by_lane.sort_by_key(|&i| order[i]);
+        let mut scalar: Vec<ContactConstraint> = by_lane.iter().map(|&i| constraints[i]).collect();
+        let (inv_h, push_out) = (240.0, 3.0);
+        let mut scalar_bodies = bodies.clone();
+        for _ in 0..3 {
+            contact_solver::warm_start(&mut scalar, &mut scalar_bodies);
+            contact_solver::solve(&mut scalar, &mut scalar_bodies, inv_h, push_out, true);
+            contact_solver::solve(&mut scalar, &mut scalar_bodies, inv_h, push_out, false);
+        }
+        contact_solver::restitution(&mut scalar, &mut scalar_bodies, 1.0);
+        let mut set = super::super::contacts::ContactSet::default();
+        for (i, c) in constraints.iter().enumerate() {
+            set.create((2 * i, 2 * i + 1), (c.a, c.b), 0.6, 0.0);
+            set.contacts[i].count = c.count;
+        }
+        let mut reference = set.contacts.clone();
+        contact_solver::store_impulses(&scalar, &mut reference);
+        // The SSE2 lanes (every x86-64 CPU), then the lanes this CPU runs
+        // (AVX when it has it): same operations in the same order on the
+        // same data as the scalar solver, so equal bits.
+        for sse2 in [true, false] {
+            let (mut wide, mut wide_bodies) = (wide.clone(), bodies.clone());
+            for _ in 0..3 {
+                if sse2 {
+                    warm_start_with::<F64x4>(&mut wide, &mut wide_bodies);
+                    solve_with::<F64x4>(&mut wide, &mut wide_bodies, inv_h, push_out);
+                    relax_with::<F64x4>(&mut wide, &mut wide_bodies, inv_h);
+                } else {
+                    warm_start(&mut wide, &mut wide_bodies);
+                    solve(&mut wide, &mut wide_bodies, inv_h, push_out);
+                    relax(&mut wide, &mut wide_bodies, inv_h);
+                }
+            }
+            if sse2 {
+                restitution_with::<F64x4>(&mut wide, &extra, &mut wide_bodies, 1.0);
+            } else {
+                restitution(&mut wide, &extra, &mut wide_bodies, 1.0);
+            }
+            assert_eq!(scalar_bodies, wide_bodies, "SSE2 only: {sse2}");
+            let mut contacts = set.contacts.clone();
+            for (i, &(record, lane)) in order.iter().enumerate() {
+                store_lane((&wide[record], &extra[record]), lane, &mut contacts[i]);
+            }
+            assert_eq!(reference, contacts, "SSE2 only: {sse2}");
+        }
+        // Restitution acted somewhere (the test covers it).
+        assert!(
+            scalar
+                .iter()
+                .zip(&constraints)
+                .any(|(c, _)| c.restitution > 0.0 && c.points[0].normal_velocity < -1.0)
+        );
+    }
+}
