@@ -346,7 +346,7 @@ fn check_energy(
 ) -> Result<()> {
     layout.unpack(y, sys.states);
     let energy = total_energy(bodies, forces, t_next, sys.states);
-    check_energy_value(energy, (t, t_next), step, limit)
+    check_energy_value(energy, (t, t_next), step, limit, (bodies, sys.states))
 }
 
 /// The parts of a world a contact segment works with, besides the

@@ -79,13 +79,44 @@ pub(crate) fn check_energy_value(
     (t, t_next): (f64, f64),
     step: u64,
     limit: f64,
+    (bodies, states): (&[Body], &[BodyState]),
 ) -> Result<()> {
     if energy.is_nan() || energy.abs() > limit {
         return Err(EngineError::BlowUp {
             t,
             step,
-            reason: format!("energy {energy:e} J at t = {t_next} s beyond the bound {limit:e} J"),
+            reason: format!(
+                "energy {} J at t = {} s beyond the bound {} J{}",
+                crate::error::readable(energy),
+                crate::error::readable(t_next),
+                crate::error::readable(limit),
+                culprit(bodies, states)
+            ),
         });
     }
     Ok(())
+}
+
+/// `"; body 'x' carries the most kinetic energy (… J, … m/s)"`: the body a
+/// blow-up most likely comes from, or nothing without dynamic bodies.
+fn culprit(bodies: &[Body], states: &[BodyState]) -> String {
+    let worst = bodies
+        .iter()
+        .zip(states)
+        .filter(|(b, _)| b.is_dynamic())
+        .map(|(b, s)| (b, s, b.kinetic_energy(s)))
+        .max_by(|x, y| {
+            // A NaN energy is the worst of all.
+            let key = |e: f64| if e.is_nan() { f64::INFINITY } else { e };
+            key(x.2).total_cmp(&key(y.2))
+        });
+    match worst {
+        Some((b, s, e)) => format!(
+            "; body '{}' carries the most kinetic energy ({} J, speed {} m/s)",
+            b.name,
+            crate::error::readable(e),
+            crate::error::readable(s.velocity.norm())
+        ),
+        None => String::new(),
+    }
 }

@@ -437,7 +437,7 @@ impl SoftStep {
         core.profiler.profile.steps += 1;
         if let Some(limit) = core.energy_limit {
             let energy = core.energy_of(t1, &core.states);
-            check_energy_value(energy, (t0, t1), step, limit)?;
+            check_energy_value(energy, (t0, t1), step, limit, (&core.bodies, &core.states))?;
         }
         Ok(())
     }
