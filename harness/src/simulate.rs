@@ -50,6 +50,7 @@ mod compare;
 mod diagnosis;
 mod linear_test;
 mod outputs;
+mod run_text;
 
 use outputs::{Output, check_outputs, outputs, write_all};
 pub use outputs::{refuse_special, write_atomically};
@@ -327,9 +328,11 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     let requested = outputs(args);
     check_outputs(&args.scene, &requested)?;
     let header = format!(
-        "{}: {}, dt = {dt} s, until {until} s ({steps} steps)",
+        "{}: {}, dt = {} s, until {} s ({steps} steps)",
         scene.origin(),
-        method.id()
+        method.id(),
+        run_text::short(dt),
+        run_text::short(until),
     );
     if scene.is_linear_test() {
         return linear_test::run_linear_test(&scene, args, method, (dt, until), &header);
@@ -344,6 +347,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         scene.build_world(None)?
     };
     println!("{header}");
+    println!("{}", run_text::model_line(&world));
     let limits = RunLimits {
         max_samples: args.max_samples,
         budget: args.budget,
@@ -454,8 +458,22 @@ fn summary(scene: &Scene, world: &World, rec: &Recorded, seconds: f64) -> String
             out.push('\n');
         }
     }
-    let _ = writeln!(out, "final state:");
-    for (body, (name, s)) in world.bodies().iter().zip(names.iter().zip(world.states())) {
+    if world.bodies().len() > run_text::LISTED_BODIES {
+        out.push_str(&run_text::pile_summary(world, &names, fmt_num));
+    } else {
+        let _ = writeln!(out, "final state:");
+    }
+    let listed = if world.bodies().len() > run_text::LISTED_BODIES {
+        0
+    } else {
+        world.bodies().len()
+    };
+    for (body, (name, s)) in world
+        .bodies()
+        .iter()
+        .zip(names.iter().zip(world.states()))
+        .take(listed)
+    {
         let _ = write!(
             out,
             "  {name}: x = {} m, y = {} m, vx = {} m/s, vy = {} m/s",

@@ -284,3 +284,57 @@ fn a_long_run_draws_no_progress_bar_when_stderr_is_not_a_terminal() {
     let csv = std::fs::read_to_string(dir.path().join("long.csv")).unwrap();
     assert_eq!(csv.lines().count(), 102);
 }
+
+/// A scene's contact model is printed with its settings, and a pile's
+/// final state is a summary, not a line per body. A pyramid of base 4 (10
+/// boxes) plus its ground lists its 11 bodies; one of base 5 (15 boxes) is
+/// summarised.
+#[test]
+fn the_contact_model_is_printed_and_a_pile_is_summarised() {
+    let temp = tempfile::tempdir().expect("temp dir");
+    let dir = temp.path().to_path_buf();
+    for (base, listed) in [(4, true), (5, false)] {
+        let scene = dir.join(format!("pyramid_{base}.toml"));
+        std::fs::write(
+            &scene,
+            format!(
+                "[simulation]\ndt = 0.0166666666666666666\nduration = 0.1\ngravity = [0.0, -10.0]\n\
+                 [contact]\nmodel = \"soft_step\"\n\
+                 [[bodies]]\nname = \"ground\"\nkind = \"static\"\nshape = {{ type = \"box\", width = 20.0, height = 1.0 }}\nposition = [0.0, -0.5]\n\
+                 [[generate]]\ntype = \"pyramid\"\nbase = {base}\nbox_size = 1.0\ndensity = 1.0\n"
+            ),
+        )
+        .unwrap();
+        let done = harness(&dir, &["simulate", scene.to_str().unwrap()]);
+        assert_eq!(done.code, Some(0), "{}", done.stderr);
+        assert!(
+            done.stdout
+                .contains("dt = 0.0166667 s, until 0.1 s (6 steps)"),
+            "{}",
+            done.stdout
+        );
+        assert!(
+            done.stdout
+                .contains("contacts: soft_step (4 substeps, contact 30 Hz, damping ratio 10,"),
+            "{}",
+            done.stdout
+        );
+        let per_body_lines = done.stdout.lines().filter(|l| l.contains(": x = ")).count();
+        if listed {
+            assert_eq!(per_body_lines, 11, "{}", done.stdout);
+        } else {
+            assert_eq!(per_body_lines, 0, "{}", done.stdout);
+            assert!(
+                done.stdout
+                    .contains("final state of 16 bodies (15 dynamic; every body's state: --trace)"),
+                "{}",
+                done.stdout
+            );
+            assert!(
+                done.stdout.contains("  fastest: pyramid_"),
+                "{}",
+                done.stdout
+            );
+        }
+    }
+}

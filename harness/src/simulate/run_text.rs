@@ -1,0 +1,167 @@
+//! What `simulate` prints about a run besides its events: the contact model
+//! and settings that ran (so a user sees which of the two models a scene
+//! got, and with what), and the final state, body by body for a few bodies
+//! or as a summary for a pile.
+
+use engine::{ContactModel, ToiMethod, World};
+use std::fmt::Write as _;
+
+/// Above this many bodies the final state is summarised (the CSV trace has
+/// every body).
+pub const LISTED_BODIES: usize = 12;
+
+/// A number for a line of text: at most six significant digits, trailing
+/// zeros dropped (`0.0166667`, `30`, `1e-10`).
+pub fn short(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let a = v.abs();
+    if (1e-4..1e6).contains(&a) {
+        let digits = (5 - a.log10().floor() as i32).max(0) as usize;
+        let text = format!("{v:.digits$}");
+        if text.contains('.') {
+            text.trim_end_matches('0').trim_end_matches('.').to_owned()
+        } else {
+            text
+        }
+    } else {
+        let text = format!("{v:.5e}");
+        let (mantissa, exponent) = text.split_once('e').expect("scientific notation");
+        let mantissa = if mantissa.contains('.') {
+            mantissa.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            mantissa
+        };
+        format!("{mantissa}e{exponent}")
+    }
+}
+
+/// `contacts: soft_step (4 substeps, …)`, `contacts: exact (…)` or
+/// `contacts: off (…)`: the model that runs and every setting that changes
+/// what it computes.
+pub fn model_line(world: &World) -> String {
+    match world.contact_model() {
+        Some(ContactModel::SoftStep(s)) => format!(
+            "contacts: soft_step ({} substeps, contact {} Hz, damping ratio {}, push-out {} m/s, \
+             friction {}, restitution {} above {} m/s, speculative {} m, continuous {}, sleeping {})",
+            s.substeps,
+            short(s.contact_hertz),
+            short(s.contact_damping_ratio),
+            short(s.push_out_speed),
+            short(s.friction),
+            short(s.restitution),
+            short(s.restitution_threshold),
+            short(s.speculative_distance),
+            on_off(s.continuous),
+            on_off(s.sleeping),
+        ),
+        Some(ContactModel::Exact(s)) => format!(
+            "contacts: exact (restitution {}, friction {}, tolerance {} m, resting below {} m/s, \
+             time of impact by {})",
+            short(s.restitution),
+            short(s.friction),
+            short(s.tolerance),
+            short(s.resting_speed),
+            match s.toi_method {
+                ToiMethod::Bisection => "bisection",
+                ToiMethod::ConservativeAdvancement => "conservative advancement",
+            },
+        ),
+        None => "contacts: off (the scene has no [contact] table: shapes pass through each other)"
+            .to_owned(),
+    }
+}
+
+fn on_off(on: bool) -> &'static str {
+    if on { "on" } else { "off" }
+}
+
+/// The final state of a world of more than [`LISTED_BODIES`] bodies in a
+/// few lines: how many bodies, the fastest, the highest and the lowest
+/// dynamic body.
+pub fn pile_summary(world: &World, names: &[&str], fmt: impl Fn(f64) -> String) -> String {
+    let mut out = String::new();
+    let dynamic: Vec<usize> = (0..world.bodies().len())
+        .filter(|&i| world.bodies()[i].is_dynamic())
+        .collect();
+    let _ = writeln!(
+        out,
+        "final state of {} bodies ({} dynamic; every body's state: --trace):",
+        world.bodies().len(),
+        dynamic.len()
+    );
+    let states = world.states();
+    let by = |key: &dyn Fn(usize) -> f64| {
+        dynamic
+            .iter()
+            .copied()
+            .max_by(|&a, &b| key(a).total_cmp(&key(b)))
+    };
+    if let Some(i) = by(&|i| states[i].velocity.norm()) {
+        let _ = writeln!(
+            out,
+            "  fastest: {} at {} m/s",
+            names[i],
+            fmt(states[i].velocity.norm())
+        );
+    }
+    if let Some(i) = by(&|i| states[i].position.y) {
+        let p = states[i].position;
+        let _ = writeln!(
+            out,
+            "  highest: {} at x = {} m, y = {} m",
+            names[i],
+            fmt(p.x),
+            fmt(p.y)
+        );
+    }
+    if let Some(i) = by(&|i| -states[i].position.y) {
+        let p = states[i].position;
+        let _ = writeln!(
+            out,
+            "  lowest: {} at x = {} m, y = {} m",
+            names[i],
+            fmt(p.x),
+            fmt(p.y)
+        );
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn short_numbers_keep_six_digits_and_drop_trailing_zeros() {
+        assert_eq!(short(1.0 / 60.0), "0.0166667");
+        assert_eq!(short(30.0), "30");
+        assert_eq!(short(0.6), "0.6");
+        assert_eq!(short(5.8500000000000005), "5.85");
+        assert_eq!(short(1e-10), "1e-10");
+        assert_eq!(short(-2.5e7), "-2.5e7");
+        assert_eq!(short(0.0), "0");
+    }
+
+    #[test]
+    fn the_model_line_names_the_model() {
+        let mut world = World::new(engine::Method::Rk4).unwrap();
+        assert!(model_line(&world).starts_with("contacts: off"));
+        world
+            .set_contact_settings(engine::ContactSettings::default())
+            .unwrap();
+        let line = model_line(&world);
+        assert!(line.starts_with("contacts: exact (restitution 1"), "{line}");
+        let soft = World::with_model(
+            engine::Method::SemiImplicitEuler,
+            ContactModel::SoftStep(engine::SoftStepSettings::default()),
+        )
+        .unwrap();
+        let line = model_line(&soft);
+        assert!(
+            line.starts_with("contacts: soft_step (4 substeps, contact 30 Hz, damping ratio 10,"),
+            "{line}"
+        );
+    }
+}
