@@ -47,6 +47,7 @@
 //! names the force that makes the problem stiff.
 
 mod compare;
+mod contacts_off;
 mod diagnosis;
 mod linear_test;
 mod outputs;
@@ -367,6 +368,17 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     );
     if let Some(c) = comparison {
         print!("{}", c.report(dt)?);
+    }
+    if let Some((t, a, b)) = contacts_off::first_overlap(&world, &recorded) {
+        let names = scene.body_names();
+        let warning = format!(
+            "warning: {}: bodies '{}' and '{}' overlap at t = {} s, but contacts are off (the scene has no [contact] table), so they pass through each other; add `[contact]` (model = \"soft_step\", the default, or \"exact\") to make them collide",
+            scene.origin(),
+            names[a],
+            names[b],
+            run_text::short(t)
+        );
+        eprintln!("{warning}");
     }
     // Everything ran: now build the outputs in memory, then write them.
     let names = scene.body_names();

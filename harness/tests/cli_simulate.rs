@@ -338,3 +338,31 @@ fn the_contact_model_is_printed_and_a_pile_is_summarised() {
         }
     }
 }
+
+/// A box that falls through a ground because the scene has no `[contact]`
+/// table is warned about (on stderr, naming both bodies and the fix); with
+/// `[contact]` it lands and nothing is said.
+#[test]
+fn overlapping_shapes_without_contacts_are_warned_about() {
+    let temp = tempfile::tempdir().expect("temp dir");
+    let body = "[simulation]\ndt = 0.01\nduration = 2.0\n\
+        [[bodies]]\nname = \"ground\"\nkind = \"static\"\nshape = { type = \"box\", width = 10.0, height = 1.0 }\nposition = [0.0, -0.5]\n\
+        [[bodies]]\nname = \"box\"\nmass = 1.0\nshape = { type = \"box\", width = 1.0, height = 1.0 }\nposition = [0.0, 3.0]\n\
+        [[forces]]\ntype = \"gravity\"\ng = [0.0, -9.81]\n";
+    for (contacts, warned) in [("", true), ("[contact]\n", false)] {
+        let scene = temp.path().join("fall.toml");
+        std::fs::write(&scene, format!("{contacts}{body}")).unwrap();
+        let done = harness(temp.path(), &["simulate", scene.to_str().unwrap()]);
+        assert_eq!(done.code, Some(0), "{}", done.stderr);
+        let warning = "bodies 'ground' and 'box' overlap at t = ";
+        assert_eq!(done.stderr.contains(warning), warned, "{}", done.stderr);
+        if warned {
+            assert!(
+                done.stderr.contains("but contacts are off")
+                    && done.stderr.contains("add `[contact]`"),
+                "{}",
+                done.stderr
+            );
+        }
+    }
+}
