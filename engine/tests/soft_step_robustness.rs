@@ -279,3 +279,55 @@ fn a_thousand_body_pile_gives_the_same_bits_every_time() {
          engine/tests/soft_step_robustness.rs (and say why in the commit)"
     );
 }
+
+/// The harness's `container` case at a debug-friendly size: 300 boxes and
+/// circles dropped into a static container for 300 steps stay inside it
+/// (every centre within the walls' inner faces and above the floor) with
+/// finite states.
+#[test]
+fn three_hundred_bodies_dropped_into_a_container_stay_inside() {
+    let mut world = soft_world();
+    world.set_gravity(Vector2::new(0.0, -10.0)).unwrap();
+    for (name, x, y, w, h) in [
+        ("floor", 0.0, -0.5, 32.0, 1.0),
+        ("left", -15.5, 10.0, 1.0, 20.0),
+        ("right", 15.5, 10.0, 1.0, 20.0),
+    ] {
+        world
+            .add_body(BodyDef::fixed(
+                name,
+                Vector2::new(x, y),
+                Some(Shape::rectangle(w, h).unwrap()),
+            ))
+            .unwrap();
+    }
+    for i in 0..300 {
+        let (col, row) = ((i % 25) as f64, (i / 25) as f64);
+        let shape = if i % 2 == 0 {
+            Shape::rectangle(0.6, 0.6).unwrap()
+        } else {
+            Shape::circle(0.3).unwrap()
+        };
+        world
+            .add_body(
+                BodyDef::rigid(&format!("b{i}"), 0.36, shape)
+                    .with_position(Vector2::new(-12.0 + col, 2.0 + 1.0 * row))
+                    .with_rotation(0.1 * i as f64, 0.0),
+            )
+            .unwrap();
+    }
+    for _ in 0..300 {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    for (b, s) in world.bodies().iter().zip(world.states()) {
+        if !b.is_dynamic() {
+            continue;
+        }
+        let p = s.position;
+        assert!(
+            p.x > -15.0 && p.x < 15.0 && p.y > 0.0 && p.y.is_finite(),
+            "{} left the container: {p:?}",
+            b.name
+        );
+    }
+}

@@ -65,6 +65,7 @@ registry! {
     friction_ramp,
     overlap_recovery,
     mass_ratio,
+    container,
 }
 
 /// The case with this id.
