@@ -49,7 +49,7 @@ pub struct SceneFile {
 #[serde(deny_unknown_fields)]
 pub struct SimulationSpec {
     /// Integration method, an [`engine::Method::id`]: `"explicit_euler"`,
-    /// `"semi_implicit_euler"`, `"rk2_midpoint"`, `"rk4"`,
+    /// `"semi_implicit_euler"`, `"rk2_midpoint"` (or `"midpoint"`), `"rk4"`,
     /// `"velocity_verlet"`, `"implicit_euler"` or `"dormand_prince"`.
     /// Default `"rk4"` (the seed's method, §4.3), or
     /// `"semi_implicit_euler"` under the soft-step contact model, which

@@ -88,7 +88,10 @@ impl Method {
     }
 
     /// Parses an identifier of [`Method::id`]; Dormand–Prince gets `tol`.
+    /// `"midpoint"`, the variant's own name, is accepted for
+    /// `"rk2_midpoint"`.
     pub fn from_id(id: &str, tol: Tolerance) -> Option<Method> {
+        let id = if id == "midpoint" { "rk2_midpoint" } else { id };
         let all = Method::FIXED_STEP
             .into_iter()
             .chain([Method::DormandPrince(tol)]);
@@ -407,4 +410,17 @@ fn integrate_grid<S: OdeSystem + ?Sized>(
     }
     solution.stats = integrator.stats();
     Ok(solution)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn midpoint_is_accepted_for_rk2_midpoint() {
+        let tol = Tolerance::uniform(1e-9);
+        assert_eq!(Method::from_id("midpoint", tol), Some(Method::Midpoint));
+        assert_eq!(Method::from_id("rk2_midpoint", tol), Some(Method::Midpoint));
+        assert_eq!(Method::from_id("rk5", tol), None);
+    }
 }
