@@ -41,6 +41,7 @@ pub mod hoffman;
 pub mod linear_stability;
 pub mod many_body;
 pub mod parry_queries;
+pub mod pendulum;
 pub mod projectile;
 pub mod spring;
 pub mod torque;
