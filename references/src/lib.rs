@@ -35,6 +35,8 @@
 
 pub mod angular_drag;
 pub mod box2d_world;
+pub mod catenary;
+pub mod double_pendulum;
 pub mod drag_projectile;
 pub mod drag_reference_values;
 pub mod hoffman;
@@ -43,6 +45,7 @@ pub mod many_body;
 pub mod parry_queries;
 pub mod pendulum;
 pub mod projectile;
+pub mod slider;
 pub mod spring;
 pub mod torque;
 

@@ -216,8 +216,13 @@ impl ManyBodyEngine for RapierManyWorld {
              contact recycling {rec} within {recd} m; sleeping off (can_sleep(false) on \
              every body, changed from rapier's default); gravity from the scene. Mixing: \
              friction GeometricMean = sqrt(mu_a mu_b), restitution Max (both changed from \
-             rapier's default Average to Box2D's rules). Every other parameter at \
-             rapier's default.",
+             rapier's default Average to Box2D's rules). Impulse joints at rapier's \
+             defaults: softness {jhz:e} Hz, ratio {jz} (rigid), bias in the biased pass \
+             only, no joint warm starting (warmstart_joints = {wj}), limits active only \
+             once violated; springs as AccelerationBased motors of stiffness (2 pi f)^2 and \
+             damping 2 zeta (2 pi f) (Box2D's soft spring exactly), a spring plus a motor \
+             as two impulse joints; collision groups as interaction-group bits. Every other \
+             parameter at rapier's default.",
             dt = p.dt,
             h = p.dt / s as f64,
             pgs = p.num_internal_pgs_iterations,
@@ -234,6 +239,10 @@ impl ManyBodyEngine for RapierManyWorld {
             vmax = p.normalized_max_linear_velocity * p.length_unit,
             rec = if p.contact_recycling { "on" } else { "off" },
             recd = p.normalized_contact_recycle_distance * p.length_unit,
+            jhz = rapier2d_f64::dynamics::SpringCoefficients::<f64>::joint_defaults()
+                .natural_frequency,
+            jz = rapier2d_f64::dynamics::SpringCoefficients::<f64>::joint_defaults().damping_ratio,
+            wj = p.warmstart_joints,
         )
     }
 

@@ -808,3 +808,159 @@ fn joint_state_readings_are_zero_at_t0_and_exact_for_known_poses() {
     crate::test_support::assert_close(j.separation, 0.1 * r2, 1e-15, "perpendicular");
     crate::test_support::assert_close(j.angular_error, 0.2, 1e-15, "angle");
 }
+
+/// The `slider` case: a 0.5 m box of 2 kg on a prismatic joint to the
+/// world at its centre, along 30° above the horizontal, with a spring of
+/// the box's own frequency √(k/m)/(2π) (k = 50 N/m) toward the anchor,
+/// released at rest at the anchor.
+fn slider_scene(s: &crate::slider::Slider) -> ManyBodyScene {
+    let body = SceneBody::dynamic(Shape::rectangle(0.5, 0.5).unwrap(), [0.0, 1.0], 8.0);
+    let axis = [s.angle.cos(), s.angle.sin()];
+    let mut joint = SceneJoint::prismatic(None, Some(0), [0.0, 1.0], axis);
+    if let JointKind::Prismatic(p) = &mut joint.kind {
+        p.spring = Some(Spring {
+            hertz: s.spring_hertz(),
+            damping_ratio: s.damping_ratio,
+            target: 0.0,
+        });
+    }
+    ManyBodyScene {
+        gravity: [0.0, -s.gravity],
+        dt: 1.0 / 60.0,
+        substeps: 4,
+        bodies: vec![body],
+        joints: vec![joint],
+    }
+}
+
+#[test]
+fn slider_oscillates_at_its_frequency_and_rests_at_its_equilibrium() {
+    // The prismatic spring maps exactly (Hz on the box's mass, see
+    // `rapier_many::joints`), so at rest both engines hold it where
+    // k x = −m g sin θ, to round-off (a soft spring at rest sags by
+    // λ/(m_eff h ω²) = g sin θ/ω², which is that x). Undamped, the period
+    // is within the first-order bound ω h/2 (both engines integrate the
+    // spring implicitly, as a soft constraint, which also damps it: the
+    // swing shrinks by a few per cent per period, not checked here). The
+    // perpendicular row carries m g cos θ through the box's centre
+    // (K = 1/m): it sags by g cos θ/ω_c²; the box does not turn (no torque
+    // about its centre).
+    let mut s = crate::slider::Slider {
+        mass: 2.0,
+        stiffness: 50.0,
+        damping_ratio: 0.0,
+        angle: 30f64.to_radians(),
+        gravity: 9.81,
+        x0: 0.0,
+        v0: 0.0,
+    };
+    let scene = slider_scene(&s);
+    assert_eq!(scene.bodies[0].mass(), s.mass);
+    let (eq, period) = (s.equilibrium(), s.period());
+    let h = scene.dt / scene.substeps as f64;
+    for mut e in engines(&scene) {
+        let box2d = e.name().starts_with("Box2D");
+        let mut out = Vec::new();
+        let (mut prev, mut crossings) = (f64::NAN, Vec::new());
+        let (mut off_axis, mut turned) = (0.0_f64, 0.0_f64);
+        let steps = (10.0 * period / scene.dt) as usize;
+        for i in 1..=steps {
+            e.step().unwrap();
+            e.samples(&mut out).unwrap();
+            let j = scene.joint_states(&out)[0];
+            let y = j.coordinate - eq;
+            if prev < 0.0 && y >= 0.0 {
+                crossings.push(scene.dt * ((i - 1) as f64 + prev / (prev - y)));
+            }
+            prev = y;
+            (off_axis, turned) = (off_axis.max(j.separation), turned.max(j.angular_error));
+        }
+        let n = crossings.len() - 1;
+        let t = (crossings[n] - crossings[0]) / n as f64;
+        let rel = t / period - 1.0;
+        let w_c = TAU * if box2d { 60.0 } else { 1e6 };
+        let sag = s.gravity * s.angle.cos() / (w_c * w_c);
+        eprintln!(
+            "{}: slider period {t:.6} s (exact {period:.6}, relative {rel:+.2e}), off axis \
+             {off_axis:.3e} m (sag {sag:.3e}), turned {turned:.1e} rad",
+            e.name()
+        );
+        assert!(rel.abs() < 0.5 * s.omega() * h, "{}: {rel}", e.name());
+        // f32 (Box2D): a few spacings of the 1 m coordinates; f64: 1e-12.
+        let round = if box2d { 1e-6 } else { 1e-12 };
+        assert!(off_axis <= sag + round, "{}: {off_axis}", e.name());
+        assert!(turned <= round, "{}: {turned}", e.name());
+    }
+    // Critically damped, it settles: after 5 s (e^(−ω t)(1 + ω t) ≈ 4e-10
+    // of the initial 0.2 m) it rests at x_eq.
+    s.damping_ratio = 1.0 - 1e-9;
+    let scene = slider_scene(&s);
+    for mut e in engines(&scene) {
+        let box2d = e.name().starts_with("Box2D");
+        let mut out = Vec::new();
+        for _ in 0..300 {
+            e.step().unwrap();
+        }
+        e.samples(&mut out).unwrap();
+        let x = scene.joint_states(&out)[0].coordinate;
+        // Box2D: f32 positions near 1 m (4 spacings) and the f32 spring
+        // constants; rapier: the settling residual 1e-10 m.
+        let tol = if box2d {
+            4.0 * f32::EPSILON as f64
+        } else {
+            1e-9
+        };
+        crate::test_support::assert_close(x, eq, tol, &format!("{} rest", e.name()));
+    }
+}
+
+#[test]
+fn weld_holds_a_cantilever_at_its_soft_sag() {
+    // A 1 m × 0.2 m bar (1 kg/m²) welded to the world at its left end,
+    // horizontal under gravity. At rest every row's increment is 0: the
+    // angular row, holding the torque d m g (d = 0.5 m, the anchor's
+    // lever), sags by d m g/(I_c ω_c²); the linear row, holding m g at the
+    // anchor with compliance K_yy = 1/m + d²/I_c, by m g K_yy/ω_c². Box2D:
+    // ω_c = 2π 60 rad/s (rigid weld: the joint's constraint softness);
+    // rapier: 2π 1e6 rad/s.
+    let bar = SceneBody::dynamic(Shape::rectangle(1.0, 0.2).unwrap(), [0.5, 0.0], 1.0);
+    let scene = ManyBodyScene {
+        gravity: [0.0, -G],
+        dt: 1.0 / 60.0,
+        substeps: 4,
+        bodies: vec![bar],
+        joints: vec![SceneJoint::weld(None, Some(0), [0.0, 0.0])],
+    };
+    let (m, ic, d) = (scene.bodies[0].mass(), scene.bodies[0].inertia(), 0.5);
+    for mut e in engines(&scene) {
+        let box2d = e.name().starts_with("Box2D");
+        let w = TAU * if box2d { 60.0 } else { 1e6 };
+        let mut out = Vec::new();
+        for _ in 0..120 {
+            e.step().unwrap();
+        }
+        e.samples(&mut out).unwrap();
+        let j = scene.joint_states(&out)[0];
+        let (angle, drop) = (
+            d * m * G / (ic * w * w),
+            m * G * (1.0 / m + d * d / ic) / (w * w),
+        );
+        eprintln!(
+            "{}: weld angular error {:.4e} (predicted {angle:.4e}), separation {:.4e} (predicted {drop:.4e})",
+            e.name(),
+            j.angular_error,
+            j.separation
+        );
+        if box2d {
+            // f32: rotations and positions near 1 m, a few spacings
+            // (1e-7); the sags are 4e-4 and 2.7e-4.
+            crate::test_support::assert_close(j.angular_error, angle, 2e-7, "Box2D angle");
+            crate::test_support::assert_close(j.separation, drop, 2e-7, "Box2D drop");
+        } else {
+            // rapier removes its (1e-12-sized) sag through its bias: at
+            // most the prediction, plus f64 round-off of 1 m coordinates.
+            assert!(j.angular_error <= angle + 1e-15, "{j:?}");
+            assert!(j.separation <= drop + 1e-15, "{j:?}");
+        }
+    }
+}
