@@ -190,7 +190,7 @@ fn capsule_octagon(y1: f64, y2: f64, r: f64) -> ConvexPolygon {
 /// hip).
 ///
 /// As in `human.c`: bones are dynamic, at rest, angle 0, density 1 kg/m²,
-/// friction 0.2, at the heights of [`SKELETON`] × s above `position`;
+/// friction 0.2, at the heights of `human.c` × s above `position`;
 /// each bone but the hip is joined to its parent at its pivot by a
 /// revolute joint with Box2D's limits (the lower arms' joint angle is
 /// measured from a reference angle of π/4, so they start 0.05π below
@@ -200,7 +200,8 @@ fn capsule_octagon(y1: f64, y2: f64, r: f64) -> ConvexPolygon {
 /// bones of one ragdoll share `group` and never collide with each other.
 ///
 /// Differences from Box2D's ragdoll, which this description cannot carry:
-/// - capsules become inscribed octagons ([`capsule_octagon`]): each bone
+/// - capsules become inscribed octagons (each half-disc cap replaced by
+///   half a regular hexagon, 8 vertices, Box2D's maximum): each bone
 ///   is lighter than Box2D's by the capsule caps' missing area
 ///   (π − 3√3/2) r², 10 % of the hip, 2–4 % of the limbs;
 /// - the foot (a rounded quadrilateral of radius 0.015 s on the lower leg,
