@@ -964,3 +964,68 @@ fn weld_holds_a_cantilever_at_its_soft_sag() {
         }
     }
 }
+
+#[test]
+fn reference_angle_shifts_the_limits_in_both_engines() {
+    // The same falling bar, its joint angle measured from a reference of
+    // 0.2 rad, limits [−0.3, 0.3]: it rests where θ − 0.2 = −0.3, at a
+    // body angle of −0.1 rad (not −0.3: an engine ignoring the reference;
+    // not −0.5: one subtracting it the other way). Within Box2D's sag and
+    // atan2 offset (< 1e-3 rad, see the bar above).
+    let mut scene = limited_bar(1.0, [-0.3, 0.3]);
+    if let JointKind::Revolute(r) = &mut scene.joints[0].kind {
+        r.reference_angle = 0.2;
+    }
+    for mut e in engines(&scene) {
+        let mut out = Vec::new();
+        for _ in 0..180 {
+            e.step().unwrap();
+        }
+        e.samples(&mut out).unwrap();
+        crate::test_support::assert_close(out[0].angle, -0.1, 1e-3, e.name());
+        crate::test_support::assert_close(
+            scene.joint_states(&out)[0].coordinate,
+            -0.3,
+            1e-3,
+            e.name(),
+        );
+    }
+}
+
+#[test]
+fn revolute_spring_pulls_toward_its_target_in_the_joint_angle() {
+    // Without gravity, a bar pivoted at its centre on a critically damped
+    // 2 Hz spring toward a joint angle of 0.4 rad, reference 0.1 rad:
+    // it settles at a body angle of 0.5 rad (e^(−ω t)(1 + ω t) ≈ 1e-15
+    // after 3 s). Box2D reads the angle through its atan2 (error ≤ 2.8e-5
+    // rad); rapier's is exact, its settling residual 1e-12.
+    let bar = SceneBody::dynamic(Shape::rectangle(1.0, 0.1).unwrap(), [0.0, 0.0], 1.0);
+    let mut joint = SceneJoint::revolute(None, Some(0), [0.0, 0.0], 0.1);
+    if let JointKind::Revolute(r) = &mut joint.kind {
+        r.spring = Some(Spring {
+            hertz: 2.0,
+            damping_ratio: 1.0,
+            target: 0.4,
+        });
+    }
+    let scene = ManyBodyScene {
+        gravity: [0.0, 0.0],
+        dt: 1.0 / 60.0,
+        substeps: 4,
+        bodies: vec![bar],
+        joints: vec![joint],
+    };
+    for mut e in engines(&scene) {
+        let tol = if e.name().starts_with("Box2D") {
+            3e-5
+        } else {
+            1e-10
+        };
+        let mut out = Vec::new();
+        for _ in 0..180 {
+            e.step().unwrap();
+        }
+        e.samples(&mut out).unwrap();
+        crate::test_support::assert_close(out[0].angle, 0.5, tol, e.name());
+    }
+}
