@@ -38,6 +38,8 @@ use engine::{ConvexPolygon, Shape};
 use thiserror::Error;
 
 #[cfg(test)]
+mod joint_checks;
+#[cfg(test)]
 mod joint_tests;
 pub mod joints;
 pub mod overlap;
