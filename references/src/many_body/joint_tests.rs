@@ -1,6 +1,9 @@
 //! Joints in both adapters (Box2D through boxdd, rapier) against closed
-//! forms: pendulum periods, a motor's ramp, a limit's hold, a grid that
-//! stays connected. Box2D runs in f32, rapier in f64.
+//! forms and derived bounds: pendulum periods (revolute and rod) and
+//! anchor separations, a motor's ramp, a limit's rest angle, the reference
+//! angle and a spring's target, the slider's period and rest, a weld's
+//! sag, a joint grid and a ragdoll that stay connected, Falling Hinges
+//! closing their gaps. Box2D runs in f32, rapier in f64.
 
 use super::*;
 use crate::box2d_world::Box2dWorld;
