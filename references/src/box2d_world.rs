@@ -42,7 +42,13 @@
 //! `b2MakeBox` (centred) or a hull of its corners; any other polygon a
 //! `b2MakePolygon` of the hull of its vertices (radius 0). Box2D takes at
 //! most 8 vertices and welds points closer than 0.005 m: a polygon it would
-//! change is refused rather than silently altered.
+//! change is refused rather than silently altered. A body's
+//! `collision_group` g becomes the filter group index −(g + 1) on each of
+//! its shapes (shapes sharing a negative group index never collide), the
+//! category and mask bits staying at Box2D's defaults.
+//!
+//! Joints: see [`joints`] (every joint setting, what is changed from
+//! Box2D's defaults, how the world is attached).
 //!
 //! # Precision
 //!
@@ -63,7 +69,8 @@ use crate::many_body::{
     axis_aligned_box,
 };
 use boxdd::{
-    BodyId, BodyType, Foundation, Polygon, ShapeDef, ShapeId, SurfaceMaterial, World, shapes,
+    BodyId, BodyType, Filter, Foundation, JointId, Polygon, ShapeDef, ShapeId, SurfaceMaterial,
+    World, shapes,
 };
 use engine::{ConvexPolygon, Shape};
 
@@ -139,11 +146,14 @@ fn scene_f32(field: &'static str, x: f64) -> Result<f32, ManyBodyError> {
     }
 }
 
+pub mod joints;
+
 /// A [`ManyBodyScene`] in a Box2D world.
 pub struct Box2dWorld {
     world: World,
     bodies: Vec<BodyId>,
     shapes: Vec<ShapeId>,
+    joints: Vec<JointId>,
     dt: f32,
     substeps: i32,
     steps: usize,
@@ -224,9 +234,14 @@ impl Box2dWorld {
                 .with_friction(to_f32(i, "friction", b.friction)?)
                 .and_then(|m| m.with_restitution(restitution))
                 .map_err(|e| refused(i, e.to_string()))?;
+            let filter = Filter {
+                group_index: joints::group_index(i, b.collision_group)?,
+                ..Filter::default()
+            };
             let shape_def = ShapeDef::builder()
                 .density(to_f32(i, "density", b.density)?)
                 .material(material)
+                .filter(filter)
                 .build()
                 .map_err(|e| refused(i, e.to_string()))?;
             let mut body = world.body(id).map_err(engine_error)?;
@@ -265,10 +280,12 @@ impl Box2dWorld {
             bodies.push(id);
             shape_ids.push(first.expect("every shape has at least one piece"));
         }
+        let (joint_ids, _ground) = joints::build_joints(&mut world, scene, &bodies)?;
         Ok(Self {
             world,
             bodies,
             shapes: shape_ids,
+            joints: joint_ids,
             dt,
             substeps: scene.substeps as i32,
             steps: 0,
@@ -283,6 +300,22 @@ impl Box2dWorld {
         self.world
             .set_contact_recycle_distance(0.0)
             .map_err(engine_error)
+    }
+
+    /// Box2D's own reading of joint `index`: `b2Joint_GetLinearSeparation`
+    /// (m) and `b2Joint_GetAngularSeparation` (rad), from its f32 state
+    /// (for diagnostics; the comparison between engines uses
+    /// [`ManyBodyScene::joint_states`] on the poses instead).
+    pub fn joint_separations(&mut self, index: usize) -> Result<(f64, f64), ManyBodyError> {
+        let id = *self.joints.get(index).ok_or(ManyBodyError::Engine {
+            engine: ENGINE,
+            message: format!("no joint {index}"),
+        })?;
+        let joint = self.world.joint(id).map_err(engine_error)?;
+        Ok((
+            joint.linear_separation().map_err(engine_error)? as f64,
+            joint.angular_separation().map_err(engine_error)? as f64,
+        ))
     }
 
     /// The world's settings as Box2D reports them (read back from the
@@ -435,7 +468,9 @@ impl ManyBodyEngine for Box2dWorld {
              m/s and (pi/4)/dt rad/s; contact recycling within \
              {CONTACT_RECYCLE_DISTANCE} m; sleeping off (changed from Box2D's default); \
              gravity from the scene. Mixing: friction sqrt(mu_a mu_b), restitution \
-             max(e_a, e_b).",
+             max(e_a, e_b). Joints at Box2D's defaults: soft rows of min(60, 0.25/h) Hz, \
+             damping ratio 2, in the biased pass, rigid in the relax pass, warm started, \
+             speculative limits; angles measured with Box2D's approximate atan2.",
             dt = self.dt,
             s = self.substeps,
             shz = 2.0 * hertz,

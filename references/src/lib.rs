@@ -14,6 +14,10 @@
 //! | II, `angular_drag`         | §6, eq. 6.21         | [`angular_drag`]        |
 //! | II, `projectile_drag`      | §6, eq. 6.4–6.15, Table 6.2 | [`drag_projectile`], [`drag_reference_values`] |
 //! | stiff test, `hoffman`      | §4.3                 | [`hoffman`]             |
+//! | `pendulum`, `physical_pendulum` | (not in the seed) | [`pendulum`]       |
+//! | `double_pendulum`          | (not in the seed)    | [`double_pendulum`]     |
+//! | `chain`                    | (not in the seed)    | [`catenary`]            |
+//! | `slider`                   | (not in the seed)    | [`slider`]              |
 //!
 //! The first five are closed forms. The quadratic-drag projectile has none in
 //! 2D: [`drag_projectile`] solves it with DOP853 (crate `ode_solvers`) at a
@@ -21,12 +25,18 @@
 //! [`drag_reference_values`] holds the 40-digit values `CASES.md` quotes, which
 //! the DOP853 solve is tested against.
 //!
+//! The joint cases' references: the pendulum's period and motion by the
+//! complete elliptic integral and Jacobi's functions (AGM and Landen),
+//! the double pendulum of two rigid bodies by DOP853 with its error
+//! estimate and chaos horizon, the catenary and the exact equilibrium of
+//! a chain of rigid links, the inclined spring slider in closed form.
+//!
 //! Other engines, run on the same scenes for comparison: rapier2d-f64
 //! ([`rapier_world`] single bodies, [`rapier_contacts`] collision scenes),
 //! parry2d-f64 shape queries ([`parry_queries`]), and for the many-body
-//! benchmark an engine-agnostic scene description ([`many_body`]) with
-//! adapters to Box2D v3.2 through boxdd ([`box2d_world`]) and to rapier at
-//! its defaults ([`rapier_many`]).
+//! benchmark an engine-agnostic scene description ([`many_body`], with
+//! joints: [`many_body::joints`]) with adapters to Box2D v3.2 through boxdd
+//! ([`box2d_world`]) and to rapier at its defaults ([`rapier_many`]).
 //!
 //! Units are SI throughout (m, s, kg, N, rad) and every quantity is `f64`.
 //! "Seed" means the 2006 report `seed/000_03ad6f8b5a3a5bfa.txt`; its numbers
@@ -35,13 +45,17 @@
 
 pub mod angular_drag;
 pub mod box2d_world;
+pub mod catenary;
+pub mod double_pendulum;
 pub mod drag_projectile;
 pub mod drag_reference_values;
 pub mod hoffman;
 pub mod linear_stability;
 pub mod many_body;
 pub mod parry_queries;
+pub mod pendulum;
 pub mod projectile;
+pub mod slider;
 pub mod spring;
 pub mod torque;
 

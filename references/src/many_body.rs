@@ -23,20 +23,38 @@
 //! - materials are per body and mixed per pair by Box2D's rules: friction
 //!   √(μa μb), restitution max(ea, eb) (rapier is set to the same rules);
 //! - angles read back are principal values in (−π, π]: samples may be taken
-//!   at any interval, so no adapter unwraps them.
+//!   at any interval, so no adapter unwraps them;
+//! - bodies sharing a `collision_group` never collide with each other
+//!   (Box2D's negative group index; a ragdoll's bones, the joint grid's
+//!   circles);
+//! - joints ([`SceneJoint`], in [`joints`]) connect two bodies or a body and
+//!   the world, anchors given in world coordinates at t = 0; their state is
+//!   read from the bodies' poses by [`ManyBodyScene::joint_states`], the
+//!   same computation for every engine.
 //!
 //! Units: SI throughout (m, s, kg, rad; density in kg/m²).
 
 use engine::{ConvexPolygon, Shape};
 use thiserror::Error;
 
+#[cfg(test)]
+mod joint_checks;
+#[cfg(test)]
+mod joint_tests;
+pub mod joints;
 pub mod overlap;
 pub mod scenes;
 #[cfg(test)]
 mod tests;
 
+pub use joints::{
+    DistanceJoint, DistanceMode, JointKind, JointState, Motor, Pose, PrismaticJoint, RevoluteJoint,
+    SceneJoint, Softness, Spring, WeldJoint,
+};
 pub use overlap::{Overlap, deepest_overlap};
-pub use scenes::{pyramid, smash, tumbler, vertical_stack};
+pub use scenes::{
+    falling_hinges, joint_grid, pyramid, ragdoll, rain, smash, tumbler, vertical_stack,
+};
 
 /// How a body moves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -72,6 +90,9 @@ pub struct SceneBody {
     pub friction: f64,
     /// Coefficient of restitution e (≥ 0); a pair uses max(ea, eb).
     pub restitution: f64,
+    /// Bodies with the same `Some(group)` never collide with each other
+    /// (default `None`: collides with everything).
+    pub collision_group: Option<u32>,
 }
 
 impl SceneBody {
@@ -88,6 +109,7 @@ impl SceneBody {
             density,
             friction: DEFAULT_FRICTION,
             restitution: 0.0,
+            collision_group: None,
         }
     }
 
@@ -147,6 +169,9 @@ pub struct ManyBodyScene {
     pub substeps: usize,
     /// The bodies; samples and errors refer to bodies by their index here.
     pub bodies: Vec<SceneBody>,
+    /// The joints; errors and joint states refer to them by their index
+    /// here.
+    pub joints: Vec<SceneJoint>,
 }
 
 /// Largest substep count accepted (Box2D takes an `int`; beyond this the
@@ -163,8 +188,12 @@ impl ManyBodyScene {
     /// Checks every number of the scene: finite values, dt > 0,
     /// 1 ≤ substeps ≤ [`MAX_SUBSTEPS`], density > 0 for dynamic bodies
     /// (≥ 0 otherwise), friction and restitution ≥ 0, zero velocity for
-    /// static bodies, and dynamic shapes centred on their origin. The first
-    /// problem found is returned, naming the body (by index) and the field.
+    /// static bodies, and dynamic shapes centred on their origin; and every
+    /// joint (see [`joints`]: existing distinct bodies, one of them
+    /// dynamic, finite anchors, ordered limits, positive lengths, axes and
+    /// spring frequencies, non-negative motor forces and damping ratios).
+    /// The first problem found is returned, naming the body or joint (by
+    /// index) and the field.
     pub fn validate(&self) -> Result<(), ManyBodyError> {
         for (field, v) in [
             ("gravity x", self.gravity[0]),
@@ -191,7 +220,19 @@ impl ManyBodyScene {
         for (i, b) in self.bodies.iter().enumerate() {
             validate_body(i, b)?;
         }
+        for (i, j) in self.joints.iter().enumerate() {
+            joints::validate_joint(i, j, &self.bodies)?;
+        }
         Ok(())
+    }
+
+    /// The state of every joint (in scene order) when the bodies are at
+    /// `samples` (in scene order, as [`ManyBodyEngine::samples`] gives
+    /// them): the coordinate, the anchor separation, the angular error and
+    /// the limit violation, computed from the poses alone, the same way for
+    /// every engine. The scene must be valid and `samples` complete.
+    pub fn joint_states(&self, samples: &[BodySample]) -> Vec<JointState> {
+        joints::joint_states(&self.bodies, &self.joints, samples)
     }
 
     /// Total mass of the dynamic bodies, kg.
@@ -398,6 +439,28 @@ pub enum ManyBodyError {
         /// What it must be.
         reason: &'static str,
     },
+    /// A joint's value is out of its domain.
+    #[error("many-body scene, joint {joint}: {field} = {value} {reason}")]
+    InvalidJoint {
+        /// Index of the joint in the scene.
+        joint: usize,
+        /// Which value.
+        field: &'static str,
+        /// Its value.
+        value: f64,
+        /// What it must be.
+        reason: &'static str,
+    },
+    /// The engine cannot represent a joint as described.
+    #[error("{engine} cannot represent joint {joint}: {message}")]
+    JointRefused {
+        /// Engine name.
+        engine: &'static str,
+        /// Index of the joint in the scene.
+        joint: usize,
+        /// Why, in the engine's terms.
+        message: String,
+    },
     /// The engine refused a body (e.g. a polygon it cannot represent).
     #[error("{engine} cannot represent body {body}: {message}")]
     BodyRefused {
@@ -502,4 +565,21 @@ pub const ENGINE_DIFFERENCES: &[&str] = &[
     "speed limits: both clamp |v| to 400 m/s and |omega| to (pi/4)/dt per step",
     "polygons: Box2D at most 8 vertices, built through its hull (which welds \
      points closer than 0.005 m); rapier any count, vertices kept as given",
+    "joint softness: Box2D's joints are soft rows of 60 Hz, damping ratio 2 \
+     (min(60, 0.25/h) Hz) in the biased pass and rigid in the relax pass; rapier's \
+     locked axes and limits 1e6 Hz, ratio 1 (rigid), their bias removed in the relax \
+     pass; rapier does not warm-start joints (warmstart_joints false), Box2D does",
+    "joint limits: Box2D's are speculative (a limit row acts before the angle \
+     reaches it); rapier's angular limit rows engage only once the angle is past \
+     the limit and recover at most at the corrective speed cap",
+    "joint angles: Box2D measures them with b2Atan2, a polynomial of error up to \
+     2.8e-5 rad, so its limits and springs act on that approximate angle; rapier \
+     uses the exact angle",
+    "joint springs and motors: the same soft spring in both (rapier's \
+     AccelerationBased motor with stiffness (2 pi f)^2 and damping 2 zeta (2 pi f) \
+     is Box2D's spring of f Hz and ratio zeta exactly); a spring and a motor on one \
+     joint are two rows in Box2D, a second impulse joint carrying the motor in rapier",
+    "rigid distance joints: Box2D's soft row (as above); rapier has none, here a \
+     position motor along the coupled linear axes at rapier's joint softness, kept \
+     in the relax pass",
 ];

@@ -63,6 +63,10 @@
 //! (no rayon in `references`' dependency tree): rapier runs on the calling
 //! thread.
 //!
+//! Joints and collision groups: see [`joints`] (how each joint is built,
+//! the exact mapping of springs from Hz and damping ratio, what rapier
+//! cannot express).
+//!
 //! Units: SI (m, s, kg, rad).
 
 use crate::many_body::{
@@ -72,8 +76,8 @@ use crate::many_body::{
 use engine::Shape;
 use parry2d_f64::shape::{ConvexPolygon, SharedShape};
 use rapier2d_f64::dynamics::{
-    CoefficientCombineRule, IntegrationParameters, MassProperties, RigidBodyBuilder,
-    RigidBodyHandle,
+    CoefficientCombineRule, ImpulseJointHandle, IntegrationParameters, MassProperties,
+    RigidBodyBuilder, RigidBodyHandle,
 };
 use rapier2d_f64::geometry::ColliderBuilder;
 use rapier2d_f64::math::Vector;
@@ -82,10 +86,13 @@ use rapier2d_f64::pipeline::PhysicsWorld;
 /// Engine name used in errors and reports.
 const ENGINE: &str = "rapier2d-f64 0.36.1";
 
+pub mod joints;
+
 /// A [`ManyBodyScene`] in a rapier world.
 pub struct RapierManyWorld {
     world: PhysicsWorld,
     bodies: Vec<RigidBodyHandle>,
+    joints: Vec<Vec<ImpulseJointHandle>>,
     steps: usize,
 }
 
@@ -131,6 +138,7 @@ impl RapierManyWorld {
         world.gravity = Vector::new(scene.gravity[0], scene.gravity[1]);
         world.integration_parameters = benchmark_parameters(scene);
         let mut bodies = Vec::with_capacity(scene.bodies.len());
+        let groups = joints::interaction_groups(&scene.bodies)?;
         for (i, b) in scene.bodies.iter().enumerate() {
             let builder = match b.kind {
                 BodyKind::Dynamic => RigidBodyBuilder::dynamic(),
@@ -150,13 +158,16 @@ impl RapierManyWorld {
             .friction(b.friction)
             .friction_combine_rule(CoefficientCombineRule::GeometricMean)
             .restitution(b.restitution)
-            .restitution_combine_rule(CoefficientCombineRule::Max);
+            .restitution_combine_rule(CoefficientCombineRule::Max)
+            .collision_groups(groups[i]);
             let (handle, _) = world.insert(builder, collider);
             bodies.push(handle);
         }
+        let joint_handles = joints::build_joints(&mut world, scene, &bodies)?;
         Ok(Self {
             world,
             bodies,
+            joints: joint_handles,
             steps: 0,
         })
     }
@@ -174,6 +185,13 @@ impl RapierManyWorld {
     /// The rapier world (for diagnostics and tests).
     pub fn world(&self) -> &PhysicsWorld {
         &self.world
+    }
+
+    /// The impulse joints of scene joint `index`: the main one, then the
+    /// separate motor row if the joint has both a spring and a motor (see
+    /// [`joints`]).
+    pub fn joint_handles(&self, index: usize) -> &[ImpulseJointHandle] {
+        &self.joints[index]
     }
 }
 
@@ -198,8 +216,13 @@ impl ManyBodyEngine for RapierManyWorld {
              contact recycling {rec} within {recd} m; sleeping off (can_sleep(false) on \
              every body, changed from rapier's default); gravity from the scene. Mixing: \
              friction GeometricMean = sqrt(mu_a mu_b), restitution Max (both changed from \
-             rapier's default Average to Box2D's rules). Every other parameter at \
-             rapier's default.",
+             rapier's default Average to Box2D's rules). Impulse joints at rapier's \
+             defaults: softness {jhz:e} Hz, ratio {jz} (rigid), bias in the biased pass \
+             only, no joint warm starting (warmstart_joints = {wj}), limits active only \
+             once violated; springs as AccelerationBased motors of stiffness (2 pi f)^2 and \
+             damping 2 zeta (2 pi f) (Box2D's soft spring exactly), a spring plus a motor \
+             as two impulse joints; collision groups as interaction-group bits. Every other \
+             parameter at rapier's default.",
             dt = p.dt,
             h = p.dt / s as f64,
             pgs = p.num_internal_pgs_iterations,
@@ -216,6 +239,10 @@ impl ManyBodyEngine for RapierManyWorld {
             vmax = p.normalized_max_linear_velocity * p.length_unit,
             rec = if p.contact_recycling { "on" } else { "off" },
             recd = p.normalized_contact_recycle_distance * p.length_unit,
+            jhz = rapier2d_f64::dynamics::SpringCoefficients::<f64>::joint_defaults()
+                .natural_frequency,
+            jz = rapier2d_f64::dynamics::SpringCoefficients::<f64>::joint_defaults().damping_ratio,
+            wj = p.warmstart_joints,
         )
     }
 

@@ -195,6 +195,7 @@ fn neutral(scene: &Scene, substeps: usize) -> Result<ManyBodyScene> {
                 angular_velocity: s.angular_velocity,
                 friction: mu,
                 restitution: e,
+                collision_group: None,
             })
         })
         .collect::<Result<Vec<_>>>()?;
@@ -203,6 +204,7 @@ fn neutral(scene: &Scene, substeps: usize) -> Result<ManyBodyScene> {
         dt: scene.dt(),
         substeps,
         bodies,
+        joints: Vec::new(),
     })
 }
 

@@ -62,6 +62,7 @@ pub fn many_body_scene(scene: &Scene) -> Result<ManyBodyScene> {
                 density,
                 friction: body.friction.unwrap_or(settings.friction),
                 restitution: body.restitution.unwrap_or(settings.restitution),
+                collision_group: None,
             })
         })
         .collect::<Result<Vec<_>>>()?;
@@ -70,6 +71,7 @@ pub fn many_body_scene(scene: &Scene) -> Result<ManyBodyScene> {
         dt: scene.dt(),
         substeps: settings.substeps,
         bodies,
+        joints: Vec::new(),
     };
     scene.validate()?;
     Ok(scene)

@@ -2,9 +2,21 @@
 //! as Box2D v3's `shared/benchmarks.c` lays them out, with its benchmark
 //! protocol's settings: dt = 1/60 s, 4 substeps, gravity (0, −10) m/s²,
 //! Box2D's default material (friction 0.6, restitution 0).
+//!
+//! Scenes with joints: [`joint_grid`] and [`falling_hinges`] (in
+//! `scenes/hinges.rs`), [`ragdoll`] and [`rain`] (in `scenes/ragdoll.rs`),
+//! each documented with its Box2D source and what differs from it.
 
 use super::{BodyKind, ManyBodyScene, SceneBody};
 use engine::Shape;
+
+mod hinges;
+mod ragdoll;
+
+pub use hinges::{
+    HINGE_HALF_EXTENT, JOINT_GRID_GROUP, JOINT_GRID_RADIUS, falling_hinges, joint_grid,
+};
+pub use ragdoll::{BONE_FRICTION, BONES, RAIN_TILE, RagdollParams, RainParams, ragdoll, rain};
 
 /// The benchmark step, s (Box2D's `benchmark/main.c`: 60 Hz).
 pub const BENCHMARK_DT: f64 = 1.0 / 60.0;
@@ -149,6 +161,7 @@ fn benchmark_scene(bodies: Vec<SceneBody>) -> ManyBodyScene {
         dt: BENCHMARK_DT,
         substeps: BENCHMARK_SUBSTEPS,
         bodies,
+        joints: Vec::new(),
     }
 }
 

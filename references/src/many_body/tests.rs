@@ -432,6 +432,7 @@ fn an_off_centre_wall_on_a_kinematic_body_is_accepted_and_turns_about_the_origin
             [0.0, 0.0],
             w,
         )],
+        joints: Vec::new(),
     };
     for (mut e, eps) in engines(&scene) {
         let s = run(e.as_mut(), 60)[0];
