@@ -52,7 +52,8 @@ pub fn write_case_pictures(
          Each case's scene file (`scenes/<case>.toml`) is run again with its own method, step and \
          duration and drawn as the seed drew its simulations on screen (§2.1.2, figures 5.3 and 6.6): \
          a filmstrip of six frames (SVG) and an animation (GIF). Lines are the paths of the centres of \
-         mass; bodies too small to see at the scale of the run are drawn enlarged, as each picture says.\n\n",
+         mass; bodies at their true size, one too small to see at the scale of the run zoomed in an inset \
+         that says so; beside each frame, every moving body's state.\n\n",
     );
     for (id, result) in ids.iter().zip(drawn) {
         // A case that cannot be drawn is a note in the index, not a
