@@ -108,8 +108,20 @@ pub(crate) fn draw<DB: DrawingBackend>(
             .as_ref()
             .map_or(0.0, |s| inscribed(s) * view.scale());
         let half_diagonal = 0.5 * f64::from(w).hypot(f64::from(h));
-        let centred = (cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2);
-        if half_diagonal + 1.0 <= inner && contains(plot, centred) {
+        // A rotating body carries a mark from its centre along its x axis:
+        // the name goes on the other side of the centre.
+        let shift = if look.rotates {
+            0.5 * f64::from(h) + 2.0
+        } else {
+            0.0
+        };
+        let (sx, sy) = (
+            (-state.angle.cos() * shift).round() as i32,
+            (state.angle.sin() * shift).round() as i32,
+        );
+        let (ix, iy) = (cx + sx, cy + sy);
+        let centred = (ix - w / 2, iy - h / 2, ix + w / 2, iy + h / 2);
+        if half_diagonal + shift + 1.0 <= inner && contains(plot, centred) {
             let c = look.colour;
             let light = 0.299 * f64::from(c.r) + 0.587 * f64::from(c.g) + 0.114 * f64::from(c.b);
             let ink = if light < 150.0 {
@@ -118,7 +130,7 @@ pub(crate) fn draw<DB: DrawingBackend>(
                 Colour::rgb(20, 20, 20)
             };
             let style = text_style(TEXT, ink).pos(Pos::new(HPos::Center, VPos::Center));
-            area.draw_text(&look.name, &style, (cx, cy))
+            area.draw_text(&look.name, &style, (ix, iy))
                 .map_err(plot_err)?;
             taken.push(centred);
             continue;
