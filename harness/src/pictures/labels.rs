@@ -110,15 +110,13 @@ pub(crate) fn draw<DB: DrawingBackend>(
         let half_diagonal = 0.5 * f64::from(w).hypot(f64::from(h));
         // A rotating body carries a mark from its centre along its x axis:
         // the name goes on the other side of the centre.
+        let (c, sn) = (state.angle.cos(), state.angle.sin());
         let shift = if look.rotates {
-            0.5 * f64::from(h) + 2.0
+            0.5 * (f64::from(w) * c.abs() + f64::from(h) * sn.abs()) + 2.0
         } else {
             0.0
         };
-        let (sx, sy) = (
-            (-state.angle.cos() * shift).round() as i32,
-            (state.angle.sin() * shift).round() as i32,
-        );
+        let (sx, sy) = ((-c * shift).round() as i32, (sn * shift).round() as i32);
         let (ix, iy) = (cx + sx, cy + sy);
         let centred = (ix - w / 2, iy - h / 2, ix + w / 2, iy + h / 2);
         if half_diagonal + shift + 1.0 <= inner && contains(plot, centred) {
