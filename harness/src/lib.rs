@@ -5,6 +5,7 @@
 
 pub mod bench;
 pub mod cases;
+pub mod clip;
 pub mod convergence;
 pub mod links;
 pub mod pictures;

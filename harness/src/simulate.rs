@@ -34,7 +34,10 @@
 //! is only read, every error (the scene's, with file, field and line, or a
 //! command-line value) is reported before the run, and the outputs are
 //! written only after the run succeeded, each to a temporary file renamed
-//! into place. An output path equal to the scene file is refused, and so
+//! into place. An output path must end in its format's extension
+//! (`--trace` .csv, `--svg` .svg, `--gif` .gif, in any case): `--svg a.png`
+//! is refused rather than writing SVG into a `.png`. An output path equal
+//! to the scene file is refused, and so
 //! is an existing one that is not a regular file (a link, a FIFO, a device:
 //! the rename would replace it).
 //!

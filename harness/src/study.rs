@@ -24,7 +24,7 @@ pub struct Cheapest {
     pub h: f64,
     /// Its max error over the run (the sweep's unit).
     pub error: f64,
-    /// Its CPU time (s).
+    /// Its wall time (s), the minimum over the timing runs.
     pub cpu_seconds: f64,
 }
 
@@ -51,7 +51,7 @@ pub struct SpeedComparison {
 /// The sections of the studies.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Section {
-    /// Error against CPU time and evaluations.
+    /// Error against wall time and evaluations.
     WorkPrecision,
     /// Error against step.
     Convergence,

@@ -1,6 +1,6 @@
 //! Step sweeps: every method on every smooth case, halving the step level
 //! by level (Dormand–Prince: tightening its tolerance), recording the error
-//! against the reference, the CPU time (minimum of N runs, release build)
+//! against the reference, the wall time (minimum of N runs, release build)
 //! and the derivative evaluations (machine-independent).
 
 use crate::cases::all_methods;
@@ -26,7 +26,8 @@ pub struct SweepPoint {
     pub error_end: f64,
     /// max |error| over the run.
     pub max_error: f64,
-    /// Minimum CPU time over the timing runs (s).
+    /// Minimum wall time over the timing runs (s) (the field keeps its
+    /// name in `sweeps.json`).
     pub cpu_seconds: f64,
     /// Evaluations of the right-hand side.
     pub evaluations: u64,
@@ -111,7 +112,7 @@ pub struct SweepCase {
     /// The case is a scalar first-order ODE: methods that need a
     /// (position, velocity) system do not apply.
     pub first_order: bool,
-    /// An error (the error's unit) at which the report compares the CPU
+    /// An error (the error's unit) at which the report compares the wall
     /// time the engine and rapier2d-f64 need to reach it, if any.
     pub speed_target: Option<f64>,
     /// Runs a method at step `h`: (error at end, max error, evaluations),

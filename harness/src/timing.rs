@@ -1,4 +1,5 @@
-//! CPU time of a run, measured in the harness as the minimum over repeated
+//! Wall time of a run (on one thread, so the time the run occupied a
+//! CPU and any time it waited), measured as the minimum over repeated
 //! runs (the machines are shared and noisy; the minimum is the run least
 //! disturbed). Only meaningful in a release build, and only as ratios
 //! between runs of the same harness invocation.

@@ -247,6 +247,47 @@ fn an_output_over_the_scene_file_is_refused() {
 }
 
 #[test]
+fn an_output_whose_extension_is_another_format_is_refused() {
+    // `--svg a.png` would write SVG text into a .png: refused before the
+    // run, naming the option, the path and the extension it needs.
+    let run = simulate(GOOD, &["--svg", "a.png"]);
+    run.refused(
+        GOOD,
+        &[
+            "--svg a.png",
+            "ends in .png",
+            "does not match the format",
+            ".svg",
+        ],
+    );
+    assert!(!run.path("a.png").exists());
+    let run = simulate(GOOD, &["--gif", "movie.svg"]);
+    run.refused(GOOD, &["--gif movie.svg", "ends in .svg", ".gif"]);
+    let run = simulate(GOOD, &["--svg", "strip"]);
+    run.refused(GOOD, &["--svg strip", "has no extension", ".svg"]);
+    // The `simulate` helper always asks for `--trace out.csv`: a second
+    // trace path cannot be given, so the trace's own check runs alone.
+    let dir = tempfile::tempdir().expect("temp dir");
+    std::fs::write(dir.path().join("scene.toml"), GOOD).expect("write scene");
+    let output = Command::new(BIN)
+        .current_dir(dir.path())
+        .args(["simulate", "scene.toml", "--trace", "t.json"])
+        .output()
+        .expect("run the harness binary");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("--trace t.json") && stderr.contains(".csv"),
+        "{stderr}"
+    );
+    assert!(!dir.path().join("t.json").exists());
+    // Any case of the right extension is accepted.
+    let run = simulate(GOOD, &["--svg", "STRIP.SVG"]);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    assert!(run.path("STRIP.SVG").exists());
+}
+
+#[test]
 fn a_blow_up_is_an_error_and_writes_nothing() {
     // Explicit Euler on a stiff spring: |1 + i h w| = 1000 per step, so the
     // state overflows after about a hundred steps.

@@ -248,6 +248,9 @@ fn world(file: &SceneFile) -> Checked<WorldPlan> {
     let model = file.contact.map(|c| c.model);
     let mut bodies = Vec::with_capacity(file.bodies.len());
     let mut colours = Vec::with_capacity(file.bodies.len());
+    // Default colours count the bodies that move: a ground first does not
+    // shift them.
+    let mut moving = 0;
     for (i, spec) in file.bodies.iter().enumerate() {
         let path = FieldPath::root().key("bodies").index(i);
         if let Some(j) = file.bodies[..i].iter().position(|b| b.name == spec.name) {
@@ -260,7 +263,10 @@ fn world(file: &SceneFile) -> Checked<WorldPlan> {
         let def = body(&path, spec)?;
         model_allows_body(&path, &def, spec, model)?;
         bodies.push(def);
-        colours.push(colour(&path, spec, i)?);
+        colours.push(colour(&path, spec, moving)?);
+        if spec.kind != BodyKindSpec::Static {
+            moving += 1;
+        }
     }
     let names = crate::forces::Bodies {
         specs: &file.bodies,
@@ -278,7 +284,7 @@ fn world(file: &SceneFile) -> Checked<WorldPlan> {
         .enumerate()
         .map(|(i, e)| crate::forces::event(&FieldPath::root().key("events").index(i), e, &names))
         .collect::<Checked<Vec<_>>>()?;
-    generated(file, model, &mut bodies, &mut colours)?;
+    generated(file, model, &mut bodies, &mut colours, moving)?;
     let gravity = file
         .simulation
         .gravity
@@ -301,6 +307,7 @@ fn generated(
     model: Option<ContactModelSpec>,
     bodies: &mut Vec<BodyDef>,
     colours: &mut Vec<Colour>,
+    moving: usize,
 ) -> Checked<()> {
     for (i, spec) in file.generate.iter().enumerate() {
         let path = FieldPath::root().key("generate").index(i);
@@ -356,7 +363,9 @@ fn generated(
             ));
         }
         let colour = match spec.colour() {
-            None => Colour::default_for(i + file.bodies.len()),
+            // Generated bodies are dynamic: the cycle goes on after the
+            // listed bodies that move.
+            None => Colour::default_for(i + moving),
             Some(text) => Colour::parse_hex(text).ok_or_else(|| {
                 Problem::new(
                     &path.key("colour"),
@@ -908,9 +917,12 @@ fn shape(path: &FieldPath, spec: &ShapeSpec, body: &str) -> Checked<Shape> {
     }
 }
 
-fn colour(path: &FieldPath, spec: &BodySpec, index: usize) -> Checked<Colour> {
+/// The body's colour: its own, else grey for a static body, else the
+/// palette's for the `moving`-th body that is not static.
+fn colour(path: &FieldPath, spec: &BodySpec, moving: usize) -> Checked<Colour> {
     match &spec.colour {
-        None => Ok(Colour::default_for(index)),
+        None if spec.kind == BodyKindSpec::Static => Ok(Colour::STATIC),
+        None => Ok(Colour::default_for(moving)),
         Some(text) => Colour::parse_hex(text).ok_or_else(|| {
             Problem::new(
                 &path.key("colour"),

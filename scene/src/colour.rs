@@ -14,9 +14,10 @@ pub struct Colour {
 }
 
 impl Colour {
-    /// The default cycle, matplotlib's "tab10": body `i` without a `colour`
-    /// gets `PALETTE[i % 10]`.
-    pub const PALETTE: [Colour; 10] = [
+    /// The default cycle of bodies that move, matplotlib's "tab10" without
+    /// its grey (kept for static bodies): the `i`-th body that is not static
+    /// and has no `colour` gets `PALETTE[i % 9]`.
+    pub const PALETTE: [Colour; 9] = [
         Colour::rgb(0x1f, 0x77, 0xb4),
         Colour::rgb(0xff, 0x7f, 0x0e),
         Colour::rgb(0x2c, 0xa0, 0x2c),
@@ -24,7 +25,6 @@ impl Colour {
         Colour::rgb(0x94, 0x67, 0xbd),
         Colour::rgb(0x8c, 0x56, 0x4b),
         Colour::rgb(0xe3, 0x77, 0xc2),
-        Colour::rgb(0x7f, 0x7f, 0x7f),
         Colour::rgb(0xbc, 0xbd, 0x22),
         Colour::rgb(0x17, 0xbe, 0xcf),
     ];
@@ -44,7 +44,11 @@ impl Colour {
         Some(Self::rgb(byte(0)?, byte(2)?, byte(4)?))
     }
 
-    /// The palette colour for body `index`.
+    /// The default colour of a static body: grey, so that what does not
+    /// move reads as the setting.
+    pub const STATIC: Colour = Colour::rgb(0x7f, 0x7f, 0x7f);
+
+    /// The palette colour of the `index`-th body that is not static.
     pub fn default_for(index: usize) -> Self {
         Self::PALETTE[index % Self::PALETTE.len()]
     }

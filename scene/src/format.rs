@@ -137,8 +137,10 @@ pub struct BodySpec {
     /// contact model only.
     pub restitution: Option<f64>,
     /// Colour for pictures, `"#rrggbb"` (also accepted as `color`).
-    /// Default: the next colour of the matplotlib "tab10" cycle
-    /// ([`crate::Colour::PALETTE`]) by body index. The engine ignores it.
+    /// Default: grey ([`crate::Colour::STATIC`]) for a static body; for the
+    /// others the next colour of the matplotlib "tab10" cycle without its
+    /// grey ([`crate::Colour::PALETTE`]), counting only the bodies that are
+    /// not static. The engine ignores it.
     #[serde(alias = "color")]
     pub colour: Option<String>,
 }

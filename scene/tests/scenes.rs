@@ -166,3 +166,20 @@ fn hoffman_is_the_seed_stiff_test() {
     let s = test.solve(dp, scene.dt(), scene.duration()).unwrap();
     assert!((s.y.last().unwrap()[0] - test.exact(1.0)).abs() < 1e-8);
 }
+
+#[test]
+fn static_bodies_default_to_grey_and_the_palette_counts_moving_bodies() {
+    let text = "[simulation]\ndt = 0.01\nduration = 1.0\n\
+                [[bodies]]\nname = \"ground\"\nkind = \"static\"\nshape = { type = \"box\", width = 4.0, height = 1.0 }\n\
+                [[bodies]]\nname = \"a\"\nmass = 1.0\n\
+                [[bodies]]\nname = \"b\"\nmass = 1.0\n\
+                [[bodies]]\nname = \"pin\"\nkind = \"static\"\ncolour = \"#123456\"\n";
+    let scene = Scene::parse_str("colours.toml", text).unwrap();
+    assert_eq!(scene.colour_of("ground"), Some(Colour::STATIC));
+    // The ground does not shift the cycle: the first body that moves is
+    // the palette's first colour, and no moving body is grey.
+    assert_eq!(scene.colour_of("a"), Some(Colour::PALETTE[0]));
+    assert_eq!(scene.colour_of("b"), Some(Colour::PALETTE[1]));
+    assert_eq!(scene.colour_of("pin"), Some(Colour::rgb(0x12, 0x34, 0x56)));
+    assert!(!Colour::PALETTE.contains(&Colour::STATIC));
+}

@@ -164,10 +164,10 @@ pub fn write(
     writeln!(
         md,
         "The validation contact cases (docs/cases.md) in every model and engine at the scene's \
-         step (0.01 s): the error against the closed form and the CPU time of the whole run \
-         (minimum of {} runs). Errors under {:e} are round-off and drawn at that floor.\n",
+         step (0.01 s): the error against the closed form and the wall time of the whole run \
+         (minimum of {} runs). An error of exactly 0 is drawn in the band labelled 0 under the \
+         log axis.\n",
         super::contact_precision::REPEATS,
-        super::contact_precision::ERROR_FLOOR
     )?;
     for case in precision {
         writeln!(md, "### {} — {}\n", case.case, case.error_label)?;
@@ -184,7 +184,7 @@ pub fn write(
             })
             .collect();
         md.push_str(&table(
-            &["model", "substeps", "CPU time (s)", "error"],
+            &["model", "substeps", "wall time (s)", "error"],
             &rows,
         ));
         md.push('\n');

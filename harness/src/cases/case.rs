@@ -193,8 +193,10 @@ pub struct CaseFigure {
     pub alt: String,
     /// What to read in it, printed under it.
     pub caption: String,
-    /// Panels, side by side.
+    /// Panels, `columns` to a row.
     pub panels: Vec<Chart>,
+    /// Panels per row.
+    pub columns: usize,
     /// Width and height of one panel (px).
     pub panel_size: (u32, u32),
 }
@@ -205,7 +207,7 @@ impl CaseFigure {
         save_svg(
             &dir.join(&self.file),
             &self.panels,
-            self.panels.len(),
+            self.columns,
             self.panel_size,
         )
     }

@@ -8,15 +8,14 @@ use super::{
     Case, CaseReport, FigureOutput, FigureSection, Headline, Snapshots, StudyFigure, all_methods,
     dp_global_bound, dp_reason, sample_at,
 };
-use crate::plots::trajectories::{REFERENCE, error_panel, runs};
-use crate::plots::{Chart, Series, method_color, save_svg};
+use crate::plots::trajectories::{error_panel, runs};
+use crate::plots::{Chart, REFERENCE_ALT, Series, method_style, save_svg};
 use crate::row::RowSink;
 use crate::scenes;
 use crate::sweep::{SweepCase, rapier_runner, step_world};
 use crate::tolerance::{from_order, from_order_reason, half_unit};
 use anyhow::Result;
 use engine::Method;
-use plotters::style::RGBColor;
 use references::drag_reference_values as cases_md;
 use references::{DragReference, Projectile};
 use std::path::Path;
@@ -45,7 +44,7 @@ pub const CASE: Case = Case {
     )
 };
 
-/// Accuracy at which the report compares the CPU time of the engine and of
+/// Accuracy at which the report compares the run time of the engine and of
 /// rapier2d-f64 (m of max position error over 0–5 s).
 pub const TARGET_ERROR: f64 = 1e-6;
 
@@ -228,18 +227,10 @@ fn trajectory(dir: &Path, id: &str) -> Result<FigureOutput> {
         x_label: "x (m)".into(),
         y_label: "y (m)".into(),
         series: vec![
-            Series::new(
-                "vacuum parabola (closed form)",
-                RGBColor(150, 150, 150),
-                parabola,
-            )
-            .plain()
-            .dashed(),
-            Series::new("drag reference (DOP853)", REFERENCE, dense)
-                .plain()
-                .dashed(),
-            Series::new(format!("engine {method}"), method_color(&method), engine).plain(),
-            Series::new("rapier2d (4 substeps)", method_color("rapier2d_4sub"), rap).plain(),
+            Series::reference("vacuum parabola (closed form)", parabola).styled(REFERENCE_ALT),
+            Series::reference("drag reference (DOP853)", dense),
+            Series::new(format!("engine {method}"), method_style(&method), engine).line(),
+            Series::new("rapier2d (4 substeps)", method_style("rapier2d_4sub"), rap).line(),
         ],
         y_range: Some((0.0, 95.0)),
         ..Chart::default()
@@ -269,16 +260,16 @@ fn trajectory(dir: &Path, id: &str) -> Result<FigureOutput> {
         vec![
             Series::new(
                 format!("engine {method}"),
-                method_color(&method),
+                method_style(&method),
                 err_engine,
             )
-            .plain(),
+            .line(),
             Series::new(
                 "rapier2d (4 substeps)",
-                method_color("rapier2d_4sub"),
+                method_style("rapier2d_4sub"),
                 err_rapier,
             )
-            .plain(),
+            .line(),
         ],
     );
     save_svg(&dir.join(&file), &[path, errors], 1, (900, 420))?;

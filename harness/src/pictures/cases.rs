@@ -52,7 +52,8 @@ pub fn write_case_pictures(
          Each case's scene file (`scenes/<case>.toml`) is run again with its own method, step and \
          duration and drawn as the seed drew its simulations on screen (§2.1.2, figures 5.3 and 6.6): \
          a filmstrip of six frames (SVG) and an animation (GIF). Lines are the paths of the centres of \
-         mass; bodies too small to see at the scale of the run are drawn enlarged, as each picture says.\n\n",
+         mass; bodies at their true size, one too small to see at the scale of the run zoomed in an inset \
+         that says so; beside each frame, every moving body's state.\n\n",
     );
     for (id, result) in ids.iter().zip(drawn) {
         // A case that cannot be drawn is a note in the index, not a
@@ -177,5 +178,36 @@ mod tests {
         assert!(index.contains("no bodies to draw"), "{index}");
         let gif = std::fs::read(dir.path().join("scenes/projectile.gif")).unwrap();
         assert_eq!(&gif[..6], b"GIF89a");
+    }
+
+    fn svg_of(id: &str) -> String {
+        let drawn = draw_case(id).unwrap();
+        let (_, bytes) = drawn
+            .files
+            .iter()
+            .find(|(n, _)| n.ends_with(".svg"))
+            .unwrap();
+        String::from_utf8(bytes.clone()).unwrap()
+    }
+
+    #[test]
+    fn a_body_too_small_to_see_is_zoomed_in_an_inset_not_enlarged() {
+        // The 0.1 m box on its 370 m flight: true size, an inset per panel
+        // naming it and its zoom, and every panel's table.
+        let svg = svg_of("projectile");
+        assert!(!svg.contains("enlarged"), "no enlargement");
+        assert_eq!(svg.matches("box, zoom ×").count(), FILMSTRIP_FRAMES);
+        assert_eq!(svg.matches("ω (rad/s)").count(), FILMSTRIP_FRAMES);
+    }
+
+    #[test]
+    fn an_event_at_one_place_is_labelled_once_per_frame() {
+        // 100 apexes at one height: one label a panel, with its count.
+        let svg = svg_of("collision_bounce");
+        let labels = svg.matches(">\napex").count();
+        assert!(labels <= FILMSTRIP_FRAMES, "{labels} apex labels");
+        assert!(svg.contains("apex ×100"), "the last panel counts them");
+        // Every panel names its ball and the grey ground.
+        assert!(svg.matches(">\nball\n<").count() >= 2 * FILMSTRIP_FRAMES);
     }
 }

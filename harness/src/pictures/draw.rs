@@ -1,14 +1,18 @@
 //! Drawing one frame of a [`Film`] on any plotters backend (SVG for the
 //! filmstrip, an RGB buffer for the GIF): the static part once
 //! ([`background`]: axes in metres, ground lines, static bodies, spring
-//! anchors), then per frame the moving part ([`foreground`]: trails,
-//! springs, bodies at their pose, event markers, the live label), as the
-//! seed drew its simulations on screen (§2.1.2, figures 5.3 and 6.6: the
-//! bodies' vertices and colours, and the current x, y and angular speed).
+//! anchors, their names), then per frame the moving part ([`foreground`]:
+//! trails, springs, bodies at their pose and true size, their names where
+//! they fit, event markers drawn once per place, zoomed insets of bodies
+//! too small to see, the time), as the seed drew its simulations on screen
+//! (§2.1.2, figures 5.3 and 6.6: the bodies' vertices and colours; the
+//! current x, y and angular speed of every body go in the side table,
+//! `super::table`).
 
 use super::film::{Film, SpringEnd};
 use super::font::FAMILY;
 use super::view::{Layout, MARGIN, PARTICLE_PX, View, X_LABEL_AREA, Y_LABEL_AREA, round_px};
+use super::{inset, labels};
 use anyhow::{Result, anyhow};
 use engine::{BodyState, Shape};
 use nalgebra::{Rotation2, Vector2};
@@ -55,7 +59,15 @@ pub(crate) const GRID_FINE: Colour = Colour::rgb(242, 242, 242);
 /// The header's first line, at the top of a picture.
 pub(crate) const TITLE_Y: i32 = 5;
 /// Height of one header line (px).
-pub(crate) const LINE_PX: i32 = 17;
+pub(crate) const LINE_PX: i32 = 19;
+/// Size of body, tick and event text (plotters units: 11.3 px in SVG,
+/// 12 px em in the GIF).
+pub(crate) const TEXT: u32 = 14;
+/// Most moving bodies drawn with their trails: beyond, a pile of paths
+/// hides the bodies.
+const TRAILS_MOST: usize = 50;
+/// Bodies spanning fewer pixels get no outline (it would cover them).
+const OUTLINE_PX: f64 = 6.0;
 
 /// Numbers for labels: four significant digits, no "-0"; below 1e-12 in
 /// magnitude (round-off around a zero, such as the height at a located
@@ -85,37 +97,14 @@ pub fn sig(v: f64) -> String {
     }
 }
 
-/// What the live label says at sample `k`: the time, then the position,
-/// angle and angular speed of the first dynamic body (as the seed's
-/// figure 6.6 shows them).
+/// What the live label says at sample `k`: the time (every body's state
+/// is in the side table).
 pub fn live_label(film: &Film, k: usize) -> String {
-    let mut text = format!("t = {} s", sig(film.times[k]));
-    if let Some(i) = film.lead_body() {
-        let s = &film.states[k][i];
-        let body = &film.bodies[i];
-        let named = film.bodies.iter().filter(|b| b.dynamic).count() > 1;
-        if named {
-            text.push_str(&format!(", {}:", body.name));
-        } else {
-            text.push(',');
-        }
-        text.push_str(&format!(
-            " x = {} m, y = {} m",
-            sig(s.position.x),
-            sig(s.position.y)
-        ));
-        if body.rotates {
-            text.push_str(&format!(
-                ", θ = {} rad, ω = {} rad/s",
-                sig(s.angle),
-                sig(s.angular_velocity)
-            ));
-        }
-    }
-    text
+    format!("t = {} s", sig(film.times[k]))
 }
 
-fn text_style(size: u32, colour: Colour) -> TextStyle<'static> {
+/// Text of `size` in `colour`.
+pub(crate) fn text_style(size: u32, colour: Colour) -> TextStyle<'static> {
     (FAMILY, size).into_font().color(&rgb(colour))
 }
 
@@ -126,12 +115,12 @@ pub(crate) fn header<DB: DrawingBackend>(
 ) -> Result<()> {
     for (i, line) in lines.iter().enumerate() {
         let style = if i == 0 {
-            (FAMILY, 14)
+            (FAMILY, 16)
                 .into_font()
                 .style(FontStyle::Bold)
                 .color(&BLACK)
         } else {
-            text_style(12, Colour::rgb(40, 40, 40))
+            text_style(TEXT, Colour::rgb(40, 40, 40))
         };
         area.draw_text(line, &style, (MARGIN as i32, TITLE_Y + i as i32 * LINE_PX))
             .map_err(plot_err)?;
@@ -163,8 +152,8 @@ pub(crate) fn background<DB: DrawingBackend>(
         .y_desc("y (m)")
         .x_labels(8)
         .y_labels(6)
-        .label_style(text_style(11, Colour::rgb(60, 60, 60)))
-        .axis_desc_style(text_style(12, Colour::rgb(60, 60, 60)))
+        .label_style(text_style(TEXT, Colour::rgb(60, 60, 60)))
+        .axis_desc_style(text_style(15, Colour::rgb(60, 60, 60)))
         .bold_line_style(rgb(GRID))
         .light_line_style(rgb(GRID_FINE))
         .draw()
@@ -172,7 +161,6 @@ pub(crate) fn background<DB: DrawingBackend>(
     let (px, py) = chart.plotting_area().get_pixel_range();
     let (bx, by) = area.get_base_pixel();
     let view = View::new(
-        film,
         layout,
         px.start - bx..px.end - bx,
         py.start - by..py.end - by,
@@ -202,6 +190,7 @@ pub(crate) fn background<DB: DrawingBackend>(
                 draw_body(area, film, &view, i, &states[i])?;
             }
         }
+        labels::draw(area, film, &view, states, |b| !b.dynamic, &mut Vec::new())?;
     }
     for (a, b) in &film.springs {
         for end in [a, b] {
@@ -235,7 +224,9 @@ pub(crate) fn trail_samples(film: &Film, count: usize) -> Vec<usize> {
 }
 
 /// Draws the moving part at sample `k`: trails, springs, dynamic bodies,
-/// the markers of the events passed, and the live label at `label_at`.
+/// their names, the markers of the events passed (once per place, with a
+/// count), a ring round each body too small to see (its zoomed inset is
+/// drawn beside the plot, `super::inset`), and the time at `label_at`.
 pub(crate) fn foreground<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     film: &Film,
@@ -245,8 +236,9 @@ pub(crate) fn foreground<DB: DrawingBackend>(
     label_at: (i32, i32),
 ) -> Result<()> {
     let states = &film.states[k];
+    let moving = film.bodies.iter().filter(|b| b.dynamic).count();
     for (i, look) in film.bodies.iter().enumerate() {
-        if !look.dynamic {
+        if !look.dynamic || moving > TRAILS_MOST {
             continue;
         }
         let centre = |j: usize| view.to_px(film.states[j][i].position);
@@ -282,29 +274,54 @@ pub(crate) fn foreground<DB: DrawingBackend>(
             draw_body(area, film, view, i, &states[i])?;
         }
     }
-    // Springs over the bodies, so that enlarged bodies do not hide them.
+    // Springs over the bodies, so that the bodies do not hide them.
     for (a, b) in &film.springs {
         draw_spring(area, view.to_px(a.at(states)), view.to_px(b.at(states)))?;
     }
+    let mut taken = Vec::new();
+    // Events at one place (the apex of 100 bounces) are one marker and one
+    // label with their count, not a hundred drawn over each other.
     let t = film.times[k];
+    let mut places: Vec<(&str, (i32, i32), usize)> = Vec::new();
     for mark in film.marks.iter().filter(|m| m.t <= t) {
-        let (x, y) = view.to_px(mark.position);
+        let p = view.to_px(mark.position);
+        match places
+            .iter_mut()
+            .find(|(n, q, _)| *n == mark.name && (q.0 - p.0).abs() <= 6 && (q.1 - p.1).abs() <= 6)
+        {
+            Some(place) => place.2 += 1,
+            None => places.push((&mark.name, p, 1)),
+        }
+    }
+    for (name, (x, y), count) in places {
         area.draw(&Circle::new((x, y), 4, BLACK.stroke_width(1)))
             .map_err(plot_err)?;
-        // Left of the marker near the right edge, so the name stays inside.
-        let left = x > view.px.end - 60;
-        let anchor = if left { HPos::Right } else { HPos::Left };
-        let style = text_style(11, Colour::rgb(30, 30, 30)).pos(Pos::new(anchor, VPos::Top));
-        let at = if left {
-            (x - 6, y - 16)
+        let text = if count > 1 {
+            format!("{name} ×{count}")
         } else {
-            (x + 6, y - 16)
+            name.to_owned()
         };
-        area.draw_text(&mark.name, &style, at).map_err(plot_err)?;
+        // Left of the marker near the right edge, so the name stays inside.
+        let left = x > view.px.end - 90;
+        let anchor = if left { HPos::Right } else { HPos::Left };
+        let style = text_style(TEXT, Colour::rgb(30, 30, 30)).pos(Pos::new(anchor, VPos::Top));
+        let at = if left {
+            (x - 6, y - 18)
+        } else {
+            (x + 6, y - 18)
+        };
+        area.draw_text(&text, &style, at).map_err(plot_err)?;
+        let (w, h) = area
+            .estimate_text_size(&text, &style)
+            .map_or((60, 14), |(w, h)| (w as i32, h as i32));
+        let x0 = if left { at.0 - w } else { at.0 };
+        taken.push((x0, at.1, x0 + w, at.1 + h));
     }
+    labels::draw(area, film, view, states, |b| b.dynamic, &mut taken)?;
+    inset::rings(area, film, view, k)?;
     area.draw_text(
         &live_label(film, k),
-        &text_style(12, Colour::rgb(20, 20, 20)),
+        &text_style(TEXT, Colour::rgb(20, 20, 20)),
         label_at,
     )
     .map_err(plot_err)?;
@@ -349,26 +366,27 @@ fn draw_spring<DB: DrawingBackend>(
     Ok(())
 }
 
-/// The outline of a polygon or circle in its own frame, scaled by
-/// `enlarge` (m); a compound has one per part (see [`Shape::pieces`]).
-fn outline(shape: &Shape, enlarge: f64) -> Vec<Vector2<f64>> {
+/// The outline of a polygon or circle in its own frame (m); a compound
+/// has one per part (see [`Shape::pieces`]).
+fn outline(shape: &Shape) -> Vec<Vector2<f64>> {
     match shape {
-        Shape::Polygon(p) => p.vertices().iter().map(|v| v * enlarge).collect(),
+        Shape::Polygon(p) => p.vertices().to_vec(),
         Shape::Circle(c) => (0..48)
             .map(|j| {
                 let a = std::f64::consts::TAU * j as f64 / 48.0;
-                Vector2::new(a.cos(), a.sin()) * c.radius * enlarge
+                Vector2::new(a.cos(), a.sin()) * c.radius
             })
             .collect(),
         Shape::Compound(_) => Vec::new(),
     }
 }
 
-/// Body `i` at `state`: its shape filled in its colour with a darker
-/// outline and a mark from the centre along its x axis (so rotation shows
-/// on a circle too); a particle as a dot; a shapeless static body as a
-/// small square.
-fn draw_body<DB: DrawingBackend>(
+/// Body `i` at `state`, at its true size: its shape filled in its colour
+/// with a darker outline and a mark from the centre along its x axis (so
+/// rotation shows on a circle too), both left out on a body too small to
+/// carry them; a particle as a dot; a shapeless static body as a small
+/// square.
+pub(crate) fn draw_body<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     film: &Film,
     view: &View,
@@ -394,18 +412,19 @@ fn draw_body<DB: DrawingBackend>(
         }
         return Ok(());
     };
-    let enlarge = view.enlarge.get(i).copied().unwrap_or(1.0);
+    let span = 2.0 * look.radius() * view.scale();
+    let outlined = span >= OUTLINE_PX;
     let rotation = Rotation2::new(state.angle);
     let fill = rgb(look.colour).filled();
     let mut reach: f64 = 0.0;
     for (offset, angle, piece) in shape.pieces() {
         let piece_rotation = rotation * Rotation2::new(angle);
-        let origin = state.position + rotation * (offset * enlarge);
-        let local = outline(piece, enlarge);
+        let origin = state.position + rotation * offset;
+        let local = outline(piece);
         reach = reach.max(
             local
                 .iter()
-                .map(|v| (offset * enlarge + Rotation2::new(angle) * v).x)
+                .map(|v| (offset + Rotation2::new(angle) * v).x)
                 .fold(0.0, f64::max),
         );
         let corners: Vec<(f64, f64)> = local
@@ -418,25 +437,29 @@ fn draw_body<DB: DrawingBackend>(
             // A circle wholly inside the plot is drawn as one (exact in SVG).
             Shape::Circle(c) if whole => {
                 let at = view.to_px(origin);
-                let radius = (c.radius * enlarge * view.scale()).round().max(1.0) as i32;
+                let radius = (c.radius * view.scale()).round().max(1.0) as i32;
                 area.draw(&Circle::new(at, radius, fill))
                     .map_err(plot_err)?;
-                area.draw(&Circle::new(at, radius, edge.stroke_width(1)))
-                    .map_err(plot_err)?;
+                if outlined {
+                    area.draw(&Circle::new(at, radius, edge.stroke_width(1)))
+                        .map_err(plot_err)?;
+                }
             }
             _ if clipped.len() >= 3 => {
                 let pixels: Vec<(i32, i32)> = clipped.into_iter().map(round_px).collect();
                 area.draw(&Polygon::new(pixels.clone(), fill))
                     .map_err(plot_err)?;
-                let mut closed = pixels;
-                closed.push(closed[0]);
-                area.draw(&PathElement::new(closed, edge.stroke_width(1)))
-                    .map_err(plot_err)?;
+                if outlined {
+                    let mut closed = pixels;
+                    closed.push(closed[0]);
+                    area.draw(&PathElement::new(closed, edge.stroke_width(1)))
+                        .map_err(plot_err)?;
+                }
             }
             _ => {}
         }
     }
-    if look.rotates {
+    if look.rotates && span >= 2.0 * OUTLINE_PX {
         let tip = view.to_px(state.position + rotation * Vector2::new(reach, 0.0));
         area.draw(&PathElement::new(vec![centre, tip], edge.stroke_width(2)))
             .map_err(plot_err)?;

@@ -16,6 +16,7 @@ use super::film::Film;
 use super::font::ensure_fonts;
 use super::text::Crisp;
 use super::view::{Layout, MARGIN};
+use super::{inset, table};
 use anyhow::{Context, Result};
 use plotters::prelude::*;
 use scene::Colour;
@@ -47,8 +48,8 @@ impl Default for GifOptions {
     }
 }
 
-/// Header of an animation frame (px): title line and live label.
-const GIF_HEADER: u32 = 44;
+/// Header of an animation frame (px): title line and the time.
+const GIF_HEADER: u32 = 46;
 /// Samples drawn per trail.
 const TRAIL_POINTS: usize = 600;
 
@@ -60,17 +61,27 @@ pub fn animation(film: &Film, options: &GifOptions) -> Result<Vec<u8>> {
         "nothing to animate: the run has no samples"
     );
     let layout = Layout::plan(film, options.width.clamp(240, 2000), GIF_HEADER, 160..320)?;
-    let (w, h) = (layout.width as usize, layout.height as usize);
+    // The plot on the left, every moving body's state in a table beside it.
+    let side = table::width(film);
+    let insets_top = (GIF_HEADER + table::height(film) + 8) as i32;
+    let size = (
+        layout.width + side,
+        layout
+            .height
+            .max(insets_top as u32 + inset::height(film, &layout.nominal_view(), side)),
+    );
+    let (w, h) = (size.0 as usize, size.1 as usize);
     let title = match &layout.note {
         Some(note) => format!("{} — {} — {note}", film.title, film.subtitle),
         None => format!("{} — {}", film.title, film.subtitle),
     };
     let mut background_rgb = vec![255u8; w * h * 3];
     let view = {
-        let area = Crisp::with_buffer(&mut background_rgb, (layout.width, layout.height))
-            .into_drawing_area();
-        let view = background(&area, film, &layout, &[&title])?;
-        area.present().map_err(plot_err)?;
+        let root = Crisp::with_buffer(&mut background_rgb, size).into_drawing_area();
+        let (plot, _) = root.split_horizontally(layout.width);
+        let (plot, _) = plot.split_vertically(layout.height);
+        let view = background(&plot, film, &layout, &[&title])?;
+        root.present().map_err(plot_err)?;
         view
     };
     let palette = Palette::new(film);
@@ -89,10 +100,15 @@ pub fn animation(film: &Film, options: &GifOptions) -> Result<Vec<u8>> {
     for (n, &k) in frames.iter().enumerate() {
         rgb.copy_from_slice(&background_rgb);
         {
-            let area =
-                Crisp::with_buffer(&mut rgb, (layout.width, layout.height)).into_drawing_area();
-            foreground(&area, film, &view, k, (Trails::Past, &trail_idx), label_at)?;
-            area.present().map_err(plot_err)?;
+            let root = Crisp::with_buffer(&mut rgb, size).into_drawing_area();
+            let (plot, beside) = root.split_horizontally(layout.width);
+            let (plot, _) = plot.split_vertically(layout.height);
+            foreground(&plot, film, &view, k, (Trails::Past, &trail_idx), label_at)?;
+            table::draw(&beside.margin(GIF_HEADER, 0, 0, 0), film, k)?;
+            for zoom in inset::plan(film, &view, insets_top, side) {
+                inset::draw(&beside, film, &view, &zoom, k, &trail_idx)?;
+            }
+            root.present().map_err(plot_err)?;
         }
         palette.index(&rgb, &mut current);
         let delay = if n + 1 == frames.len() {

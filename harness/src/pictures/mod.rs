@@ -1,8 +1,12 @@
 //! Pictures of simulations, as the seed drew them on screen (§2.1.2,
-//! figures 5.3 and 6.6): each body as a coloured polygon or circle (a
-//! particle as a dot), springs as zigzags, the ground of a landing event,
-//! the path of every centre of mass, and the current time, position, angle
-//! and angular speed.
+//! figures 5.3 and 6.6): each body at its true size as a coloured polygon
+//! or circle (a particle as a dot; static bodies grey unless the scene
+//! says otherwise), named where the name fits, springs as zigzags, the
+//! ground of a landing event, the path of every centre of mass, each event
+//! marked once per place, and beside the plot a table of every moving
+//! body's position, angle and angular speed at the frame's time (a summary
+//! for a scene of many bodies). A body too small to see at the scale of
+//! the run gets a zoomed inset that says so.
 //!
 //! - [`svg::filmstrip`]: an SVG of a few frames at evenly spaced times;
 //! - [`gif::animation`]: an animated GIF (≤ 200 frames, a few hundred kB);
@@ -20,7 +24,10 @@ mod draw;
 pub mod film;
 pub mod font;
 pub mod gif;
+mod inset;
+mod labels;
 pub mod svg;
+mod table;
 pub mod text;
 mod view;
 

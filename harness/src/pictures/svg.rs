@@ -8,6 +8,7 @@ use super::draw::{Trails, background, foreground, header, plot_err, trail_sample
 use super::film::Film;
 use super::font::{FAMILY, ensure_fonts};
 use super::view::{Layout, MARGIN};
+use super::{inset, table};
 use anyhow::Result;
 use plotters::prelude::*;
 
@@ -21,18 +22,25 @@ const PANEL_HEADER: u32 = 24;
 /// longer segments draw a smoother curve.
 const TRAIL_POINTS: usize = 160;
 
-/// The filmstrip SVG of `film`: `frames` panels (3 per row) at evenly
-/// spaced times from the first sample to the last.
+/// The filmstrip SVG of `film`: `frames` panels (2 per row, each a plot
+/// and its side table) at evenly spaced times from the first sample to the
+/// last.
 pub fn filmstrip(film: &Film, frames: usize) -> Result<String> {
     ensure_fonts();
     let picks = film.evenly_spaced(frames);
     let layout = Layout::plan(film, PANEL_WIDTH, PANEL_HEADER, 150..330)?;
-    let cols = picks.len().clamp(1, 3);
+    let cols = picks.len().clamp(1, 2);
     let rows = picks.len().div_ceil(cols).max(1);
-    let size = (
-        layout.width * cols as u32,
-        STRIP_HEADER + layout.height * rows as u32,
+    let side = table::width(film);
+    let nominal = layout.nominal_view();
+    let insets_top = (PANEL_HEADER + table::height(film) + 8) as i32;
+    let panel = (
+        layout.width + side,
+        layout
+            .height
+            .max(insets_top as u32 + inset::height(film, &nominal, side)),
     );
+    let size = (panel.0 * cols as u32, STRIP_HEADER + panel.1 * rows as u32);
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
@@ -43,42 +51,42 @@ pub fn filmstrip(film: &Film, frames: usize) -> Result<String> {
         let panels = body.split_evenly((rows, cols));
         let trail_idx = trail_samples(film, TRAIL_POINTS);
         for (panel, &k) in panels.iter().zip(&picks) {
-            let view = background(panel, film, &layout, &[])?;
+            let (plot, beside) = panel.split_horizontally(layout.width);
+            let (plot, _) = plot.split_vertically(layout.height);
+            let view = background(&plot, film, &layout, &[])?;
             foreground(
-                panel,
+                &plot,
                 film,
                 &view,
                 k,
                 (Trails::WholeAndPast, &trail_idx),
                 (MARGIN as i32, 5),
             )?;
+            table::draw(&beside.margin(PANEL_HEADER, 0, 0, 0), film, k)?;
+            for zoom in inset::plan(film, &view, insets_top, side) {
+                inset::draw(&beside, film, &view, &zoom, k, &trail_idx)?;
+            }
         }
         root.present().map_err(plot_err)?;
     }
     Ok(svg)
 }
 
-/// The third header line: what is drawn, and any enlargement.
+/// The third header line: what is drawn, and any zoomed inset.
 fn strip_note(film: &Film, layout: &Layout) -> String {
     let mut note = String::from(
-        "Frames at evenly spaced times; lines: path of each centre of mass (faint: whole run). Axes in metres, one scale on both.",
+        "Frames at evenly spaced times; lines: path of each centre of mass (faint: whole run). Axes in metres, one scale on both; bodies at their true size.",
     );
-    // The enlargement depends only on the layout's scale, the same for
-    // every panel: measure it on a view of the nominal plot size.
-    let plot_w = (layout.width - 2 * MARGIN - super::view::Y_LABEL_AREA) as i32;
-    let plot_h = (layout.height - layout.header - super::view::X_LABEL_AREA - MARGIN) as i32;
-    let view = super::view::View::new(film, layout, 0..plot_w, 0..plot_h);
-    let enlarged: Vec<String> = film
-        .bodies
-        .iter()
-        .zip(&view.enlarge)
-        .filter(|(_, e)| **e > 1.0)
-        .map(|(b, e)| format!("{} ×{:.0}", b.name, e))
+    // The insets depend only on the layout's scale, the same for every
+    // panel: find them on a view of the nominal plot size.
+    let zoomed: Vec<String> = inset::tiny(film, &layout.nominal_view())
+        .into_iter()
+        .map(|i| film.bodies[i].name.clone())
         .collect();
-    if !enlarged.is_empty() {
+    if !zoomed.is_empty() {
         note.push_str(&format!(
-            " Drawn enlarged to be seen: {}.",
-            enlarged.join(", ")
+            " Too small to see at this scale, ringed in the plot and zoomed in an inset beside it: {}.",
+            zoomed.join(", ")
         ));
     }
     if let Some(widened) = &layout.note {
@@ -163,8 +171,8 @@ fn curve_panel<DB: DrawingBackend>(
         .configure_mesh()
         .x_desc("t (s)")
         .y_desc("y")
-        .label_style((FAMILY, 11))
-        .axis_desc_style((FAMILY, 12))
+        .label_style((FAMILY, 14))
+        .axis_desc_style((FAMILY, 15))
         .bold_line_style(RGBColor(225, 225, 225))
         .light_line_style(RGBColor(242, 242, 242))
         .draw()

@@ -1,6 +1,6 @@
-//! From world metres to pixels: the picture's size, the world window shown
-//! (one scale on both axes, so shapes keep their proportions), and how much
-//! each body is enlarged when it would be too small to see.
+//! From world metres to pixels: the picture's size and the world window
+//! shown (one scale on both axes, so shapes keep their proportions, and
+//! every body at its true size), and the window of a zoomed inset.
 
 use super::axis_range::{MAX_COORDINATE, drawable};
 use super::film::Film;
@@ -11,15 +11,15 @@ use std::ops::Range;
 /// Space around the chart (px).
 pub const MARGIN: u32 = 10;
 /// Height of the x-axis labels (px).
-pub const X_LABEL_AREA: u32 = 34;
+pub const X_LABEL_AREA: u32 = 42;
 /// Width of the y-axis labels (px).
-pub const Y_LABEL_AREA: u32 = 60;
-/// Free space between the bodies' extent and the plot's edge (px), which
-/// also holds enlarged bodies.
+pub const Y_LABEL_AREA: u32 = 66;
+/// Free space between the bodies' extent and the plot's edge (px).
 const INSET: f64 = 14.0;
-/// A body whose outline would span fewer pixels than this is drawn enlarged
-/// to this size (px), so that a 0.1 m box on a 370 m trajectory is seen.
-pub const MIN_BODY_PX: f64 = 16.0;
+/// A body whose outline spans fewer pixels than this is too small to see
+/// at the scale of the run (a 0.1 m box on a 370 m trajectory): it gets a
+/// zoomed inset (`super::inset`).
+pub const TINY_PX: f64 = 4.0;
 /// Radius of the dot that stands for a particle (px).
 pub const PARTICLE_PX: i32 = 6;
 
@@ -92,6 +92,17 @@ impl Layout {
     }
 }
 
+impl Layout {
+    /// The view of a plot of this layout at its nominal size (the drawn
+    /// one agrees to a pixel): for sizing what depends on the scale before
+    /// drawing.
+    pub fn nominal_view(&self) -> View {
+        let plot_w = (self.width - 2 * MARGIN - Y_LABEL_AREA) as i32;
+        let plot_h = (self.height - self.header - X_LABEL_AREA - MARGIN) as i32;
+        View::new(self, 0..plot_w, 0..plot_h)
+    }
+}
+
 /// The mapping from world to pixels of one drawn chart.
 #[derive(Debug, Clone, PartialEq)]
 pub struct View {
@@ -103,34 +114,44 @@ pub struct View {
     pub px: Range<i32>,
     /// Plot pixel rows (top to bottom), relative to the drawing area.
     pub py: Range<i32>,
-    /// How much each body is drawn enlarged (1 = true size).
-    pub enlarge: Vec<f64>,
 }
 
 impl View {
     /// The view of a plot covering `px` × `py` with `layout`'s window.
-    pub fn new(film: &Film, layout: &Layout, px: Range<i32>, py: Range<i32>) -> Self {
-        let mut view = Self {
+    pub fn new(layout: &Layout, px: Range<i32>, py: Range<i32>) -> Self {
+        Self {
             x: layout.x,
             y: layout.y,
             px,
             py,
-            enlarge: Vec::new(),
-        };
-        let scale = view.scale();
-        view.enlarge = film
-            .bodies
-            .iter()
-            .map(|b| {
-                let span = 2.0 * b.radius() * scale;
-                if span > 0.0 && span < MIN_BODY_PX {
-                    MIN_BODY_PX / span
-                } else {
-                    1.0
-                }
-            })
-            .collect();
-        view
+        }
+    }
+
+    /// The view of `px` × `py` centred on world point `centre` (m) at
+    /// `scale` pixels per metre (a zoomed inset).
+    pub fn around(centre: Vector2<f64>, scale: f64, px: Range<i32>, py: Range<i32>) -> Self {
+        let half_w = f64::from(px.end - px.start) / (2.0 * scale);
+        let half_h = f64::from(py.end - py.start) / (2.0 * scale);
+        Self {
+            x: (centre.x - half_w, centre.x + half_w),
+            y: (centre.y - half_h, centre.y + half_h),
+            px,
+            py,
+        }
+    }
+
+    /// The plot's pixel rectangle, for clipping lines to it.
+    pub fn pixel_rect(&self) -> crate::clip::Rect {
+        crate::clip::Rect {
+            x: (f64::from(self.px.start), f64::from(self.px.end)),
+            y: (f64::from(self.py.start), f64::from(self.py.end)),
+        }
+    }
+
+    /// Whether a body of `radius` (m) is too small to see here.
+    pub fn too_small(&self, radius: f64) -> bool {
+        let span = 2.0 * radius * self.scale();
+        span > 0.0 && span < TINY_PX
     }
 
     /// Pixels per metre (the smaller of the two axes, which agree to a
@@ -214,7 +235,6 @@ mod tests {
             y: (0.0, 1.0),
             px: 10..110,
             py: 20..120,
-            enlarge: Vec::new(),
         };
         let floor = [
             (-500.0, 100.0),

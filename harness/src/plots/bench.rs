@@ -3,19 +3,17 @@
 //! engine's time per phase along the same series (where the time goes, and
 //! how each phase grows).
 
-use super::{Chart, Series, save_svg};
+use super::{Chart, Series, Style, palette, save_svg};
 use crate::bench::SceneResult;
 use crate::bench::targets::scaling_slope;
 use anyhow::Result;
-use plotters::style::RGBColor;
 use std::path::Path;
 
-/// A colour per engine (this engine, rapier2d, Box2D).
-const ENGINES: [RGBColor; 3] = [
-    RGBColor(31, 119, 180),
-    RGBColor(44, 160, 44),
-    RGBColor(255, 127, 14),
-];
+/// The style of an engine (this engine, rapier2d, Box2D), the same in
+/// the contact work-precision chart.
+pub fn engine_style(index: usize) -> Style {
+    [palette(0), palette(2).dashed(), palette(1).dotted()][index % 3]
+}
 
 /// Writes the charts into `dir`; returns their file names and captions.
 pub fn draw(dir: &Path, results: &[SceneResult]) -> Result<Vec<(String, String)>> {
@@ -26,7 +24,7 @@ pub fn draw(dir: &Path, results: &[SceneResult]) -> Result<Vec<(String, String)>
         let scaling = Chart {
             title: "pyramids of base 10 to 100: cost per step".into(),
             x_label: "bodies".into(),
-            y_label: "ms per step (min over repeats)".into(),
+            y_label: "wall time per step (ms), min over repeats".into(),
             log_x: true,
             log_y: true,
             series: (0..engines)
@@ -34,7 +32,7 @@ pub fn draw(dir: &Path, results: &[SceneResult]) -> Result<Vec<(String, String)>
                     let slope = scaling_slope(results, e).unwrap_or(f64::NAN);
                     Series::new(
                         format!("{} (slope {slope:.2})", series[0].rows[e].engine),
-                        ENGINES[e % ENGINES.len()],
+                        engine_style(e),
                         series
                             .iter()
                             .map(|r| (r.rows[e].bodies as f64, r.rows[e].ms_per_step_min))
@@ -49,23 +47,10 @@ pub fn draw(dir: &Path, results: &[SceneResult]) -> Result<Vec<(String, String)>
             .iter()
             .map(|(name, _)| *name)
             .collect();
-        let palette = [
-            RGBColor(31, 119, 180),
-            RGBColor(255, 127, 14),
-            RGBColor(44, 160, 44),
-            RGBColor(214, 39, 40),
-            RGBColor(148, 103, 189),
-            RGBColor(140, 86, 75),
-            RGBColor(227, 119, 194),
-            RGBColor(127, 127, 127),
-            RGBColor(188, 189, 34),
-            RGBColor(23, 190, 207),
-            RGBColor(0, 0, 0),
-        ];
         let profile = Chart {
             title: "this engine's step, phase by phase".into(),
             x_label: "bodies".into(),
-            y_label: "ms per step in the phase".into(),
+            y_label: "wall time per step in the phase (ms), one profiled run".into(),
             log_x: true,
             log_y: true,
             series: phases
@@ -74,7 +59,7 @@ pub fn draw(dir: &Path, results: &[SceneResult]) -> Result<Vec<(String, String)>
                 .map(|(i, phase)| {
                     Series::new(
                         *phase,
-                        palette[i % palette.len()],
+                        palette(i),
                         series
                             .iter()
                             .filter_map(|r| {

@@ -1,11 +1,12 @@
-//! Convergence plot: log error against log step per fixed-step method, with
-//! dashed guides of slope 1, 2 and 4.
+//! Convergence plot: log error against log step per fixed-step method,
+//! with thin guides of slope 1, 2 and 4 (each its own dash, labelled
+//! "order p" at its end) through the smallest error of any method, so a
+//! method's curve can be read against its nominal order.
 
-use super::{Chart, Series, method_color, save_svg};
+use super::{Chart, Dash, Series, method_style, save_svg};
 use crate::sweep::Sweep;
 use anyhow::Result;
 use engine::Method;
-use plotters::style::RGBColor;
 use std::path::Path;
 
 /// Writes `<dir>/convergence_<case>.svg`.
@@ -20,33 +21,31 @@ pub fn write(dir: &Path, sweep: &Sweep) -> Result<String> {
                 .filter(|p| p.method == m.id() && p.stable)
                 .map(|p| (p.h, p.max_error))
                 .collect();
-            (!pts.is_empty()).then(|| Series::new(m.id(), method_color(m.id()), pts))
+            (!pts.is_empty()).then(|| Series::new(m.id(), method_style(m.id()), pts))
         })
         .collect();
-    // Guides of slope p through the coarsest RK4-sized error, so a method's
-    // curve can be read against its nominal order.
-    let h: Vec<f64> = sweep
+    // Through the smallest error of any method, fanning out from it: the
+    // chart cuts each where it leaves, and its label is there.
+    let lowest = series
+        .iter()
+        .flat_map(|s| s.points.iter().copied())
+        .filter(|&(h, e)| h > 0.0 && e > 0.0 && e.is_finite())
+        .min_by(|a, b| a.1.total_cmp(&b.1));
+    let (h_min, h_max) = sweep
         .points
         .iter()
-        .filter(|p| p.tolerance.is_none())
-        .map(|p| p.h)
-        .collect();
-    let (h_min, h_max) = h
-        .iter()
-        .fold((f64::INFINITY, 0.0f64), |(a, b), &v| (a.min(v), b.max(v)));
-    if h_max > 0.0 {
-        let anchor = sweep.scale * 1e-3;
-        for p in [1, 2, 4] {
-            let e = |h: f64| anchor * (h / h_max).powi(p);
-            series.push(
-                Series::new(
-                    format!("slope {p}"),
-                    RGBColor(160, 160, 160),
-                    vec![(h_min, e(h_min)), (h_max, e(h_max))],
-                )
-                .dashed()
-                .plain(),
-            );
+        .filter(|p| p.tolerance.is_none() && p.h > 0.0)
+        .fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+            (a.min(p.h), b.max(p.h))
+        });
+    if let Some((h0, e0)) = lowest.filter(|_| h_max > h_min) {
+        for (p, dash) in [(1, Dash::Dotted), (2, Dash::Dashed), (4, Dash::Long)] {
+            let e = |h: f64| e0 * (h / h0).powi(p);
+            series.push(Series::guide(
+                format!("order {p}"),
+                dash,
+                vec![(h_min, e(h_min)), (h_max, e(h_max))],
+            ));
         }
     }
     let chart = Chart {

@@ -2,7 +2,7 @@
 //! 5720 s (100 × the seed's run) for semi-implicit Euler, velocity Verlet
 //! and RK4 — bounded against drifting — with rows for CASES.md's bands.
 
-use super::{Chart, Series, method_color, save_svg};
+use super::{Chart, Series, method_style, save_svg};
 use crate::cases::FigureOutput;
 use crate::row::{Comparison, Row};
 use crate::scenes;
@@ -124,7 +124,7 @@ pub fn write(dir: &Path, id: &str) -> Result<FigureOutput> {
             }
         }
         let thinned = crate::cases::thin(&rel, 2000);
-        series.push(Series::new(method.id(), method_color(method.id()), thinned).plain());
+        series.push(Series::new(method.id(), method_style(method.id()), thinned).line());
     }
     let chart = Chart {
         title: "spring, h = 0.2 s: relative energy error over 5720 s".into(),

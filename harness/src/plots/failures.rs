@@ -3,12 +3,11 @@
 //! spring just inside and just outside the limits of velocity Verlet
 //! (hω = 1.99, 2.01) and RK4 (hω = 2.82, 2.84).
 
-use super::{Chart, Series, method_color, save_svg};
+use super::{Chart, Series, method_style, save_svg};
 use crate::cases::FigureOutput;
 use crate::scenes;
 use anyhow::{Context, Result};
 use engine::{Method, integrate_fixed};
-use plotters::style::RGBColor;
 use references::{Hoffman, SpringOscillator};
 use std::path::Path;
 
@@ -35,16 +34,14 @@ pub fn hoffman_euler(dir: &Path, id: &str) -> Result<FigureOutput> {
             .collect();
         panels.push(Chart {
             title: format!(
-                "explicit Euler, h = {h} (|1 + h lambda| = {:.2})",
+                "explicit Euler, h = {h} (|1 + hλ| = {:.2})",
                 (1.0 + h * exact.lambda).abs()
             ),
             x_label: "t (s)".into(),
             y_label: "y".into(),
             series: vec![
-                Series::new("exact t + 2 - e^(-1000t)", RGBColor(90, 90, 90), reference)
-                    .plain()
-                    .dashed(),
-                Series::new("explicit Euler", method_color("explicit_euler"), engine),
+                Series::reference("exact t + 2 - e^(-1000t)", reference),
+                Series::new("explicit Euler", method_style("explicit_euler"), engine),
             ],
             y_range: Some((-1.0, 5.0)),
             ..Chart::default()
@@ -79,10 +76,10 @@ pub fn spring_limits(dir: &Path, id: &str) -> Result<FigureOutput> {
             ));
         }
         panels.push(Chart {
-            title: format!("{} at h w = {hw}", method.id()),
+            title: format!("{} at hω = {hw}", method.id()),
             x_label: "step n".into(),
             y_label: "(x - l0) / A".into(),
-            series: vec![Series::new(method.id(), method_color(method.id()), pts).plain()],
+            series: vec![Series::new(method.id(), method_style(method.id()), pts).line()],
             y_range: Some((-3.0, 3.0)),
             ..Chart::default()
         });

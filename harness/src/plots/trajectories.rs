@@ -4,17 +4,13 @@
 //! their figures (`Case::figures`) with [`ScalarFigure`] or their own
 //! drawing on [`runs`] and [`error_panel`].
 
-use super::{Chart, Series, method_color, save_svg};
+use super::{Chart, Series, method_style, save_svg};
 use crate::cases::FigureOutput;
 use crate::rapier_scene::rapier_problem;
 use crate::scenes;
 use anyhow::Result;
-use plotters::style::RGBColor;
 use references::rapier_world::{RapierSample, RapierSettings, run_single_body};
 use std::path::Path;
-
-/// Colour of the reference curves.
-pub const REFERENCE: RGBColor = RGBColor(60, 60, 60);
 
 /// The engine's and rapier2d's runs of scene `id` over `until` (s): the
 /// scene's method id, the engine's trace and rapier2d's samples.
@@ -99,19 +95,19 @@ where
             x_label: "t (s)".into(),
             y_label: format!("{quantity} ({unit})"),
             series: vec![
-                Series::new("exact", REFERENCE, dense).plain().dashed(),
+                Series::reference("exact", dense),
                 Series::new(
                     format!("engine {method}"),
-                    method_color(&method),
+                    method_style(&method),
                     engine.clone(),
                 )
-                .plain(),
+                .line(),
                 Series::new(
                     "rapier2d (4 substeps)",
-                    method_color("rapier2d_4sub"),
+                    method_style("rapier2d_4sub"),
                     rap.clone(),
                 )
-                .plain(),
+                .line(),
             ],
             y_range: self.y_range,
             ..Chart::default()
@@ -122,16 +118,16 @@ where
             vec![
                 Series::new(
                     format!("engine {method}"),
-                    method_color(&method),
+                    method_style(&method),
                     err(&engine),
                 )
-                .plain(),
+                .line(),
                 Series::new(
                     "rapier2d (4 substeps)",
-                    method_color("rapier2d_4sub"),
+                    method_style("rapier2d_4sub"),
                     err(&rap),
                 )
-                .plain(),
+                .line(),
             ],
         );
         save_svg(&dir.join(self.file), &[values, errors], 1, (900, 380))?;

@@ -250,7 +250,6 @@ mod tests {
     use crate::cases::CaseFigure;
     use crate::plots::{Chart, Series};
     use crate::row::Comparison;
-    use plotters::style::RGBColor;
 
     /// A report of the parry comparison (a case without a scene, so no
     /// pictures are linked) with made-up rows, a long note and a chart.
@@ -292,11 +291,12 @@ mod tests {
                     title: "t".into(),
                     series: vec![Series::new(
                         "s",
-                        RGBColor(0, 0, 0),
+                        crate::plots::palette(0),
                         vec![(0.0, 0.0), (1.0, 1.0)],
                     )],
                     ..Chart::default()
                 }],
+                columns: 1,
                 panel_size: (200, 150),
             }],
             ..CaseReport::default()

@@ -60,8 +60,10 @@ fn speed(study: &StudyResults) -> StudyPage<'_> {
     let mut md = head(
         "Speed against accuracy",
         "Each method on each swept case, the step halved level by level (Dormand-Prince: its \
-         tolerance from 1e-3 to 1e-12), error against the case's reference versus CPU time (left) \
-         and derivative evaluations (right, machine-independent). Down and to the left is better; \
+         tolerance from 1e-3 to 1e-12), error against the case's reference versus the wall time of a run (left, the minimum \
+         over repeated runs) and, for this engine's methods, derivative evaluations (right, \
+         machine-independent; rapier2d-f64 evaluates its forces once a step and holds them over \
+         its substeps, so it appears only on the left). Down and to the left is better; \
          rapier2d-f64 is dashed.",
     );
     md.push_str(&wrap(
@@ -95,7 +97,7 @@ fn speed(study: &StudyResults) -> StudyPage<'_> {
         "",
     ));
     md.push_str(
-        "\n| case | method | h (s) or tol | max error | CPU (s) | evaluations |\n\
+        "\n| case | method | h (s) or tol | max error | time (s) | evaluations |\n\
          |---|---|---|---|---|---|\n",
     );
     for sweep in &study.sweeps {
@@ -141,7 +143,7 @@ fn speed_paragraph(study: &StudyResults, speed: &SpeedComparison) -> String {
     let body = match (&speed.engine_best, &speed.rapier_best) {
         (Some(e), Some(r)) => format!(
             "the engine's cheapest run is {} at h = {} s ({} s); rapier2d-f64's cheapest is {} \
-             at dt = {} s ({} s): rapier2d-f64 takes {:.1}x the engine's CPU time.",
+             at dt = {} s ({} s): rapier2d-f64 takes {:.1}x the engine's time.",
             e.method,
             fmt_num(e.h),
             fmt_num(e.cpu_seconds),
@@ -162,9 +164,9 @@ fn speed_paragraph(study: &StudyResults, speed: &SpeedComparison) -> String {
                 .unwrap_or(f64::NAN);
             let factor = best.map_or(f64::NAN, |b| (b.error / target).powf(1.0 / order));
             format!(
-                "the engine's cheapest run is {} at h = {} s ({} s CPU); **rapier2d-f64 did not \
+                "the engine's cheapest run is {} at h = {} s ({} s); **rapier2d-f64 did not \
                  reach it within the sweep**: its most accurate run, {} at dt = {} s, errs by {} {} \
-                 ({} s CPU). Its observed order there is {:.2}, so reaching {target:e} {} would \
+                 ({} s). Its observed order there is {:.2}, so reaching {target:e} {} would \
                  take about {:.1e} times more steps.",
                 e.method,
                 fmt_num(e.h),

@@ -143,8 +143,42 @@ pub(super) fn check_outputs(scene_path: &Path, outputs: &[Output<'_>]) -> Result
             );
         }
         seen.push((real, out.option));
+        check_extension(out)?;
     }
     Ok(())
+}
+
+/// The format each output option writes: its file extension and what it is.
+fn format_of(option: &str) -> (&'static str, &'static str) {
+    match option {
+        "--trace" => ("csv", "a CSV trace"),
+        "--svg" => ("svg", "an SVG filmstrip"),
+        _ => ("gif", "a GIF animation"),
+    }
+}
+
+/// Refuses an output whose extension says another format than the option
+/// writes (`--svg a.png` would put SVG text in a `.png`): the extension
+/// must be the format's, in any case (`.svg`, `.SVG`).
+fn check_extension(out: &Output<'_>) -> Result<()> {
+    let (extension, format) = format_of(out.option);
+    let given = out.path.extension().map(|e| e.to_string_lossy());
+    if given
+        .as_deref()
+        .is_some_and(|e| e.eq_ignore_ascii_case(extension))
+    {
+        return Ok(());
+    }
+    let found = match given {
+        Some(e) => format!("ends in .{e}"),
+        None => "has no extension".to_owned(),
+    };
+    bail!(
+        "{} {}: the file name {found}, which does not match the format: {} writes {format}; give a path ending in .{extension}",
+        out.option,
+        out.path.display(),
+        out.option
+    )
 }
 
 pub(super) fn write_all(files: &[(&Output<'_>, Vec<u8>)], recorded: &Recorded) -> Result<()> {
