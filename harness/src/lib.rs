@@ -12,6 +12,7 @@ pub mod plots;
 pub mod progress;
 pub mod provenance;
 pub mod rapier_scene;
+pub mod replay;
 pub mod report;
 pub mod row;
 pub mod scenes;

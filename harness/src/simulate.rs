@@ -91,6 +91,11 @@ pub struct SimulateArgs {
     /// Write an animation as GIF.
     #[arg(long, value_name = "out.gif")]
     pub gif: Option<PathBuf>,
+    /// Write an interactive replay: one self-contained HTML page (play,
+    /// pause, step, scrub, speed, zoom, pan, paths, each body's state; the
+    /// engines of --compare side by side or overlaid).
+    #[arg(long, value_name = "out.html")]
+    pub html: Option<PathBuf>,
     /// Frames of the GIF (2 to 200).
     #[arg(long, value_name = "N", default_value_t = 120,
           value_parser = clap::value_parser!(u16).range(2..=200))]
@@ -385,6 +390,28 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
                         .map_err(|e| e.context(format!("--gif {}", out.path.display())))?
                 }
             }
+            "--html" => {
+                let title = scene_name(&scene);
+                let mut replay = crate::replay::Replay::new(
+                    &scene,
+                    world.bodies(),
+                    title,
+                    format!("{}, dt = {} s", method.id(), fmt_short(dt)),
+                    dt * recorded.stride as f64,
+                );
+                replay.runs.push(crate::replay::ReplayRun {
+                    label: format!("this engine ({}, dt = {} s)", method.id(), fmt_short(dt)),
+                    times: recorded.times.clone(),
+                    states: recorded.states.clone(),
+                    energies: Some(recorded.energies.clone()),
+                    events: crate::replay::ReplayEvent::from_records(&scene, &recorded.events),
+                });
+                replay
+                    .page()
+                    .map_err(|e| e.context(format!("--html {}", out.path.display())))?
+                    .html
+                    .into_bytes()
+            }
             _ => continue,
         };
         files.push((out, bytes));
@@ -394,11 +421,33 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     Ok(())
 }
 
-fn film_of(scene: &Scene, world: &World, recorded: &Recorded, method: Method, dt: f64) -> Film {
-    let name = Path::new(scene.origin()).file_name().map_or_else(
+/// The scene file's name (without its folders).
+fn scene_name(scene: &Scene) -> String {
+    Path::new(scene.origin()).file_name().map_or_else(
         || scene.origin().to_owned(),
         |n| n.to_string_lossy().into_owned(),
-    );
+    )
+}
+
+/// A number as short as it reads back (Rust's shortest round trip) when
+/// that is at most 10 characters, else to 6 significant digits: `0.01`,
+/// `5.85` for 5.8500000000000005.
+pub fn fmt_short(v: f64) -> String {
+    let plain = format!("{v}");
+    if plain.len() <= 10 {
+        return plain;
+    }
+    let rounded: f64 = format!("{v:.5e}").parse().unwrap_or(v);
+    let again = format!("{rounded}");
+    if again.len() <= 12 {
+        again
+    } else {
+        format!("{v:.5e}")
+    }
+}
+
+fn film_of(scene: &Scene, world: &World, recorded: &Recorded, method: Method, dt: f64) -> Film {
+    let name = scene_name(scene);
     let mut film = Film::new(
         scene,
         world.bodies(),
