@@ -40,7 +40,7 @@ enum Command {
         reasons: bool,
     },
     /// Runs a scene file of your own.
-    Simulate(harness::simulate::SimulateArgs),
+    Simulate(Box<harness::simulate::SimulateArgs>),
     /// Benchmarks this engine's soft step against rapier2d-f64 and Box2D v3
     /// on the many-body scenes, side by side, and writes
     /// `benchmarks.md`/`benchmarks.json` and the charts into the report

@@ -3,8 +3,8 @@
 //!
 //! ```text
 //! harness simulate scene.toml [--method M] [--dt H] [--until T]
-//!     [--trace out.csv] [--svg out.svg] [--gif out.gif] [--compare rapier]
-//!     [--budget SECONDS]
+//!     [--trace out.csv] [--svg out.svg] [--gif out.gif] [--html out.html]
+//!     [--compare rapier,box2d] [--verbose] [--budget SECONDS]
 //! ```
 //!
 //! - the scene runs with its own `[simulation]` method, step and duration,
@@ -20,10 +20,13 @@
 //! - `--svg`: a filmstrip of six frames; `--gif`: an animation (at most
 //!   `--frames`, default 120, ≤ 200); a `[linear_test]` gets its y(t) curve
 //!   as SVG and no animation;
-//! - `--compare rapier`: runs the scene in rapier2d-f64 too
-//!   (`references::rapier_world`; one dynamic body under gravity, an axial
-//!   spring to an anchor, drag, angular drag and torques) and prints the
-//!   largest difference of each quantity and rapier's configuration;
+//! - `--html`: an interactive replay, one self-contained page
+//!   ([`crate::replay`]), with the engines of `--compare` beside the run;
+//! - `--compare rapier`, `--compare box2d` or both (`rapier,box2d`): runs
+//!   the scene in rapier2d-f64 0.36 and Box2D 3.2 too, whenever their
+//!   adapters can represent it ([`compare`]), and prints the largest
+//!   difference of each quantity (`--verbose`: and each engine's
+//!   configuration);
 //! - `--budget SECONDS`: a wall-time limit, checked between steps: the run
 //!   stops after the step that spends it, says so (stdout and stderr,
 //!   exit code 0), and the outputs cover the part that ran;
@@ -110,17 +113,24 @@ pub struct SimulateArgs {
     /// ran. Checked between steps.
     #[arg(long, value_name = "SECONDS", value_parser = parse_seconds, allow_negative_numbers = true)]
     pub budget: Option<f64>,
-    /// Run the scene in another engine too and print the differences.
-    #[arg(long, value_name = "ENGINE")]
-    pub compare: Option<CompareWith>,
+    /// Run the scene in other engines too and print the differences:
+    /// rapier, box2d, or both (`--compare rapier,box2d`).
+    #[arg(long, value_name = "ENGINE", value_delimiter = ',')]
+    pub compare: Vec<CompareWith>,
+    /// Print how each engine of --compare is configured.
+    #[arg(long)]
+    pub verbose: bool,
 }
 
 /// Engines `--compare` knows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum CompareWith {
-    /// rapier2d-f64 0.36, configured as close to ideal rigid-body physics
-    /// as it allows (references::rapier_world).
+    /// rapier2d-f64 0.36: bent towards ideal rigid-body physics for scenes
+    /// without contacts or with exact ones, at its defaults for the soft
+    /// step.
     Rapier,
+    /// Box2D 3.2 (boxdd 0.6), at its defaults.
+    Box2d,
 }
 
 /// The method ids `--method` accepts.
@@ -213,6 +223,12 @@ impl Recorded {
     }
 }
 
+/// Every how many steps [`record`] keeps a sample of a run of `steps`
+/// steps to keep at most `max_samples` (≥ 2), the first and last included.
+pub fn stride_for(steps: u64, max_samples: u64) -> u64 {
+    (steps.div_ceil(max_samples.max(2) - 1)).max(1)
+}
+
 /// Runs `world` from its current time to `until` (s) in steps of `dt`
 /// (s), on the grid of [`World::run`] (times `t0 + i·dt`, the last step
 /// shortened to end at `until`), and keeps at most `limits.max_samples`
@@ -234,7 +250,7 @@ pub fn record(
     let span = until - t0;
     let steps = engine::step_count(span, dt)?;
     let last_is_whole = (steps as f64 * dt - span).abs() <= 1e-9 * span;
-    let stride = (steps.div_ceil(limits.max_samples.max(2) - 1)).max(1);
+    let stride = stride_for(steps, limits.max_samples);
     let mut rec = Recorded {
         stride,
         ..Recorded::default()
@@ -332,21 +348,36 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     let requested = outputs(args);
     check_outputs(&args.scene, &requested)?;
     let header = format!(
-        "{}: {}, dt = {dt} s, until {until} s ({steps} steps)",
+        "{}: {}, dt = {} s, until {} s ({steps} steps)",
         scene.origin(),
-        method.id()
+        method.id(),
+        fmt_short(dt),
+        fmt_short(until)
     );
     if scene.is_linear_test() {
         return linear_test::run_linear_test(&scene, args, method, (dt, until), &header);
     }
-    let mut comparison = match args.compare {
-        Some(CompareWith::Rapier) => Some(compare::Rapier::prepare(&scene, steps)?),
-        None => None,
-    };
     let mut world = if args.method.is_some() {
         scene.build_world(Some(method))?
     } else {
         scene.build_world(None)?
+    };
+    let mut engines: Vec<CompareWith> = Vec::new();
+    for e in &args.compare {
+        if !engines.contains(e) {
+            engines.push(*e);
+        }
+    }
+    let mut comparison = if engines.is_empty() {
+        None
+    } else {
+        Some(compare::Comparison::prepare(
+            &scene,
+            &engines,
+            (dt, steps, stride_for(steps, args.max_samples)),
+            world.states(),
+            args.verbose,
+        )?)
     };
     println!("{header}");
     let limits = RunLimits {
@@ -366,9 +397,14 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         "{}",
         summary(&scene, &world, &recorded, run_time.as_secs_f64())
     );
-    if let Some(c) = comparison {
-        print!("{}", c.report(dt)?);
-    }
+    let references = match comparison {
+        Some(c) => {
+            let (text, runs) = c.report()?;
+            print!("{text}");
+            runs
+        }
+        None => Vec::new(),
+    };
     // Everything ran: now build the outputs in memory, then write them.
     let names = scene.body_names();
     let mut files: Vec<(&Output<'_>, Vec<u8>)> = Vec::new();
@@ -401,11 +437,13 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
                 );
                 replay.runs.push(crate::replay::ReplayRun {
                     label: format!("this engine ({}, dt = {} s)", method.id(), fmt_short(dt)),
+                    short: "engine".into(),
                     times: recorded.times.clone(),
                     states: recorded.states.clone(),
                     energies: Some(recorded.energies.clone()),
                     events: crate::replay::ReplayEvent::from_records(&scene, &recorded.events),
                 });
+                replay.runs.extend(references.iter().cloned());
                 replay
                     .page()
                     .map_err(|e| e.context(format!("--html {}", out.path.display())))?

@@ -13,7 +13,7 @@
 //!                "parts": [{ "circle": [cx, cy, r] } | { "polygon": [x0, y0, x1, y1, ...] }] }],
 //!   "springs": [[end, end]],           // end: { "world": [x, y] } | { "body": i, "local": [x, y] }
 //!   "grounds": [y],                    // m: levels of landing events
-//!   "runs": [{ "label", "samples": n_recorded,
+//!   "runs": [{ "label", "short", "samples": n_recorded,
 //!              "q": { "t", "p", "a", "v", "w" },   // quanta: s, m, rad, m/s, rad/s
 //!              "t": [deltas],
 //!              "bodies": [{ "fixed": [x, y, angle] }
@@ -169,6 +169,7 @@ fn run_json(replay: &Replay, run: &ReplayRun, kept: &[usize]) -> Value {
         .collect();
     json!({
         "label": run.label,
+        "short": run.short,
         "samples": run.times.len(),
         "q": { "t": q_t, "p": q_p, "a": q_a, "v": q_v, "w": q_w },
         "t": deltas(kept.iter().map(|&i| run.times[i]), q_t),

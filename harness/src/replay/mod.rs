@@ -149,6 +149,8 @@ impl ReplayEvent {
 pub struct ReplayRun {
     /// The label shown over its panel (engine, method, step).
     pub label: String,
+    /// A short name for table headers (`engine`, `rapier2d`, `Box2D`).
+    pub short: String,
     /// Sample times (s), increasing.
     pub times: Vec<f64>,
     /// Every body's state at each sample (unwrapped angles).

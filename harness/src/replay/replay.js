@@ -22,7 +22,7 @@
   var runs = data.runs.map(function (r) {
     return {
       label: r.label,
-      short: r.label.split(' (')[0],
+      short: r.short,
       samples: r.samples,
       q: r.q,
       t: cumulative(r.t, r.q.t),
@@ -269,13 +269,23 @@
         ctx.fillStyle = '#d62728'; ctx.fillText(e.name, X + 7, Y - 3);
       });
     });
-    // Names above the moving bodies, when few enough to read.
+    // Names above the moving bodies, when few enough to read, each where
+    // it covers neither another body nor another name.
     if (moving <= 30) {
       ctx.fillStyle = '#333'; ctx.font = '12px sans-serif'; ctx.textAlign = 'center'; ctx.textBaseline = 'bottom';
+      var boxes = [], placed = [];
+      bodies.forEach(function (body, b) {
+        var st = stateOf(primary, b, locs[0]), R = Math.max(body.radius * tr.s, 4);
+        boxes.push({ b: b, x0: tr.X(st.x) - R, x1: tr.X(st.x) + R, y0: tr.Y(st.y) - R, y1: tr.Y(st.y) + R });
+      });
+      var overlaps = function (a, c) { return a.x0 < c.x1 && c.x0 < a.x1 && a.y0 < c.y1 && c.y0 < a.y1; };
       bodies.forEach(function (body, b) {
         if (body.kind === 'static') { return; }
-        var st = stateOf(primary, b, locs[0]);
-        ctx.fillText(body.name, tr.X(st.x), tr.Y(st.y) - Math.max(body.radius * tr.s, 4) - 4);
+        var box = boxes[b], X = (box.x0 + box.x1) / 2, Y = box.y0 - 3, w = ctx.measureText(body.name).width;
+        var label = { x0: X - w / 2, x1: X + w / 2, y0: Y - 14, y1: Y };
+        var blocked = boxes.some(function (o) { return o.b !== b && bodies[o.b].kind !== 'static' && overlaps(o, label); }) ||
+          placed.some(function (o) { return overlaps(o, label); });
+        if (!blocked) { placed.push(label); ctx.fillText(body.name, X, Y); }
       });
     }
     drawScale(p, tr);
@@ -320,9 +330,12 @@
   }
 
   // ---- readouts ----------------------------------------------------------
+  // A value to its quantum's decimals, or to 5 significant digits when
+  // that would take more than 9 characters.
   function fixed(v, d) {
     var s = v.toFixed(d);
-    return Number(s) === 0 ? (0).toFixed(d) : s;
+    if (Number(s) === 0) { return (0).toFixed(Math.min(d, 5)); }
+    return s.length > 9 ? Number(v.toPrecision(5)).toString() : s;
   }
   function quantities(run, b, loc) {
     var st = stateOf(run, b, loc), body = bodies[b], q = run.q;

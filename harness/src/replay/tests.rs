@@ -26,6 +26,7 @@ fn replay_of(scene: &Scene) -> Replay {
     );
     replay.runs.push(ReplayRun {
         label: "this engine (rk4)".into(),
+        short: "engine".into(),
         times: rec.times,
         states: rec.states,
         energies: Some(rec.energies),
