@@ -13,6 +13,7 @@ pub mod progress;
 pub mod provenance;
 pub mod rapier_scene;
 pub mod replay;
+pub mod replay_cases;
 pub mod report;
 pub mod row;
 pub mod scenes;

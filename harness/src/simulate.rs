@@ -459,6 +459,64 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     Ok(())
 }
 
+/// A replay of `scene` run with its own method, step and duration, with
+/// every engine of `engines` that can represent it beside it; an engine
+/// that cannot is a note on the page, with its reason. `title` heads the
+/// page.
+pub fn replay_of(
+    scene: &Scene,
+    engines: &[CompareWith],
+    title: String,
+) -> Result<crate::replay::Replay> {
+    let method = scene.method();
+    let (dt, until) = (scene.dt(), scene.duration());
+    let mut world = scene.build_world(None)?;
+    let limits = RunLimits::default();
+    let steps = engine::step_count(until, dt)?;
+    let stride = stride_for(steps, limits.max_samples);
+    let mut notes = Vec::new();
+    let mut comparisons = Vec::new();
+    for &engine in engines {
+        match compare::Comparison::prepare(
+            scene,
+            &[engine],
+            (dt, steps, stride),
+            world.states(),
+            false,
+        ) {
+            Ok(c) => comparisons.push(c),
+            Err(e) => notes.push(format!("Not compared: {e:#}.")),
+        }
+    }
+    let ticker = Ticker::new(indicatif::ProgressBar::hidden(), 1);
+    let recorded = record(&mut world, until, dt, &limits, ticker, |i, whole, w| {
+        for c in &mut comparisons {
+            c.observe(i, whole, w);
+        }
+    })?;
+    let mut replay = crate::replay::Replay::new(
+        scene,
+        world.bodies(),
+        title,
+        format!("{}, dt = {} s", method.id(), fmt_short(dt)),
+        dt * recorded.stride as f64,
+    );
+    replay.notes = notes;
+    replay.runs.push(crate::replay::ReplayRun {
+        label: format!("this engine ({}, dt = {} s)", method.id(), fmt_short(dt)),
+        short: "engine".into(),
+        times: recorded.times,
+        states: recorded.states,
+        energies: Some(recorded.energies),
+        events: crate::replay::ReplayEvent::from_records(scene, &recorded.events),
+    });
+    for c in comparisons {
+        let (_, runs) = c.report()?;
+        replay.runs.extend(runs);
+    }
+    Ok(replay)
+}
+
 /// The scene file's name (without its folders).
 fn scene_name(scene: &Scene) -> String {
     Path::new(scene.origin()).file_name().map_or_else(
