@@ -13,6 +13,8 @@ pub mod plots;
 pub mod progress;
 pub mod provenance;
 pub mod rapier_scene;
+pub mod replay;
+pub mod replay_cases;
 pub mod report;
 pub mod row;
 pub mod scenes;

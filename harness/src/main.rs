@@ -40,7 +40,7 @@ enum Command {
         reasons: bool,
     },
     /// Runs a scene file of your own.
-    Simulate(harness::simulate::SimulateArgs),
+    Simulate(Box<harness::simulate::SimulateArgs>),
     /// Benchmarks this engine's soft step against rapier2d-f64 and Box2D v3
     /// on the many-body scenes, side by side, and writes
     /// `benchmarks.md`/`benchmarks.json` and the charts into the report
@@ -133,7 +133,7 @@ fn refuse_out(out: Option<&Path>, command: &str) -> Result<()> {
             "--out {}: `{command}` writes no report; --out DIR applies to `run`{}",
             dir.display(),
             if command == "simulate" {
-                " (simulate writes where --trace, --svg and --gif say)"
+                " (simulate writes where --trace, --svg, --gif and --html say)"
             } else {
                 ""
             }
@@ -232,6 +232,8 @@ fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Resu
             .map(|scene| (*scene, CaseReport::default()))
             .collect();
         harness::pictures::write_case_pictures(dir, &scenes)?;
+        let ids: Vec<&str> = scenes.iter().map(|(id, _)| *id).collect();
+        harness::replay_cases::write_case_replays(dir, &ids)?;
         // After the pictures, so that the pages can link them.
         report::write(dir, &results, study.as_ref(), &provenance)?;
         let broken = harness::links::broken_links(dir)?;

@@ -3,8 +3,8 @@
 //!
 //! ```text
 //! harness simulate scene.toml [--method M] [--dt H] [--until T]
-//!     [--trace out.csv] [--svg out.svg] [--gif out.gif] [--compare rapier]
-//!     [--budget SECONDS]
+//!     [--trace out.csv] [--svg out.svg] [--gif out.gif] [--html out.html]
+//!     [--compare rapier,box2d] [--verbose] [--budget SECONDS]
 //! ```
 //!
 //! - the scene runs with its own `[simulation]` method, step and duration,
@@ -20,10 +20,13 @@
 //! - `--svg`: a filmstrip of six frames; `--gif`: an animation (at most
 //!   `--frames`, default 120, ≤ 200); a `[linear_test]` gets its y(t) curve
 //!   as SVG and no animation;
-//! - `--compare rapier`: runs the scene in rapier2d-f64 too
-//!   (`references::rapier_world`; one dynamic body under gravity, an axial
-//!   spring to an anchor, drag, angular drag and torques) and prints the
-//!   largest difference of each quantity and rapier's configuration;
+//! - `--html`: an interactive replay, one self-contained page
+//!   ([`crate::replay`]), with the engines of `--compare` beside the run;
+//! - `--compare rapier`, `--compare box2d` or both (`rapier,box2d`): runs
+//!   the scene in rapier2d-f64 0.36 and Box2D 3.2 too, whenever their
+//!   adapters can represent it ([`compare`]), and prints the largest
+//!   difference of each quantity (`--verbose`: and each engine's
+//!   configuration);
 //! - `--budget SECONDS`: a wall-time limit, checked between steps: the run
 //!   stops after the step that spends it, says so (stdout and stderr,
 //!   exit code 0), and the outputs cover the part that ran;
@@ -96,6 +99,11 @@ pub struct SimulateArgs {
     /// Write an animation as GIF.
     #[arg(long, value_name = "out.gif")]
     pub gif: Option<PathBuf>,
+    /// Write an interactive replay: one self-contained HTML page (play,
+    /// pause, step, scrub, speed, zoom, pan, paths, each body's state; the
+    /// engines of --compare side by side or overlaid).
+    #[arg(long, value_name = "out.html")]
+    pub html: Option<PathBuf>,
     /// Frames of the GIF (2 to 200).
     #[arg(long, value_name = "N", default_value_t = 120,
           value_parser = clap::value_parser!(u16).range(2..=200))]
@@ -110,17 +118,24 @@ pub struct SimulateArgs {
     /// ran. Checked between steps.
     #[arg(long, value_name = "SECONDS", value_parser = parse_seconds, allow_negative_numbers = true)]
     pub budget: Option<f64>,
-    /// Run the scene in another engine too and print the differences.
-    #[arg(long, value_name = "ENGINE")]
-    pub compare: Option<CompareWith>,
+    /// Run the scene in other engines too and print the differences:
+    /// rapier, box2d, or both (`--compare rapier,box2d`).
+    #[arg(long, value_name = "ENGINE", value_delimiter = ',')]
+    pub compare: Vec<CompareWith>,
+    /// Print how each engine of --compare is configured.
+    #[arg(long)]
+    pub verbose: bool,
 }
 
 /// Engines `--compare` knows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum CompareWith {
-    /// rapier2d-f64 0.36, configured as close to ideal rigid-body physics
-    /// as it allows (references::rapier_world).
+    /// rapier2d-f64 0.36: bent towards ideal rigid-body physics for scenes
+    /// without contacts or with exact ones, at its defaults for the soft
+    /// step.
     Rapier,
+    /// Box2D 3.2 (boxdd 0.6), at its defaults.
+    Box2d,
 }
 
 /// The method ids `--method` accepts.
@@ -213,6 +228,12 @@ impl Recorded {
     }
 }
 
+/// Every how many steps [`record`] keeps a sample of a run of `steps`
+/// steps to keep at most `max_samples` (≥ 2), the first and last included.
+pub fn stride_for(steps: u64, max_samples: u64) -> u64 {
+    (steps.div_ceil(max_samples.max(2) - 1)).max(1)
+}
+
 /// Runs `world` from its current time to `until` (s) in steps of `dt`
 /// (s), on the grid of [`World::run`] (times `t0 + i·dt`, the last step
 /// shortened to end at `until`), and keeps at most `limits.max_samples`
@@ -234,7 +255,7 @@ pub fn record(
     let span = until - t0;
     let steps = engine::step_count(span, dt)?;
     let last_is_whole = (steps as f64 * dt - span).abs() <= 1e-9 * span;
-    let stride = (steps.div_ceil(limits.max_samples.max(2) - 1)).max(1);
+    let stride = stride_for(steps, limits.max_samples);
     let mut rec = Recorded {
         stride,
         ..Recorded::default()
@@ -335,20 +356,33 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         "{}: {}, dt = {} s, until {} s ({steps} steps)",
         scene.origin(),
         method.id(),
-        run_text::short(dt),
-        run_text::short(until),
+        fmt_short(dt),
+        fmt_short(until)
     );
     if scene.is_linear_test() {
         return linear_test::run_linear_test(&scene, args, method, (dt, until), &header);
     }
-    let mut comparison = match args.compare {
-        Some(CompareWith::Rapier) => Some(compare::Rapier::prepare(&scene, steps)?),
-        None => None,
-    };
     let mut world = if args.method.is_some() {
         scene.build_world(Some(method))?
     } else {
         scene.build_world(None)?
+    };
+    let mut engines: Vec<CompareWith> = Vec::new();
+    for e in &args.compare {
+        if !engines.contains(e) {
+            engines.push(*e);
+        }
+    }
+    let mut comparison = if engines.is_empty() {
+        None
+    } else {
+        Some(compare::Comparison::prepare(
+            &scene,
+            &engines,
+            (dt, steps, stride_for(steps, args.max_samples)),
+            world.states(),
+            args.verbose,
+        )?)
     };
     println!("{header}");
     println!("{}", run_text::model_line(&world));
@@ -369,9 +403,14 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         "{}",
         summary(&scene, &world, &recorded, run_time.as_secs_f64())
     );
-    if let Some(c) = comparison {
-        print!("{}", c.report(dt)?);
-    }
+    let references = match comparison {
+        Some(c) => {
+            let (text, runs) = c.report()?;
+            print!("{text}");
+            runs
+        }
+        None => Vec::new(),
+    };
     if let Some((t, a, b)) = contacts_off::first_overlap(&world, &recorded) {
         let names = scene.body_names();
         let warning = format!(
@@ -379,7 +418,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
             scene.origin(),
             names[a],
             names[b],
-            run_text::short(t)
+            fmt_short(t)
         );
         eprintln!("{warning}");
     }
@@ -404,6 +443,30 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
                         .map_err(|e| e.context(format!("--gif {}", out.path.display())))?
                 }
             }
+            "--html" => {
+                let title = scene_name(&scene);
+                let mut replay = crate::replay::Replay::new(
+                    &scene,
+                    world.bodies(),
+                    title,
+                    format!("{}, dt = {} s", method.id(), fmt_short(dt)),
+                    dt * recorded.stride as f64,
+                );
+                replay.runs.push(crate::replay::ReplayRun {
+                    label: format!("this engine ({}, dt = {} s)", method.id(), fmt_short(dt)),
+                    short: "engine".into(),
+                    times: recorded.times.clone(),
+                    states: recorded.states.clone(),
+                    energies: Some(recorded.energies.clone()),
+                    events: crate::replay::ReplayEvent::from_records(&scene, &recorded.events),
+                });
+                replay.runs.extend(references.iter().cloned());
+                replay
+                    .page()
+                    .map_err(|e| e.context(format!("--html {}", out.path.display())))?
+                    .html
+                    .into_bytes()
+            }
             _ => continue,
         };
         files.push((out, bytes));
@@ -413,11 +476,91 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     Ok(())
 }
 
-fn film_of(scene: &Scene, world: &World, recorded: &Recorded, method: Method, dt: f64) -> Film {
-    let name = Path::new(scene.origin()).file_name().map_or_else(
+/// A replay of `scene` run with its own method, step and duration, with
+/// every engine of `engines` that can represent it beside it; an engine
+/// that cannot is a note on the page, with its reason. `title` heads the
+/// page.
+pub fn replay_of(
+    scene: &Scene,
+    engines: &[CompareWith],
+    title: String,
+) -> Result<crate::replay::Replay> {
+    let method = scene.method();
+    let (dt, until) = (scene.dt(), scene.duration());
+    let mut world = scene.build_world(None)?;
+    let limits = RunLimits::default();
+    let steps = engine::step_count(until, dt)?;
+    let stride = stride_for(steps, limits.max_samples);
+    let mut notes = Vec::new();
+    let mut comparisons = Vec::new();
+    for &engine in engines {
+        match compare::Comparison::prepare(
+            scene,
+            &[engine],
+            (dt, steps, stride),
+            world.states(),
+            false,
+        ) {
+            Ok(c) => comparisons.push(c),
+            Err(e) => notes.push(format!("Not compared: {e:#}.")),
+        }
+    }
+    let ticker = Ticker::new(indicatif::ProgressBar::hidden(), 1);
+    let recorded = record(&mut world, until, dt, &limits, ticker, |i, whole, w| {
+        for c in &mut comparisons {
+            c.observe(i, whole, w);
+        }
+    })?;
+    let mut replay = crate::replay::Replay::new(
+        scene,
+        world.bodies(),
+        title,
+        format!("{}, dt = {} s", method.id(), fmt_short(dt)),
+        dt * recorded.stride as f64,
+    );
+    replay.notes = notes;
+    replay.runs.push(crate::replay::ReplayRun {
+        label: format!("this engine ({}, dt = {} s)", method.id(), fmt_short(dt)),
+        short: "engine".into(),
+        times: recorded.times,
+        states: recorded.states,
+        energies: Some(recorded.energies),
+        events: crate::replay::ReplayEvent::from_records(scene, &recorded.events),
+    });
+    for c in comparisons {
+        let (_, runs) = c.report()?;
+        replay.runs.extend(runs);
+    }
+    Ok(replay)
+}
+
+/// The scene file's name (without its folders).
+fn scene_name(scene: &Scene) -> String {
+    Path::new(scene.origin()).file_name().map_or_else(
         || scene.origin().to_owned(),
         |n| n.to_string_lossy().into_owned(),
-    );
+    )
+}
+
+/// A number as short as it reads back (Rust's shortest round trip) when
+/// that is at most 10 characters, else to 6 significant digits: `0.01`,
+/// `5.85` for 5.8500000000000005.
+pub fn fmt_short(v: f64) -> String {
+    let plain = format!("{v}");
+    if plain.len() <= 10 {
+        return plain;
+    }
+    let rounded: f64 = format!("{v:.5e}").parse().unwrap_or(v);
+    let again = format!("{rounded}");
+    if again.len() <= 12 {
+        again
+    } else {
+        format!("{v:.5e}")
+    }
+}
+
+fn film_of(scene: &Scene, world: &World, recorded: &Recorded, method: Method, dt: f64) -> Film {
+    let name = scene_name(scene);
     let mut film = Film::new(
         scene,
         world.bodies(),

@@ -160,7 +160,10 @@ fn out_is_refused_by_the_commands_that_write_no_report() {
     let done = harness(cwd.path(), &["simulate", "scene.toml", "--out", "x"]);
     assert_eq!(done.status.code(), Some(2));
     let stderr = text(&done.stderr);
-    assert!(stderr.contains("--trace, --svg and --gif"), "{stderr}");
+    assert!(
+        stderr.contains("--trace, --svg, --gif and --html"),
+        "{stderr}"
+    );
     assert!(!cwd.path().join("x").exists());
 }
 

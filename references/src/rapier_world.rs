@@ -137,6 +137,18 @@ pub enum RapierForce {
         /// Rest length l0, m.
         rest_length: f64,
     },
+    /// A distance spring between a fixed `anchor` (m) and the centre of
+    /// mass: with d = x − anchor, extension ψ = |d| − l0 and force
+    /// −k·ψ·d/|d| (none when d = 0, as in the engine). `stiffness` k in
+    /// N/m, `rest_length` l0 in m.
+    DistanceSpring {
+        /// Fixed end of the spring, m.
+        anchor: [f64; 2],
+        /// Stiffness k, N/m (≥ 0).
+        stiffness: f64,
+        /// Rest length l0, m.
+        rest_length: f64,
+    },
     /// Quadratic air drag −D·|v|·v at the centre of mass (seed eq. 6.7–6.8),
     /// `coefficient` D in kg/m (≥ 0).
     QuadraticDrag {
@@ -306,6 +318,16 @@ fn validate(
                 require_non_negative("spring stiffness", stiffness)?;
                 require_finite("spring rest length", rest_length)?;
             }
+            RapierForce::DistanceSpring {
+                anchor,
+                stiffness,
+                rest_length,
+            } => {
+                require_finite("spring anchor x", anchor[0])?;
+                require_finite("spring anchor y", anchor[1])?;
+                require_non_negative("spring stiffness", stiffness)?;
+                require_finite("spring rest length", rest_length)?;
+            }
             RapierForce::QuadraticDrag { coefficient } => {
                 require_non_negative("quadratic drag coefficient", coefficient)?;
             }
@@ -453,6 +475,19 @@ fn external_wrench(
                 let psi = d[0] * u[0] + d[1] * u[1] - rest_length;
                 f[0] -= stiffness * psi * u[0];
                 f[1] -= stiffness * psi * u[1];
+            }
+            RapierForce::DistanceSpring {
+                anchor,
+                stiffness,
+                rest_length,
+            } => {
+                let d = [position[0] - anchor[0], position[1] - anchor[1]];
+                let length = d[0].hypot(d[1]);
+                if length > 0.0 {
+                    let scale = stiffness * (length - rest_length) / length;
+                    f[0] -= scale * d[0];
+                    f[1] -= scale * d[1];
+                }
             }
             RapierForce::QuadraticDrag { coefficient } => {
                 let speed = velocity[0].hypot(velocity[1]);

@@ -10,6 +10,17 @@ use references::many_body::{self, ManyBodyScene, SceneBody};
 use scene::Scene;
 use scene::format::ForceSpec;
 
+/// The materials and substeps a scene gives bodies without their own.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Defaults {
+    /// Friction coefficient of a body without its own.
+    pub friction: f64,
+    /// Restitution of a body without its own.
+    pub restitution: f64,
+    /// Substeps per step.
+    pub substeps: usize,
+}
+
 /// The neutral description of a soft-step `scene` (bodies in file order,
 /// so indices agree with the engine's).
 pub fn many_body_scene(scene: &Scene) -> Result<ManyBodyScene> {
@@ -20,6 +31,20 @@ pub fn many_body_scene(scene: &Scene) -> Result<ManyBodyScene> {
             scene.origin()
         ),
     };
+    neutral_scene(
+        scene,
+        Defaults {
+            friction: settings.friction,
+            restitution: settings.restitution,
+            substeps: settings.substeps,
+        },
+    )
+}
+
+/// The neutral description of `scene` with `defaults` for the bodies
+/// without their own materials: every body with a shape, gravity the only
+/// force (the world setting and unwindowed `gravity` forces, summed).
+pub fn neutral_scene(scene: &Scene, defaults: Defaults) -> Result<ManyBodyScene> {
     let mut gravity = scene.gravity().map_or([0.0, 0.0], |g| [g.x, g.y]);
     for f in &scene.file().forces {
         match f {
@@ -60,8 +85,8 @@ pub fn many_body_scene(scene: &Scene) -> Result<ManyBodyScene> {
                 velocity: [state.velocity.x, state.velocity.y],
                 angular_velocity: state.angular_velocity,
                 density,
-                friction: body.friction.unwrap_or(settings.friction),
-                restitution: body.restitution.unwrap_or(settings.restitution),
+                friction: body.friction.unwrap_or(defaults.friction),
+                restitution: body.restitution.unwrap_or(defaults.restitution),
                 collision_group: None,
             })
         })
@@ -69,7 +94,7 @@ pub fn many_body_scene(scene: &Scene) -> Result<ManyBodyScene> {
     let scene = ManyBodyScene {
         gravity,
         dt: scene.dt(),
-        substeps: settings.substeps,
+        substeps: defaults.substeps,
         bodies,
         joints: Vec::new(),
     };

@@ -81,12 +81,14 @@ fn section(md: &mut String, title: &str) {
 }
 
 /// The page of `case`, run as `report`, with its place in `study` when
-/// the studies ran, linking the pictures of `scenes/` when there are.
+/// the studies ran, linking the pictures of `scenes/` and the replay of
+/// `replays/` when there are.
 pub fn markdown(
     case: &Case,
     report: &CaseReport,
     study: Option<&StudyResults>,
     pictures: bool,
+    replay: bool,
 ) -> String {
     let id = case.id;
     let passed = report.rows.iter().filter(|r| r.pass).count();
@@ -105,6 +107,12 @@ pub fn markdown(
             let _ = write!(
                 facts,
                 "; [pictures](../scenes/README.md#{first}) of the first"
+            );
+        }
+        if replay {
+            let _ = write!(
+                facts,
+                "; its [replay](../replays/{first}.html) in the browser"
             );
         }
         facts.push('.');

@@ -100,6 +100,20 @@ pub fn write(
     md.push('\n');
     md.push_str(&wrap(provenance, "", ""));
     md.push_str("\n## Cases\n\n");
+    if dir
+        .join(crate::replay_cases::FOLDER)
+        .join("README.md")
+        .is_file()
+    {
+        md.push_str(&wrap(
+            "Every case with a scene can be watched in the browser: its [replay](replays/README.md) \
+             (one self-contained page per case, with rapier2d and Box2D beside the engine where \
+             they can run the scene).",
+            "",
+            "",
+        ));
+        md.push('\n');
+    }
     md.push_str(&wrap(
         "Each case's page has its notes, charts and every row; the headline row is the one the \
          case declares first.",
@@ -115,7 +129,15 @@ pub fn write(
         }
         write_file(
             &dir.join("cases").join(format!("{id}.md")),
-            &case_page::markdown(case, report, study, pictures),
+            &case_page::markdown(
+                case,
+                report,
+                study,
+                pictures,
+                case.scenes
+                    .first()
+                    .is_some_and(|s| crate::replay_cases::page_path(dir, s).is_file()),
+            ),
         )?;
         let passed = report.rows.iter().filter(|r| r.pass).count();
         let headline = case

@@ -36,7 +36,7 @@ pub(super) fn run_linear_test(
             scene.origin()
         );
     }
-    if args.compare.is_some() {
+    if !args.compare.is_empty() {
         bail!(
             "--compare: {} is a [linear_test] scene; only scenes of bodies run in rapier2d",
             scene.origin()

@@ -1,4 +1,4 @@
-//! The outputs of `simulate` (`--trace`, `--svg`, `--gif`): checked before
+//! The outputs of `simulate` (`--trace`, `--svg`, `--gif`, `--html`): checked before
 //! the run, written after it, each through a temporary file renamed into
 //! place so that a failure never leaves half a file.
 //!
@@ -87,6 +87,7 @@ pub(super) fn outputs(args: &SimulateArgs) -> Vec<Output<'_>> {
         ("--trace", &args.trace),
         ("--svg", &args.svg),
         ("--gif", &args.gif),
+        ("--html", &args.html),
     ]
     .into_iter()
     .filter_map(|(option, path)| path.as_deref().map(|path| Output { option, path }))

@@ -3,39 +3,13 @@
 //! got, and with what), and the final state, body by body for a few bodies
 //! or as a summary for a pile.
 
+use super::fmt_short as short;
 use engine::{ContactModel, ToiMethod, World};
 use std::fmt::Write as _;
 
 /// Above this many bodies the final state is summarised (the CSV trace has
 /// every body).
 pub const LISTED_BODIES: usize = 12;
-
-/// A number for a line of text: at most six significant digits, trailing
-/// zeros dropped (`0.0166667`, `30`, `1e-10`).
-pub fn short(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{v}");
-    }
-    let a = v.abs();
-    if (1e-4..1e6).contains(&a) {
-        let digits = (5 - a.log10().floor() as i32).max(0) as usize;
-        let text = format!("{v:.digits$}");
-        if text.contains('.') {
-            text.trim_end_matches('0').trim_end_matches('.').to_owned()
-        } else {
-            text
-        }
-    } else {
-        let text = format!("{v:.5e}");
-        let (mantissa, exponent) = text.split_once('e').expect("scientific notation");
-        let mantissa = if mantissa.contains('.') {
-            mantissa.trim_end_matches('0').trim_end_matches('.')
-        } else {
-            mantissa
-        };
-        format!("{mantissa}e{exponent}")
-    }
-}
 
 /// `contacts: soft_step (4 substeps, …)`, `contacts: exact (…)` or
 /// `contacts: off (…)`: the model that runs and every setting that changes
@@ -132,17 +106,6 @@ pub fn pile_summary(world: &World, names: &[&str], fmt: impl Fn(f64) -> String) 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn short_numbers_keep_six_digits_and_drop_trailing_zeros() {
-        assert_eq!(short(1.0 / 60.0), "0.0166667");
-        assert_eq!(short(30.0), "30");
-        assert_eq!(short(0.6), "0.6");
-        assert_eq!(short(5.8500000000000005), "5.85");
-        assert_eq!(short(1e-10), "1e-10");
-        assert_eq!(short(-2.5e7), "-2.5e7");
-        assert_eq!(short(0.0), "0");
-    }
 
     #[test]
     fn the_model_line_names_the_model() {
