@@ -265,6 +265,8 @@ fn an_output_whose_extension_is_another_format_is_refused() {
     run.refused(GOOD, &["--gif movie.svg", "ends in .svg", ".gif"]);
     let run = simulate(GOOD, &["--svg", "strip"]);
     run.refused(GOOD, &["--svg strip", "has no extension", ".svg"]);
+    let run = simulate(GOOD, &["--html", "replay.gif"]);
+    run.refused(GOOD, &["--html replay.gif", "ends in .gif", ".html"]);
     // The `simulate` helper always asks for `--trace out.csv`: a second
     // trace path cannot be given, so the trace's own check runs alone.
     let dir = tempfile::tempdir().expect("temp dir");

@@ -154,7 +154,9 @@ fn format_of(option: &str) -> (&'static str, &'static str) {
     match option {
         "--trace" => ("csv", "a CSV trace"),
         "--svg" => ("svg", "an SVG filmstrip"),
-        _ => ("gif", "a GIF animation"),
+        "--html" => ("html", "an HTML replay page"),
+        "--gif" => ("gif", "a GIF animation"),
+        other => unreachable!("no output option {other}"),
     }
 }
 
