@@ -677,6 +677,7 @@ fn body(path: &FieldPath, spec: &BodySpec) -> Checked<BodyDef> {
         state,
         friction,
         restitution,
+        collision_group: None,
     };
     // The engine's own check, so that building the world cannot fail.
     let (built, _) = engine::Body::from_def(&def).map_err(|e| Problem::engine(path, e))?;

@@ -489,6 +489,7 @@ pub(crate) fn expand(
             },
             friction,
             restitution,
+            collision_group: None,
         })
         .collect::<Vec<_>>();
     for def in &bodies {
