@@ -84,9 +84,9 @@ impl SoftStep {
 
     /// Removes every joint of `body` (being removed).
     pub(super) fn remove_joints_of(&mut self, body: BodyId) {
-        while let Some(&j) = self.joints.of_body(body).first() {
+        while let Some(j) = self.joints.first_of_body(body) {
             // Cannot fail: the id comes from the set.
-            let _ = self.remove_joint(j as usize);
+            let _ = self.remove_joint(j);
         }
     }
 

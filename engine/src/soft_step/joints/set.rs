@@ -60,13 +60,27 @@ pub(crate) struct JointInfo {
     pub removed: bool,
 }
 
+/// A joint as one of its bodies sees it: which joint, the body at its
+/// other end, and whether it keeps the two from colliding (what the pair
+/// filter reads, without touching the joint itself).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct JointEdge {
+    joint: u32,
+    /// The other body, [`WORLD`] for the world.
+    other: u32,
+    keeps_apart: bool,
+}
+
+/// The other end of a joint to the world.
+const WORLD: u32 = u32::MAX;
+
 /// The joints of a world.
 #[derive(Debug, Default)]
 pub(crate) struct JointSet {
     pub sims: Vec<JointSim>,
     pub infos: Vec<JointInfo>,
-    /// Per body: its joints (ids).
-    body_joints: Vec<SmallVec<[u32; 4]>>,
+    /// Per body: its joints.
+    body_joints: Vec<SmallVec<[JointEdge; 4]>>,
     /// 1/h of the last step's substep (1/s), for the reaction forces.
     inv_h: f64,
 }
@@ -110,9 +124,9 @@ impl JointSet {
         self.infos.len()
     }
 
-    /// The joints of `body`.
-    pub(crate) fn of_body(&self, body: BodyId) -> &[u32] {
-        &self.body_joints[body]
+    /// The first joint of `body`, if it has any.
+    pub(crate) fn first_of_body(&self, body: BodyId) -> Option<JointId> {
+        self.body_joints[body].first().map(|e| e.joint as usize)
     }
 
     /// Whether a joint between `a` and `b` keeps them from colliding:
@@ -129,10 +143,8 @@ impl JointSet {
         } else {
             (jb, a)
         };
-        list.iter().any(|&j| {
-            let info = &self.infos[j as usize];
-            !info.collide_connected && (info.body_a == Some(other) || info.body_b == Some(other))
-        })
+        list.iter()
+            .any(|e| e.keeps_apart && e.other as usize == other)
     }
 
     /// Validates `def` against the world in `core` and adds it.
@@ -242,8 +254,15 @@ impl JointSet {
             frame: JointFrame::EMPTY,
             rows,
         });
-        for body in [def.body_a, def.body_b].into_iter().flatten() {
-            self.body_joints[body].push(id as u32);
+        let end = |b: Option<BodyId>| b.map_or(WORLD, |id| id as u32);
+        for (body, other) in [(def.body_a, def.body_b), (def.body_b, def.body_a)] {
+            if let Some(body) = body {
+                self.body_joints[body].push(JointEdge {
+                    joint: id as u32,
+                    other: end(other),
+                    keeps_apart: !def.collide_connected,
+                });
+            }
         }
         Ok(id)
     }
@@ -269,7 +288,7 @@ impl JointSet {
         info.removed = true;
         self.sims[id].active = false;
         for body in [info.body_a, info.body_b].into_iter().flatten() {
-            self.body_joints[body].retain(|j| *j as usize != id);
+            self.body_joints[body].retain(|e| e.joint as usize != id);
         }
         true
     }
