@@ -326,11 +326,14 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     let steps = steps_of(&scene, args, dt, until)?;
     let requested = outputs(args);
     check_outputs(&args.scene, &requested)?;
-    let header = format!(
+    let mut header = format!(
         "{}: {}, dt = {dt} s, until {until} s ({steps} steps)",
         scene.origin(),
         method.id()
     );
+    if !scene.is_linear_test() {
+        header.push_str(&model_line(&scene));
+    }
     if scene.is_linear_test() {
         return linear_test::run_linear_test(&scene, args, method, (dt, until), &header);
     }
@@ -392,6 +395,22 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     write_all(&files, &recorded)?;
     tracing::info!("simulate done in {:.3} s", started.elapsed().as_secs_f64());
     Ok(())
+}
+
+/// `"; contacts soft_step, 4 substeps; 2 joints"`: the contact model and
+/// its substeps, and how many joints, for the header.
+fn model_line(scene: &Scene) -> String {
+    let model = match scene.contact() {
+        Some(engine::ContactModel::SoftStep(s)) => format!("soft_step, {} substeps", s.substeps),
+        Some(engine::ContactModel::Exact(_)) => "exact".to_owned(),
+        None => "off".to_owned(),
+    };
+    let joints = match scene.joint_count() {
+        0 => String::new(),
+        1 => "; 1 joint".to_owned(),
+        n => format!("; {n} joints"),
+    };
+    format!("; contacts {model}{joints}")
 }
 
 fn film_of(scene: &Scene, world: &World, recorded: &Recorded, method: Method, dt: f64) -> Film {

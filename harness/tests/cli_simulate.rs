@@ -284,3 +284,25 @@ fn a_long_run_draws_no_progress_bar_when_stderr_is_not_a_terminal() {
     let csv = std::fs::read_to_string(dir.path().join("long.csv")).unwrap();
     assert_eq!(csv.lines().count(), 102);
 }
+
+#[test]
+fn a_jointed_scene_prints_its_model_and_joints_and_draws_them() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let pendulum = workspace().join("scenes/examples/pendulum.toml");
+    let pendulum = pendulum.to_str().expect("a UTF-8 path");
+    let done = harness(dir.path(), &["simulate", pendulum, "--svg", "out.svg"]);
+    assert_eq!(done.code, Some(0), "{}", done.stderr);
+    assert!(
+        done.stdout
+            .contains("(360 steps); contacts soft_step, 4 substeps; 2 joints"),
+        "{}",
+        done.stdout
+    );
+    // Each joint is drawn with a dot at each anchor: 2 joints, 2 anchors,
+    // in each of the filmstrip's 6 frames.
+    let svg = std::fs::read_to_string(dir.path().join("out.svg")).expect("the SVG");
+    let dots = svg
+        .matches("r=\"2\" opacity=\"1\" fill=\"#464646\"")
+        .count();
+    assert_eq!(dots, 6 * 2 * 2, "joint anchors drawn");
+}

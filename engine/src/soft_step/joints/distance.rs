@@ -43,11 +43,12 @@ pub enum Distance {
         length: Option<f64>,
     },
     /// Free between `min_length` and `max_length` (m): a rope when
-    /// `min_length` is 0. 0 ≤ min ≤ max, max finite and > 0.
+    /// `min_length` is 0, a strut that cannot shorten when `max_length` is
+    /// infinite. 0 ≤ min ≤ max, max > 0, at least one limit.
     Rope {
         /// Shortest length (m), ≥ 0; 0 for a rope.
         min_length: f64,
-        /// Longest length (m), finite, > 0.
+        /// Longest length (m), > 0; `f64::INFINITY` for none.
         max_length: f64,
     },
     /// A spring of rest length `length` (m, > 0; `None`: the anchors'
@@ -109,7 +110,15 @@ impl Distance {
                 min_length,
                 max_length,
             } => {
-                positive(name, "largest length of a rope (m)", max_length)?;
+                if max_length == f64::INFINITY && min_length == 0.0 {
+                    return Err(invalid(
+                        name,
+                        "a rope with neither a shortest nor a longest length holds nothing: give max_length (or min_length)".into(),
+                    ));
+                }
+                if max_length != f64::INFINITY {
+                    positive(name, "largest length of a rope (m)", max_length)?;
+                }
                 Some((min_length, max_length))
             }
             Distance::Spring {
