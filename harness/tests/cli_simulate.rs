@@ -198,6 +198,12 @@ fn the_rapier_comparison_refuses_what_rapier_cannot_run() {
     assert!(done.stderr.contains("one dynamic body"), "{}", done.stderr);
     assert!(!done.stderr.contains("panicked"));
     assert!(!dir.path().join("p.svg").exists());
+    // One body on a joint: rapier would run it free.
+    let scene = "[simulation]\ndt = 0.01\nduration = 0.1\n\n[[bodies]]\nname = \"bob\"\nmass = 1.0\nposition = [1.0, 0.0]\n\n[[joints]]\ntype = \"distance\"\nbody_b = \"bob\"\nanchor_a = [0.0, 0.0]\nanchor_b = [1.0, 0.0]\n";
+    std::fs::write(dir.path().join("bob.toml"), scene).unwrap();
+    let done = harness(dir.path(), &["simulate", "bob.toml", "--compare", "rapier"]);
+    assert_eq!(done.code, Some(2), "{}", done.stdout);
+    assert!(done.stderr.contains("has joints"), "{}", done.stderr);
 }
 
 #[test]
