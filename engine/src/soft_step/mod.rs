@@ -621,6 +621,10 @@ impl SoftStep {
             }
             let sim = &self.sims[id];
             if sim.colliders.is_empty() {
+                // No shape, but its joints' anchors turn with it.
+                if r.dtheta != 0.0 {
+                    self.sims[id].rotation = UnitComplex::new(core.states[id].angle);
+                }
                 continue;
             }
             let motion = r.dp.norm() + sim.max_extent * r.dtheta.abs();
