@@ -3,8 +3,8 @@
 //! island, lose their joints when removed; every bad definition is a
 //! typed error naming the joint; the exact model refuses joints.
 
+use engine::EngineError;
 use engine::prelude::*;
-use engine::{EngineError, JointKind};
 
 const DT: f64 = 1.0 / 60.0;
 
@@ -381,7 +381,6 @@ fn joints_need_the_soft_step() {
         soft.joint(0).unwrap().joint_type,
         engine::JointType::Revolute
     ));
-    let _ = JointKind::Weld(Weld::default());
 }
 
 #[test]
