@@ -84,6 +84,11 @@ pub struct BodyDef {
     /// Default: the world's contact settings. A pair takes the larger of
     /// its two values under the soft step.
     pub restitution: Option<f64>,
+    /// Collision group: bodies that share a group never collide with each
+    /// other (Box2D's negative group index; a ragdoll's bones). Default
+    /// none: the body collides with every other. Soft-step contact model
+    /// only.
+    pub collision_group: Option<u32>,
 }
 
 impl BodyDef {
@@ -102,6 +107,7 @@ impl BodyDef {
             },
             friction: None,
             restitution: None,
+            collision_group: None,
         }
     }
 
@@ -154,6 +160,13 @@ impl BodyDef {
         self
     }
 
+    /// Puts this body in collision group `group`: it no longer collides
+    /// with the other bodies of that group.
+    pub fn with_collision_group(mut self, group: u32) -> Self {
+        self.collision_group = Some(group);
+        self
+    }
+
     /// Sets the initial velocity (m/s).
     pub fn with_velocity(mut self, velocity: Vector2<f64>) -> Self {
         self.state.velocity = velocity;
@@ -192,6 +205,8 @@ pub struct Body {
     pub friction: Option<f64>,
     /// Restitution of its shape, if it has its own.
     pub restitution: Option<f64>,
+    /// Its collision group, if any ([`BodyDef::collision_group`]).
+    pub collision_group: Option<u32>,
 }
 
 impl Body {
@@ -228,6 +243,7 @@ impl Body {
                 shape,
                 friction,
                 restitution,
+                collision_group: def.collision_group,
             };
             let state = if def.kind == BodyKind::Static {
                 BodyState {
@@ -276,6 +292,7 @@ impl Body {
                 shape,
                 friction,
                 restitution,
+                collision_group: def.collision_group,
             },
             state,
         ))

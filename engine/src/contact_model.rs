@@ -20,12 +20,15 @@
 
 use crate::body::{Body, BodyId};
 use crate::contact::{ContactEvent, ContactSettings};
+use crate::error::EngineError;
 use crate::error::Result;
 use crate::events::EventRecord;
 use crate::exact_model::ExactModel;
 use crate::integrators::{Method, Stats};
+use crate::soft_step::joints::{JointDef, JointId, JointState};
 use crate::soft_step::{SoftStep, SoftStepSettings};
 use crate::world_core::WorldCore;
+use nalgebra::Vector2;
 
 /// How a world handles contacts, with the model's settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -54,6 +57,11 @@ impl ContactModel {
         }
     }
 }
+
+/// Why the exact model refuses joints.
+pub(crate) const JOINTS_NEED_SOFT_STEP: &str = "joints are solved by the soft_step contact model \
+     only: build the world with ContactModel::SoftStep (in a scene file, [contact] model = \
+     \"soft_step\", the default)";
 
 /// The model a world runs, with its state.
 #[derive(Debug)]
@@ -139,6 +147,63 @@ impl Dynamics {
             Dynamics::Exact(m) => m.stats(),
             Dynamics::SoftStep(s) => s.stats(),
         }
+    }
+
+    /// Adds a joint: the soft step only.
+    pub(crate) fn add_joint(&mut self, core: &WorldCore, def: &JointDef) -> Result<JointId> {
+        match self {
+            Dynamics::Exact(_) => Err(EngineError::Unsupported {
+                what: format!("joint '{}' ({})", def.name, def.joint_type().id()),
+                reason: JOINTS_NEED_SOFT_STEP,
+            }),
+            Dynamics::SoftStep(s) => s.add_joint(core, def),
+        }
+    }
+
+    /// How many joints the world holds (removed ones included).
+    pub(crate) fn joint_count(&self) -> usize {
+        match self {
+            Dynamics::Exact(_) => 0,
+            Dynamics::SoftStep(s) => s.joint_count(),
+        }
+    }
+
+    /// The soft step, for the joint operations; the unknown-joint error
+    /// otherwise (an exact-model world has none).
+    fn soft_step_with(&self, id: JointId) -> Result<&SoftStep> {
+        match self {
+            Dynamics::SoftStep(s) => Ok(s),
+            Dynamics::Exact(_) => Err(EngineError::UnknownJoint {
+                index: id,
+                count: 0,
+            }),
+        }
+    }
+
+    fn soft_step_with_mut(&mut self, id: JointId) -> Result<&mut SoftStep> {
+        match self {
+            Dynamics::SoftStep(s) => Ok(s),
+            Dynamics::Exact(_) => Err(EngineError::UnknownJoint {
+                index: id,
+                count: 0,
+            }),
+        }
+    }
+
+    pub(crate) fn joint(&self, core: &WorldCore, id: JointId) -> Result<JointState> {
+        self.soft_step_with(id)?.joint_state(core, id)
+    }
+
+    pub(crate) fn remove_joint(&mut self, id: JointId) -> Result<()> {
+        self.soft_step_with_mut(id)?.remove_joint(id)
+    }
+
+    pub(crate) fn set_joint_target(&mut self, id: JointId, target: Vector2<f64>) -> Result<()> {
+        self.soft_step_with_mut(id)?.set_joint_target(id, target)
+    }
+
+    pub(crate) fn set_motor_speed(&mut self, id: JointId, speed: f64) -> Result<()> {
+        self.soft_step_with_mut(id)?.set_motor_speed(id, speed)
     }
 
     pub(crate) fn method(&self) -> Method {

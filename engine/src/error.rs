@@ -34,6 +34,24 @@ pub enum EngineError {
         /// How many bodies the world holds.
         count: usize,
     },
+    /// A joint definition the engine cannot build: a body missing or given
+    /// twice, no dynamic body, a parameter out of its domain, limits out
+    /// of order, a zero axis, ...
+    #[error("joint '{joint}': {reason}")]
+    InvalidJoint {
+        /// Name of the joint.
+        joint: String,
+        /// What is wrong, with the numbers.
+        reason: String,
+    },
+    /// A joint id that is not in the world.
+    #[error("unknown joint index {index} (the world has {count} joints)")]
+    UnknownJoint {
+        /// The index that was asked for.
+        index: usize,
+        /// How many joints the world holds.
+        count: usize,
+    },
     /// A force was asked to act on a static body where that makes no sense
     /// (e.g. a spring between two static bodies).
     #[error("force '{force}' acts on no dynamic body")]

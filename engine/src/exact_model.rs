@@ -123,6 +123,13 @@ impl ExactModel {
                  per-body materials",
             );
         }
+        if body.collision_group.is_some() {
+            return refuse(
+                format!("the collision group of body '{}'", body.name),
+                "the exact contact model collides every pair of shapes; use the soft_step \
+                 contact model for collision groups",
+            );
+        }
         Ok(())
     }
 

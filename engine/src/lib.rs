@@ -61,7 +61,9 @@
 //!   torques, each with an optional time window; the [`Force`] trait;
 //! - [`collision`], [`contact`]: detection (broad phase, separating axes,
 //!   time of impact) and the exact model's response (impulses with
-//!   restitution, resting contact, Coulomb friction), seed §7.
+//!   restitution, resting contact, Coulomb friction), seed §7;
+//! - [`joints`]: revolute, prismatic, distance, weld and target joints
+//!   under the soft step ([`World::add_joint`]).
 
 #![warn(missing_docs)]
 
@@ -97,6 +99,10 @@ pub use integrators::{
 pub use ode::{FnSystem, OdeSystem, Structure};
 pub use shape::{Circle, Compound, CompoundPart, ConvexPolygon, Shape};
 pub use soft_step::SoftStepSettings;
+pub use soft_step::joints::{
+    self as joints, Anchor, Distance, JointDef, JointId, JointKind, JointSpring, JointState,
+    JointType, Prismatic, PrismaticMotor, Revolute, RevoluteMotor, Target, Weld,
+};
 pub use time_grid::{MAX_RUN_STEPS, step_count};
 pub use trace::{Sample, Trace};
 pub use world::World;

@@ -24,6 +24,10 @@ pub use crate::forces::{
 pub use crate::integrators::Method;
 pub use crate::shape::{Circle, Compound, CompoundPart, ConvexPolygon, Shape};
 pub use crate::soft_step::SoftStepSettings;
+pub use crate::soft_step::joints::{
+    Distance, JointDef, JointId, JointSpring, Prismatic, PrismaticMotor, Revolute, RevoluteMotor,
+    Target, Weld,
+};
 pub use crate::trace::{Sample, Trace};
 pub use crate::world::World;
 pub use nalgebra::{Isometry2, Vector2};

@@ -26,6 +26,7 @@ use crate::exact_model::ExactModel;
 use crate::forces::{Force, Gravity, TimeWindow};
 use crate::integrators::{Method, Stats};
 use crate::soft_step::SoftStep;
+use crate::soft_step::joints::{JointDef, JointId, JointState};
 use crate::time_grid::{grid_time, step_count};
 use crate::trace::{Sample, Trace};
 use crate::world_core::{ForceEntry, WorldCore};
@@ -75,6 +76,7 @@ impl World {
         model.validate()?;
         match model {
             ContactModel::Exact(settings) => {
+                self.refuse_joints_leaving_soft_step()?;
                 if let Dynamics::SoftStep(_) = self.model {
                     self.model =
                         Dynamics::Exact(Box::new(ExactModel::new(Method::SemiImplicitEuler)?));
@@ -127,10 +129,30 @@ impl World {
         self.set_contact_model(ContactModel::Exact(settings))
     }
 
+    /// The error of leaving the soft step while joints need it, naming the
+    /// first joint still in the world.
+    fn refuse_joints_leaving_soft_step(&self) -> Result<()> {
+        let live = (0..self.model.joint_count())
+            .find_map(|id| self.model.joint(&self.core, id).ok().filter(|j| !j.removed));
+        match live {
+            Some(joint) => Err(EngineError::Unsupported {
+                what: format!(
+                    "leaving the soft_step contact model with joint '{}' ({})",
+                    joint.name,
+                    joint.joint_type.id()
+                ),
+                reason: crate::contact_model::JOINTS_NEED_SOFT_STEP,
+            }),
+            None => Ok(()),
+        }
+    }
+
     /// Turns contact handling off (the exact model's resting pairs are
     /// dropped, the events recorded so far are kept); a soft-step world
-    /// becomes an exact-model world integrated by semi-implicit Euler.
-    pub fn disable_contacts(&mut self) {
+    /// becomes an exact-model world integrated by semi-implicit Euler,
+    /// which it refuses while it holds joints (they need the soft step).
+    pub fn disable_contacts(&mut self) -> Result<()> {
+        self.refuse_joints_leaving_soft_step()?;
         match &mut self.model {
             Dynamics::Exact(exact) => exact.disable_contacts(),
             Dynamics::SoftStep(_) => {
@@ -140,6 +162,7 @@ impl World {
                 ));
             }
         }
+        Ok(())
     }
 
     /// The exact model's contact settings (its defaults when the world runs
@@ -229,9 +252,9 @@ impl World {
 
     /// Removes body `id` from the simulation. Its id stays valid (ids never
     /// shift): the body becomes an inert static body without a shape at its
-    /// last position, [`World::is_removed`] says so, its contacts end, and
-    /// the forces and events that name it are dropped. Removing a body twice
-    /// does nothing.
+    /// last position, [`World::is_removed`] says so, its contacts end, its
+    /// joints are removed, and the forces and events that name it are
+    /// dropped. Removing a body twice does nothing.
     pub fn remove_body(&mut self, id: BodyId) -> Result<()> {
         self.check_body(id)?;
         if self.core.removed[id] {
@@ -250,6 +273,47 @@ impl World {
         self.core.events.retain(|e| e.body != id);
         self.model.body_removed(&self.core, id);
         Ok(())
+    }
+
+    /// Adds a joint after validating it against the world (its bodies
+    /// exist, differ and are not removed, at least one is dynamic, every
+    /// parameter in its domain: see [`crate::joints`]); returns its id.
+    /// The soft-step contact model only: the exact model refuses it with
+    /// [`EngineError::Unsupported`]. A joint with `collide_connected` off
+    /// ends the contacts between its bodies.
+    pub fn add_joint(&mut self, def: JointDef) -> Result<JointId> {
+        self.model.add_joint(&self.core, &def)
+    }
+
+    /// Removes joint `id`: it stops acting (its id stays valid and
+    /// [`World::joint`] says `removed`), its bodies wake and may collide
+    /// again. Removing it twice does nothing.
+    pub fn remove_joint(&mut self, id: JointId) -> Result<()> {
+        self.model.remove_joint(id)
+    }
+
+    /// Joint `id` now: its anchors, angle, translation, constraint errors
+    /// and reaction force ([`JointState`]).
+    pub fn joint(&self, id: JointId) -> Result<JointState> {
+        self.model.joint(&self.core, id)
+    }
+
+    /// How many joints were added (removed ones included; ids are
+    /// `0..joint_count()`).
+    pub fn joint_count(&self) -> usize {
+        self.model.joint_count()
+    }
+
+    /// Moves the target of target joint `id` to `target` (world point, m)
+    /// and wakes its body.
+    pub fn set_joint_target(&mut self, id: JointId, target: Vector2<f64>) -> Result<()> {
+        self.model.set_joint_target(id, target)
+    }
+
+    /// Sets the speed (rad/s for a revolute, m/s for a prismatic joint) of
+    /// joint `id`'s motor and wakes its bodies.
+    pub fn set_motor_speed(&mut self, id: JointId, speed: f64) -> Result<()> {
+        self.model.set_motor_speed(id, speed)
     }
 
     /// Whether body `id` was removed.

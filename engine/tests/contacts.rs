@@ -440,7 +440,7 @@ fn one_shape_runs_no_collision_code() {
     off.set_contact_settings(ContactSettings::default())
         .unwrap();
     assert!(off.has_contacts());
-    off.disable_contacts();
+    off.disable_contacts().unwrap();
     assert!(!off.has_contacts());
     let mut world = World::new(Method::Rk4).unwrap();
     world

@@ -57,7 +57,20 @@ enum Command {
 /// failed, 2 the input was refused or the run could not be made (the
 /// message names the file, the field and the line when it comes from a
 /// scene file). Command-line usage errors are clap's, also 2.
+/// A closed stdout (`harness simulate s.toml | head`) ends the process as
+/// it ends `cat`, by SIGPIPE's default action, instead of a panic in
+/// `println!` (Rust starts programs with SIGPIPE ignored).
+fn die_quietly_on_a_closed_pipe() {
+    #[cfg(unix)]
+    // SAFETY: setting a signal's disposition to its default before any
+    // thread is started has no other effect on the program.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 fn main() -> std::process::ExitCode {
+    die_quietly_on_a_closed_pipe();
     harness::progress::init_tracing();
     match real_main() {
         Ok(true) => std::process::ExitCode::SUCCESS,

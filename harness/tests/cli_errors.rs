@@ -300,3 +300,62 @@ fn a_blow_up_is_an_error_and_writes_nothing() {
     run.refused(scene, &["scene.toml", "the run failed", "blow-up"]);
     assert!(!run.path("out.svg").exists());
 }
+
+/// A pendulum scene: lines 1–3 `[simulation]`, 5–8 a static `wall`,
+/// 10–13 a dynamic `bob`, 15 `[[joints]]`, 16 its type, `extra` from 17.
+fn jointed(kind: &str, extra: &str) -> String {
+    format!(
+        "[simulation]\ndt = 0.01\nduration = 0.1\n\n[[bodies]]\nname = \"wall\"\nkind = \"static\"\nposition = [0.0, 0.0]\n\n[[bodies]]\nname = \"bob\"\nmass = 1.0\nposition = [1.0, 0.0]\n\n[[joints]]\ntype = \"{kind}\"\n{extra}"
+    )
+}
+
+#[test]
+fn every_bad_joint_definition_is_refused_at_its_field() {
+    let cases: [(String, &[&str]); 9] = [
+        (
+            jointed("revolute", "body_b = \"bobb\"\nanchor = [0.0, 0.0]\n"),
+            &["scene.toml:17:", "joints[0].body_b", "no body is named 'bobb'"],
+        ),
+        (
+            jointed("revolute", "body_a = \"bob\"\nbody_b = \"bob\"\nanchor = [0.0, 0.0]\n"),
+            &["scene.toml:18:", "joints[0].body_b", "to itself"],
+        ),
+        (
+            jointed("prismatic", "body_b = \"bob\"\nanchor = [1.0, 0.0]\naxis = [0.0, 0.0]\n"),
+            &["scene.toml:19:", "joints[0].axis", "no direction"],
+        ),
+        (
+            jointed("revolute", "body_b = \"bob\"\nanchor = [0.0, 0.0]\nlimits = [1.0, -1.0]\n"),
+            &["scene.toml:19:", "joints[0].limits", "[lower, upper]"],
+        ),
+        (
+            jointed(
+                "distance",
+                "body_b = \"bob\"\nanchor_a = [0.0, 0.0]\nanchor_b = [1.0, 0.0]\nspring = { hertz = -2.0 }\n",
+            ),
+            &["scene.toml:20:", "joints[0].spring.hertz", "must be > 0"],
+        ),
+        (
+            jointed("revolute", "body_b = \"bob\"\nanchor = [0.0, 0.0]\nmotor_speed = 1.0\n"),
+            &["scene.toml:19:", "joints[0].motor_speed", "unknown field"],
+        ),
+        (
+            format!(
+                "{}\n[contact]\nmodel = \"exact\"\n",
+                jointed("revolute", "body_b = \"bob\"\nanchor = [0.0, 0.0]\n")
+            ),
+            &["scene.toml:15:", "joints[0]", "soft_step"],
+        ),
+        (
+            jointed("weld", "body_a = \"wall\"\nanchor = [0.0, 0.0]\n"),
+            &["scene.toml:17:", "joints[0].body_a", "dynamic"],
+        ),
+        (
+            "[simulation]\ndt = 0.01\nduration = 0.1\n\n[[generate]]\ntype = \"chain\"\ncount = 2\nstart = [0.0, 0.0]\nend = [3.0, 0.0]\n".to_owned(),
+            &["scene.toml:9:", "generate[0].end", "shorter"],
+        ),
+    ];
+    for (scene, needles) in &cases {
+        refused(scene, needles);
+    }
+}

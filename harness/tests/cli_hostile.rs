@@ -355,3 +355,48 @@ fn a_budget_stops_the_run_cleanly_and_writes_what_ran() {
         simulate(scene.as_bytes(), &["--budget", bad]).refused(&["--budget"]);
     }
 }
+
+/// `harness simulate scene.toml | head -1`: a stdout closed after the
+/// first line ends the run quietly (SIGPIPE, as for `cat`), with no panic
+/// on stderr.
+#[test]
+fn a_closed_stdout_is_not_a_panic() {
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/pyramid_20.toml");
+    let mut child = Command::new(BIN)
+        .args(["simulate", scene])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run the harness binary");
+    // Close the read end at once: every line the run prints hits a closed
+    // pipe.
+    drop(child.stdout.take());
+    let started = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("wait") {
+            break status;
+        }
+        assert!(started.elapsed() < HANG, "the run hung");
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    let mut stderr = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::ExitStatusExt;
+        assert_eq!(
+            status.signal(),
+            Some(libc_sigpipe()),
+            "{status:?}: {stderr}"
+        );
+    }
+    #[cfg(not(unix))]
+    let _ = status;
+}
+
+/// SIGPIPE's number on Linux and the BSDs.
+#[cfg(unix)]
+fn libc_sigpipe() -> i32 {
+    13
+}

@@ -369,6 +369,17 @@ fn a_soft_step_pile_is_compared_with_rapier_and_box2d() {
 }
 
 #[test]
+fn a_jointed_scene_is_not_compared() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    // One body on a joint: rapier would run it free.
+    let scene = "[simulation]\ndt = 0.01\nduration = 0.1\n\n[[bodies]]\nname = \"bob\"\nmass = 1.0\nposition = [1.0, 0.0]\n\n[[joints]]\ntype = \"distance\"\nbody_b = \"bob\"\nanchor_a = [0.0, 0.0]\nanchor_b = [1.0, 0.0]\n";
+    std::fs::write(dir.path().join("bob.toml"), scene).unwrap();
+    let done = harness(dir.path(), &["simulate", "bob.toml", "--compare", "rapier"]);
+    assert_eq!(done.code, Some(2), "{}", done.stdout);
+    assert!(done.stderr.contains("has joints"), "{}", done.stderr);
+}
+
+#[test]
 fn a_linear_test_scene_gives_its_curve_and_refuses_an_animation() {
     let dir = tempfile::tempdir().expect("temp dir");
     let hoffman = workspace().join("scenes/hoffman.toml");
@@ -533,4 +544,31 @@ fn overlapping_shapes_without_contacts_are_warned_about() {
             );
         }
     }
+}
+
+#[test]
+fn a_jointed_scene_prints_its_model_and_joints_and_draws_them() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let pendulum = workspace().join("scenes/examples/pendulum.toml");
+    let pendulum = pendulum.to_str().expect("a UTF-8 path");
+    let done = harness(dir.path(), &["simulate", pendulum, "--svg", "out.svg"]);
+    assert_eq!(done.code, Some(0), "{}", done.stderr);
+    assert!(
+        done.stdout
+            .contains("(360 steps)\ncontacts: soft_step (4 substeps,"),
+        "{}",
+        done.stdout
+    );
+    assert!(
+        done.stdout.contains("sleeping off); 2 joints\n"),
+        "{}",
+        done.stdout
+    );
+    // Each joint is drawn with a dot at each anchor: 2 joints, 2 anchors,
+    // in each of the filmstrip's 6 frames.
+    let svg = std::fs::read_to_string(dir.path().join("out.svg")).expect("the SVG");
+    let dots = svg
+        .matches("r=\"2\" opacity=\"1\" fill=\"#464646\"")
+        .count();
+    assert_eq!(dots, 6 * 2 * 2, "joint anchors drawn");
 }

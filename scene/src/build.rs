@@ -51,7 +51,7 @@ pub(crate) struct Plan {
 /// What the scene simulates.
 #[derive(Debug, Clone)]
 pub(crate) enum Content {
-    World(WorldPlan),
+    World(Box<WorldPlan>),
     LinearTest(LinearTest),
 }
 
@@ -62,6 +62,8 @@ pub(crate) struct WorldPlan {
     pub(crate) colours: Vec<Colour>,
     pub(crate) forces: Vec<PlannedForce>,
     pub(crate) events: Vec<EventSpec>,
+    /// The file's joints, then the generators'.
+    pub(crate) joints: Vec<crate::joints::PlannedJoint>,
     pub(crate) contact: Option<ContactModel>,
     pub(crate) gravity: Option<Vector2<f64>>,
 }
@@ -117,22 +119,21 @@ pub(crate) fn plan(file: &SceneFile) -> Checked<Plan> {
         None => DEFAULT_TOLERANCE,
     };
     let tolerance = Tolerance::uniform(tolerance);
-    let soft_step = matches!(
-        file.contact,
-        Some(ContactSpec {
-            model: ContactModelSpec::SoftStep,
-            ..
-        })
-    ) && file.linear_test.is_none();
+    let soft_step =
+        model_of(file) == Some(ContactModelSpec::SoftStep) && file.linear_test.is_none();
     let method_id = match (&sim_spec.method, soft_step) {
         (Some(m), true) if m != Method::SemiImplicitEuler.id() => {
+            let way_out = if has_joints(file) {
+                "remove `method` (the scene's joints need the soft step)".to_owned()
+            } else {
+                format!("remove `method`, or set [contact] model = \"exact\" to integrate with {m}")
+            };
             return Err(Problem::new(
                 &sim.key("method"),
                 ErrorKind::InvalidValue,
                 format!(
                     "method \"{m}\" does not apply under the soft_step contact model, which \
-                     integrates by semi-implicit Euler per substep: remove `method`, or set \
-                     [contact] model = \"exact\" to integrate with {m}"
+                     integrates by semi-implicit Euler per substep: {way_out}"
                 ),
             ));
         }
@@ -194,7 +195,7 @@ pub(crate) fn plan(file: &SceneFile) -> Checked<Plan> {
         None => {
             let plan = world(file)?;
             crate::energy_check::initial_energy(&plan, method)?;
-            Content::World(plan)
+            Content::World(Box::new(plan))
         }
     };
     Ok(Plan {
@@ -207,12 +208,29 @@ pub(crate) fn plan(file: &SceneFile) -> Checked<Plan> {
     })
 }
 
+/// Whether the scene has joints (its own or a generator's).
+fn has_joints(file: &SceneFile) -> bool {
+    !file.joints.is_empty() || file.generate.iter().any(|g| g.has_joints())
+}
+
+/// The scene's contact model: `[contact] model`; with joints and no
+/// `[contact]`, the soft step (joints need it; it is the scene default);
+/// else none (contacts off).
+fn model_of(file: &SceneFile) -> Option<ContactModelSpec> {
+    match file.contact {
+        Some(c) => Some(c.model),
+        None if has_joints(file) => Some(ContactModelSpec::SoftStep),
+        None => None,
+    }
+}
+
 fn refuse_world_tables(file: &SceneFile) -> Checked<()> {
     let root = FieldPath::root();
     let present = [
         ("bodies", !file.bodies.is_empty()),
         ("forces", !file.forces.is_empty()),
         ("events", !file.events.is_empty()),
+        ("joints", !file.joints.is_empty()),
         ("contact", file.contact.is_some()),
         ("generate", !file.generate.is_empty()),
     ];
@@ -244,8 +262,13 @@ fn world(file: &SceneFile) -> Checked<WorldPlan> {
             "the scene defines no [[bodies]] or [[generate]] (and no [linear_test]): nothing to simulate",
         ));
     }
-    let contact = file.contact.map(|c| contact(&c)).transpose()?;
-    let model = file.contact.map(|c| c.model);
+    let model = model_of(file);
+    let contact = match file.contact {
+        Some(c) => Some(contact(&c)?),
+        // Joints and no [contact]: the soft step at its defaults.
+        None if model.is_some() => Some(ContactModel::SoftStep(SoftStepSettings::default())),
+        None => None,
+    };
     let mut bodies = Vec::with_capacity(file.bodies.len());
     let mut colours = Vec::with_capacity(file.bodies.len());
     // Default colours count the bodies that move: a ground first does not
@@ -284,7 +307,23 @@ fn world(file: &SceneFile) -> Checked<WorldPlan> {
         .enumerate()
         .map(|(i, e)| crate::forces::event(&FieldPath::root().key("events").index(i), e, &names))
         .collect::<Checked<Vec<_>>>()?;
-    generated(file, model, &mut bodies, &mut colours, moving)?;
+    let mut joints = generated(file, model, &mut bodies, &mut colours, moving)?;
+    let names = crate::joints::Names::new(&bodies);
+    let mut planned = crate::joints::joints(&file.joints, &names)?;
+    if model == Some(ContactModelSpec::Exact) {
+        if let Some(first) = planned.first().or(joints.first()) {
+            return Err(Problem::new(
+                &first.path,
+                ErrorKind::InvalidValue,
+                format!(
+                    "joint '{}' needs the soft_step contact model, and this scene has [contact] model = \"exact\" (joints are solved by the soft step only): set model = \"soft_step\" or remove the joint",
+                    first.def.name
+                ),
+            ));
+        }
+    }
+    planned.append(&mut joints);
+    crate::joints::check_with_engine(&bodies, &planned)?;
     let gravity = file
         .simulation
         .gravity
@@ -295,22 +334,35 @@ fn world(file: &SceneFile) -> Checked<WorldPlan> {
         colours,
         forces,
         events,
+        joints: planned,
         contact,
         gravity,
     })
 }
 
 /// Appends the bodies of every `[[generate]]` block, with their colours;
-/// names must not clash with any other body's.
+/// names must not clash with any other body's. Returns the generators'
+/// joints.
 fn generated(
     file: &SceneFile,
     model: Option<ContactModelSpec>,
     bodies: &mut Vec<BodyDef>,
     colours: &mut Vec<Colour>,
     moving: usize,
-) -> Checked<()> {
+) -> Checked<Vec<crate::joints::PlannedJoint>> {
+    let mut joints = Vec::new();
     for (i, spec) in file.generate.iter().enumerate() {
         let path = FieldPath::root().key("generate").index(i);
+        if model == Some(ContactModelSpec::Exact) && spec.has_joints() {
+            return Err(Problem::new(
+                &path.key("type"),
+                ErrorKind::InvalidValue,
+                format!(
+                    "a {} has joints, which need the soft_step contact model, and this scene has [contact] model = \"exact\": set model = \"soft_step\"",
+                    spec.kind()
+                ),
+            ));
+        }
         if model != Some(ContactModelSpec::SoftStep) {
             let (field, what) = match spec {
                 crate::generate::GenerateSpec::Pyramid {
@@ -375,10 +427,21 @@ fn generated(
             })?,
         };
         let more = crate::generate::expand(&path, spec, bodies.len())?;
-        colours.extend(std::iter::repeat_n(colour, more.len()));
-        bodies.extend(more);
+        match more.colours {
+            Some(own) if spec.colour().is_none() => colours.extend(own),
+            _ => colours.extend(std::iter::repeat_n(colour, more.bodies.len())),
+        }
+        bodies.extend(more.bodies);
+        joints.extend(
+            more.joints
+                .into_iter()
+                .map(|def| crate::joints::PlannedJoint {
+                    def,
+                    path: path.clone(),
+                }),
+        );
     }
-    Ok(())
+    Ok(joints)
 }
 
 /// The error of a body feature the scene's contact model cannot simulate.
@@ -686,6 +749,7 @@ fn body(path: &FieldPath, spec: &BodySpec) -> Checked<BodyDef> {
         state,
         friction,
         restitution,
+        collision_group: None,
     };
     // The engine's own check, so that building the world cannot fail.
     let (built, _) = engine::Body::from_def(&def).map_err(|e| Problem::engine(path, e))?;
@@ -1099,6 +1163,11 @@ pub(crate) fn build_world(
         world
             .add_event(event.clone())
             .map_err(|e| Problem::engine(&FieldPath::root().key("events").index(i), e))?;
+    }
+    for j in &plan.joints {
+        world
+            .add_joint(j.def.clone())
+            .map_err(|e| Problem::engine(&j.path, e))?;
     }
     Ok(world)
 }

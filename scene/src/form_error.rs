@@ -16,7 +16,7 @@
 
 use crate::error::{ErrorKind, FieldPath, SceneError, Segment};
 use crate::format::SceneFile;
-use crate::location::{line_column, path_at, position_of};
+use crate::location::{key_below, line_column, path_at, position_of};
 use toml::de::{DeTable, DeValue};
 
 /// The private key under which toml hands a date-time to serde.
@@ -49,7 +49,12 @@ pub(crate) fn form_error(origin: &str, text: &str, error: &toml::de::Error) -> S
     };
     if let Some(key) = named_key {
         if path.0.last() != Some(&Segment::Key(key.to_owned())) {
-            path = path.key(key);
+            path = match kind {
+                // The key may sit in an inline table of the buffered one
+                // (`motor = { ... }` of a joint).
+                ErrorKind::UnknownField => key_below(text, &path, key).unwrap_or(path.key(key)),
+                _ => path.key(key),
+            };
             if kind == ErrorKind::UnknownField {
                 position = position_of(text, &path).or(position);
             }

@@ -8,9 +8,9 @@
 //! with a line-numbered [`crate::SceneError`].
 //!
 //! Units are SI: m, s, kg, rad. A file describes either a world of bodies
-//! (`[[bodies]]`, `[[forces]]`, `[[events]]`, `[contact]`) or the scalar stiff
-//! test (`[linear_test]`), with `[simulation]` in both. A complete example is
-//! in the crate documentation.
+//! (`[[bodies]]`, `[[forces]]`, `[[events]]`, `[[joints]]`, `[contact]`) or
+//! the scalar stiff test (`[linear_test]`), with `[simulation]` in both. A
+//! complete example is in the crate documentation.
 
 use serde::Deserialize;
 use serde::de::{self, Deserializer, IgnoredAny, SeqAccess, Visitor};
@@ -32,6 +32,11 @@ pub struct SceneFile {
     /// `[[events]]` to locate during the run. Default: none.
     #[serde(default)]
     pub events: Vec<EventEntry>,
+    /// `[[joints]]`, added in this order after the bodies (the joint
+    /// `joints[i]` has [`engine::JointId`] `i`, before the generators'
+    /// joints). Joints need the soft-step contact model. Default: none.
+    #[serde(default)]
+    pub joints: Vec<JointSpec>,
     /// `[contact]`: collision response settings. Optional.
     pub contact: Option<ContactSpec>,
     /// `[[generate]]` blocks: many bodies from a few numbers (a pyramid, a
@@ -52,8 +57,9 @@ pub struct SimulationSpec {
     /// `"semi_implicit_euler"`, `"rk2_midpoint"` (or `"midpoint"`), `"rk4"`,
     /// `"velocity_verlet"`, `"implicit_euler"` or `"dormand_prince"`.
     /// Default `"rk4"` (the seed's method, §4.3), or
-    /// `"semi_implicit_euler"` under the soft-step contact model, which
-    /// integrates by itself and accepts no other.
+    /// `"semi_implicit_euler"` under the soft-step contact model (also a
+    /// scene with joints and no `[contact]`), which integrates by itself
+    /// and accepts no other.
     pub method: Option<String>,
     /// Time step h (s), > 0. Required. For `dormand_prince` it is the output
     /// interval, the largest step the controller may take.
@@ -296,7 +302,9 @@ pub enum EventEntry {
 }
 
 /// `[contact]`: collision response. Its presence turns the world's
-/// contacts on; without it, shapes pass through each other. Two models
+/// contacts on; without it, shapes pass through each other (except in a
+/// scene with joints, which runs the soft step at its defaults: joints
+/// need it). Two models
 /// (`docs/design.md#contact-models`):
 ///
 /// - `model = "soft_step"` (the default): Box2D v3's soft step, for many
@@ -372,6 +380,253 @@ pub enum ToiMethodSpec {
     ConservativeAdvancement,
 }
 
+/// `[[joints]]`: a joint, tagged by `type`, holding two bodies together or
+/// one body to the world (engine module `joints`: the rows each type
+/// solves, Box2D's defaults).
+///
+/// Common keys:
+///
+/// - `name`: unique among the joints, for messages. Default `joints[i]`.
+/// - `body_a`, `body_b`: the bodies by name; `"world"` or an absent key is
+///   the world (a fixed anchor). At least one must be a dynamic body, and
+///   they differ.
+/// - Anchors, in **world coordinates at t = 0** (`anchor = [x, y]`, m; a
+///   distance joint has `anchor_a` and `anchor_b`), or in the **bodies'
+///   frames** from each centre of mass (`local_anchor_a`, `local_anchor_b`,
+///   m; on the world side a world point). Give one form or the other.
+/// - `collide_connected`: whether the two bodies still collide. Default
+///   false (Box2D's).
+/// - `constraint_hertz` (Hz, > 0) and `constraint_damping_ratio` (≥ 0):
+///   the stiffness of the joint's rigid rows (capped at a quarter of the
+///   substep rate). Default 60 Hz and 2 (Box2D's).
+///
+/// Joints need `[contact] model = "soft_step"`; a scene with joints and no
+/// `[contact]` table runs under the soft step at its defaults (its bodies
+/// then collide), and `model = "exact"` is refused.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum JointSpec {
+    /// A shared point about which the bodies turn freely.
+    Revolute {
+        /// Name. Default `joints[i]`.
+        name: Option<String>,
+        /// First body, or `"world"` (default).
+        body_a: Option<String>,
+        /// Second body, or `"world"` (default).
+        body_b: Option<String>,
+        /// The shared point, world coordinates at t = 0 (m).
+        anchor: Option<Xy>,
+        /// The point in A's frame (m), with `local_anchor_b`.
+        local_anchor_a: Option<Xy>,
+        /// The point in B's frame (m), with `local_anchor_a`.
+        local_anchor_b: Option<Xy>,
+        /// θB − θA at which the joint angle is 0 (rad). Default: the
+        /// bodies' relative angle at t = 0.
+        reference_angle: Option<f64>,
+        /// `[lower, upper]` joint angle (rad), lower ≤ upper, within
+        /// ±0.99π. Default: none.
+        limits: Option<Range>,
+        /// A motor. Default: none.
+        motor: Option<RevoluteMotorSpec>,
+        /// A rotational spring. Default: none.
+        spring: Option<TargetSpringSpec>,
+        /// Default false.
+        collide_connected: Option<bool>,
+        /// Default 60 Hz.
+        constraint_hertz: Option<f64>,
+        /// Default 2.
+        constraint_damping_ratio: Option<f64>,
+    },
+    /// B slides along an axis fixed in A, without turning relative to it.
+    Prismatic {
+        /// Name. Default `joints[i]`.
+        name: Option<String>,
+        /// First body, or `"world"` (default).
+        body_a: Option<String>,
+        /// Second body, or `"world"` (default).
+        body_b: Option<String>,
+        /// A point of the axis, world coordinates at t = 0 (m).
+        anchor: Option<Xy>,
+        /// The point in A's frame (m), with `local_anchor_b`.
+        local_anchor_a: Option<Xy>,
+        /// The point in B's frame (m), with `local_anchor_a`.
+        local_anchor_b: Option<Xy>,
+        /// The sliding direction, world frame at t = 0 (any length but
+        /// zero). Required.
+        axis: Xy,
+        /// θB − θA held (rad). Default: the relative angle at t = 0.
+        reference_angle: Option<f64>,
+        /// `[lower, upper]` translation of B's anchor from A's along the
+        /// axis (m), lower ≤ upper. Default: none.
+        limits: Option<Range>,
+        /// A motor. Default: none.
+        motor: Option<PrismaticMotorSpec>,
+        /// A linear spring along the axis. Default: none.
+        spring: Option<TargetSpringSpec>,
+        /// Default false.
+        collide_connected: Option<bool>,
+        /// Default 60 Hz.
+        constraint_hertz: Option<f64>,
+        /// Default 2.
+        constraint_damping_ratio: Option<f64>,
+    },
+    /// The distance between a point of A and a point of B: rigid (a
+    /// massless rod) by default; with `min_length` or `max_length` and no
+    /// `spring`, free between them (a rope); with a `spring`, sprung about
+    /// `length`, within the limits if given.
+    Distance {
+        /// Name. Default `joints[i]`.
+        name: Option<String>,
+        /// First body, or `"world"` (default).
+        body_a: Option<String>,
+        /// Second body, or `"world"` (default).
+        body_b: Option<String>,
+        /// A's point, world coordinates at t = 0 (m); or `local_anchor_a`.
+        anchor_a: Option<Xy>,
+        /// B's point, world coordinates at t = 0 (m); or `local_anchor_b`.
+        anchor_b: Option<Xy>,
+        /// A's point in A's frame (m).
+        local_anchor_a: Option<Xy>,
+        /// B's point in B's frame (m).
+        local_anchor_b: Option<Xy>,
+        /// The rigid or rest length (m), > 0. Default: the anchors'
+        /// distance at t = 0. Not for a rope.
+        length: Option<f64>,
+        /// Shortest length (m), ≥ 0. Default 0.
+        min_length: Option<f64>,
+        /// Longest length (m), > 0, ≥ `min_length`. Default: none.
+        max_length: Option<f64>,
+        /// A spring. Default: none (rigid, or a rope with limits).
+        spring: Option<SpringSpec>,
+        /// Default false.
+        collide_connected: Option<bool>,
+        /// Default 60 Hz.
+        constraint_hertz: Option<f64>,
+        /// Default 2.
+        constraint_damping_ratio: Option<f64>,
+    },
+    /// The bodies held at their relative pose, rigidly or by springs.
+    Weld {
+        /// Name. Default `joints[i]`.
+        name: Option<String>,
+        /// First body, or `"world"` (default).
+        body_a: Option<String>,
+        /// Second body, or `"world"` (default).
+        body_b: Option<String>,
+        /// The weld point, world coordinates at t = 0 (m).
+        anchor: Option<Xy>,
+        /// The point in A's frame (m), with `local_anchor_b`.
+        local_anchor_a: Option<Xy>,
+        /// The point in B's frame (m), with `local_anchor_a`.
+        local_anchor_b: Option<Xy>,
+        /// θB − θA held (rad). Default: the relative angle at t = 0.
+        reference_angle: Option<f64>,
+        /// A spring on the point instead of the rigid rows. Default: none.
+        linear_spring: Option<SpringSpec>,
+        /// A spring on the angle instead of the rigid row. Default: none.
+        angular_spring: Option<SpringSpec>,
+        /// Default false.
+        collide_connected: Option<bool>,
+        /// Default 60 Hz.
+        constraint_hertz: Option<f64>,
+        /// Default 2.
+        constraint_damping_ratio: Option<f64>,
+    },
+    /// A point of one body pulled toward a world point by a spring of
+    /// bounded force (Box2D's mouse joint).
+    Target {
+        /// Name. Default `joints[i]`.
+        name: Option<String>,
+        /// The body pulled (dynamic). Required.
+        body: String,
+        /// The point pulled, world coordinates at t = 0 (m). Default: the
+        /// body's centre of mass.
+        anchor: Option<Xy>,
+        /// The point pulled, in the body's frame (m), instead of `anchor`.
+        local_anchor: Option<Xy>,
+        /// Where it is pulled (m). Default: the anchor (the body is held
+        /// where it is).
+        target: Option<Xy>,
+        /// Largest force (N), > 0. Required.
+        max_force: f64,
+        /// Stiffness (Hz), > 0. Default 4 (Box2D's).
+        hertz: Option<f64>,
+        /// Damping ratio, ≥ 0. Default 1 (Box2D's).
+        damping_ratio: Option<f64>,
+    },
+}
+
+impl JointSpec {
+    /// The type, as written.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            JointSpec::Revolute { .. } => "revolute",
+            JointSpec::Prismatic { .. } => "prismatic",
+            JointSpec::Distance { .. } => "distance",
+            JointSpec::Weld { .. } => "weld",
+            JointSpec::Target { .. } => "target",
+        }
+    }
+
+    /// The name, as written.
+    pub fn name(&self) -> Option<&str> {
+        match self {
+            JointSpec::Revolute { name, .. }
+            | JointSpec::Prismatic { name, .. }
+            | JointSpec::Distance { name, .. }
+            | JointSpec::Weld { name, .. }
+            | JointSpec::Target { name, .. } => name.as_deref(),
+        }
+    }
+}
+
+/// `motor = { speed, max_torque }` of a revolute joint.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RevoluteMotorSpec {
+    /// Target ω_B − ω_A (rad/s), any sign. Default 0 (joint friction).
+    #[serde(default)]
+    pub speed: f64,
+    /// Largest torque (N·m), > 0. Required.
+    pub max_torque: f64,
+}
+
+/// `motor = { speed, max_force }` of a prismatic joint.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PrismaticMotorSpec {
+    /// Target speed along the axis (m/s), any sign. Default 0.
+    #[serde(default)]
+    pub speed: f64,
+    /// Largest force (N), > 0. Required.
+    pub max_force: f64,
+}
+
+/// `{ hertz, damping_ratio }`: a joint spring, mass-independent.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpringSpec {
+    /// Natural frequency (Hz), > 0. Required.
+    pub hertz: f64,
+    /// Damping ratio, ≥ 0 (1 is critical). Default 0.
+    #[serde(default)]
+    pub damping_ratio: f64,
+}
+
+/// `{ hertz, damping_ratio, target }`: a revolute's or prismatic's spring.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TargetSpringSpec {
+    /// Natural frequency (Hz), > 0. Required.
+    pub hertz: f64,
+    /// Damping ratio, ≥ 0. Default 0.
+    #[serde(default)]
+    pub damping_ratio: f64,
+    /// Rest angle (rad) or translation (m). Default 0.
+    #[serde(default)]
+    pub target: f64,
+}
+
 /// `[linear_test]`: Hoffman's scalar stiff test (seed §4.3), generalised to a
 /// linear forcing g(t) = `forcing_offset` + `forcing_slope`·t:
 ///
@@ -416,6 +671,22 @@ impl Xy {
     /// As an nalgebra vector.
     pub fn vector(&self) -> nalgebra::Vector2<f64> {
         nalgebra::Vector2::new(self.x, self.y)
+    }
+}
+
+/// Limits written `[lower, upper]`, in the field's unit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Range {
+    /// Lower limit.
+    pub lower: f64,
+    /// Upper limit.
+    pub upper: f64,
+}
+
+impl<'de> Deserialize<'de> for Range {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let (lower, upper) = deserializer.deserialize_seq(PairVisitor("[lower, upper]"))?;
+        Ok(Self { lower, upper })
     }
 }
 

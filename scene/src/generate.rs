@@ -28,22 +28,48 @@
 //! size = [0.3, 0.8]       # m, its size (side, diameter, span) drawn in this range
 //! velocity = [0.0, -5.0]  # m/s
 //! seed = 1
+//!
+//! [[generate]]
+//! type = "chain"          # box links on revolute joints (see chain.rs)
+//! count = 20
+//! link_length = 0.5       # m, pivot to pivot
+//! link_width = 0.1        # m; default a quarter of link_length
+//! start = [-4.0, 8.0]     # m, jointed to the world
+//! end = [4.0, 8.0]        # m, jointed to the world; without it the chain
+//!                         # is laid along `direction` (default [0, -1])
+//!
+//! [[generate]]
+//! type = "ragdoll"        # Box2D's human: 11 bones, 10 revolute joints
+//! position = [0.0, 2.0]   # m, the ground point under the hip
+//! scale = 1.0             # 1: about 1.6 m tall
+//! repeat = [5, 2]         # columns, rows of ragdolls; default [1, 1]
+//! repeat_spacing = [1.0, 2.0]   # m between them
+//! joint_friction = 0.05   # N·m at scale 1 (motors at speed 0); 0: none
+//! joint_hertz = 5.0       # Hz of the joints' springs; 0: none
+//! joint_damping_ratio = 0.5
 //! ```
 //!
 //! Every generator also takes `density` (kg/m², default 1), `friction` and
-//! `restitution` (default: `[contact]`'s), `name` (the bodies are called
+//! `restitution` (default: `[contact]`'s; a ragdoll's friction 0.2, Box2D's
+//! human), `name` (the bodies are called
 //! `name_0`, `name_1`, ... in the order built; default the generator's
 //! type) and `colour` (one colour for the whole group; default the next in
-//! the palette). The top box of a pyramid or stack is the last one built.
+//! the palette; a ragdoll's default is Box2D's trousers, shirt and skin).
+//! The top box of a pyramid or stack is the last one built. A chain's
+//! links are `name_0` … from `start`, its joints `name_j0` …; a ragdoll's
+//! bones `name_hip`, `name_torso`, … (`name_3_hip` … for the fourth of a
+//! grid). Chains and ragdolls have joints, so they need the soft-step
+//! contact model (the default when the scene has no `[contact]`).
 //!
 //! Random draws come from SplitMix64 seeded by `seed`, written here rather
 //! than taken from a crate so that a seed gives the same scene forever,
 //! whatever crate versions a build resolves.
 
+use crate::Colour;
 use crate::build::{Checked, finite, non_negative, positive};
 use crate::error::{ErrorKind, FieldPath, Problem};
 use crate::format::Xy;
-use engine::{BodyDef, BodyKind, BodyState, Shape};
+use engine::{BodyDef, BodyKind, BodyState, JointDef, Shape};
 use nalgebra::Vector2;
 use serde::Deserialize;
 
@@ -182,6 +208,103 @@ pub enum GenerateSpec {
         /// Colour of the group, `"#rrggbb"`.
         colour: Option<String>,
     },
+    /// `count` box links jointed end to end by revolute joints, hanging
+    /// from the world at `start`, to the world at `end` too if given.
+    Chain {
+        /// Links, ≥ 1.
+        count: i64,
+        /// Length of a link pivot to pivot (m), > 0. Default 0.5.
+        #[serde(default = "half")]
+        link_length: f64,
+        /// Width of a link (m), > 0. Default a quarter of `link_length`.
+        link_width: Option<f64>,
+        /// The first link's free end, jointed to the world (m). Required.
+        start: Xy,
+        /// The last link's free end, jointed to the world (m): the chain
+        /// hangs between two anchors, and must reach. Default: none.
+        end: Option<Xy>,
+        /// Without `end`, the direction the links are laid along from
+        /// `start` (non-zero). Default `[0, -1]` (hanging straight down).
+        direction: Option<Xy>,
+        /// Density (kg/m²), > 0. Default 1.
+        #[serde(default = "one")]
+        density: f64,
+        /// Friction of each link. Default: `[contact] friction`.
+        friction: Option<f64>,
+        /// Restitution of each link. Default: `[contact] restitution`.
+        restitution: Option<f64>,
+        /// Name prefix. Default `"chain"`.
+        name: Option<String>,
+        /// Colour of the group, `"#rrggbb"`.
+        colour: Option<String>,
+    },
+    /// Box2D's ragdoll (its `rain` benchmark's human): 11 bones on 10
+    /// revolute joints with limits, joint friction (motors at speed 0) and
+    /// springs; one ragdoll, or a grid of them.
+    Ragdoll {
+        /// The ground point under the first ragdoll's hip (m). Default
+        /// `[0, 0]`.
+        #[serde(default)]
+        position: Xy,
+        /// Size factor, > 0: 1 is Box2D's human, about 1.6 m tall.
+        /// Default 1.
+        #[serde(default = "one")]
+        scale: f64,
+        /// Copies along x and y, `[columns, rows]`, each a whole number
+        /// ≥ 1. Default `[1, 1]`.
+        repeat: Option<Xy>,
+        /// Offset between copies along x and y (m). Default `[0, 0]`.
+        #[serde(default)]
+        repeat_spacing: Xy,
+        /// Largest torque of each joint's friction motor at scale 1 (N·m),
+        /// ≥ 0, times the bone's share (Box2D's) and the scale; 0: no
+        /// motors. Default 0.05 (Box2D's rain).
+        #[serde(default = "rain_friction")]
+        joint_friction: f64,
+        /// Frequency of each joint's spring (Hz), ≥ 0; 0: no springs.
+        /// Default 5 (Box2D's rain).
+        #[serde(default = "rain_hertz")]
+        joint_hertz: f64,
+        /// Damping ratio of the joints' springs, ≥ 0. Default 0.5.
+        #[serde(default = "half")]
+        joint_damping_ratio: f64,
+        /// Initial velocity of every bone (m/s). Default `[0, 0]`.
+        #[serde(default)]
+        velocity: Xy,
+        /// Density (kg/m²), > 0. Default 1.
+        #[serde(default = "one")]
+        density: f64,
+        /// Friction of each bone. Default 0.2 (Box2D's human).
+        friction: Option<f64>,
+        /// Restitution of each bone. Default: `[contact] restitution`.
+        restitution: Option<f64>,
+        /// Name prefix. Default `"ragdoll"`.
+        name: Option<String>,
+        /// One colour for every bone, `"#rrggbb"`. Default Box2D's
+        /// trousers, shirt and skin.
+        colour: Option<String>,
+    },
+}
+
+fn half() -> f64 {
+    0.5
+}
+
+fn rain_friction() -> f64 {
+    0.05
+}
+
+fn rain_hertz() -> f64 {
+    5.0
+}
+
+/// What a generator makes: bodies (in order), their colours when the
+/// generator chooses them, and joints between them (by body id).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Generated {
+    pub(crate) bodies: Vec<BodyDef>,
+    pub(crate) colours: Option<Vec<Colour>>,
+    pub(crate) joints: Vec<JointDef>,
 }
 
 /// A shape a `grid` generator can draw.
@@ -207,6 +330,8 @@ impl GenerateSpec {
             GenerateSpec::Pyramid { .. } => "pyramid",
             GenerateSpec::Stack { .. } => "stack",
             GenerateSpec::Grid { .. } => "grid",
+            GenerateSpec::Chain { .. } => "chain",
+            GenerateSpec::Ragdoll { .. } => "ragdoll",
         }
     }
 
@@ -215,7 +340,9 @@ impl GenerateSpec {
         let name = match self {
             GenerateSpec::Pyramid { name, .. }
             | GenerateSpec::Stack { name, .. }
-            | GenerateSpec::Grid { name, .. } => name,
+            | GenerateSpec::Grid { name, .. }
+            | GenerateSpec::Chain { name, .. }
+            | GenerateSpec::Ragdoll { name, .. } => name,
         };
         name.as_deref().unwrap_or(self.kind())
     }
@@ -225,7 +352,9 @@ impl GenerateSpec {
         match self {
             GenerateSpec::Pyramid { colour, .. }
             | GenerateSpec::Stack { colour, .. }
-            | GenerateSpec::Grid { colour, .. } => colour.as_deref(),
+            | GenerateSpec::Grid { colour, .. }
+            | GenerateSpec::Chain { colour, .. }
+            | GenerateSpec::Ragdoll { colour, .. } => colour.as_deref(),
         }
     }
 
@@ -248,8 +377,28 @@ impl GenerateSpec {
                 friction,
                 restitution,
                 ..
+            }
+            | GenerateSpec::Chain {
+                density,
+                friction,
+                restitution,
+                ..
             } => (*density, *friction, *restitution),
+            GenerateSpec::Ragdoll {
+                density,
+                friction,
+                restitution,
+                ..
+            } => (*density, Some(friction.unwrap_or(0.2)), *restitution),
         }
+    }
+
+    /// Whether the generator makes joints (so needs the soft step).
+    pub fn has_joints(&self) -> bool {
+        matches!(
+            self,
+            GenerateSpec::Chain { .. } | GenerateSpec::Ragdoll { .. }
+        )
     }
 }
 
@@ -290,11 +439,7 @@ fn count(path: &FieldPath, value: i64, what: &str) -> Checked<usize> {
 /// The bodies of generator `spec` at `path` (`generate[i]`), before
 /// materials and colours are applied; their count is checked against what
 /// the scene already holds (`so_far`).
-pub(crate) fn expand(
-    path: &FieldPath,
-    spec: &GenerateSpec,
-    so_far: usize,
-) -> Checked<Vec<BodyDef>> {
+pub(crate) fn expand(path: &FieldPath, spec: &GenerateSpec, so_far: usize) -> Checked<Generated> {
     let (density, friction, restitution) = spec.material();
     let density = positive(&path.key("density"), density, "density", "kg/m²")?;
     let friction = friction
@@ -311,6 +456,23 @@ pub(crate) fn expand(
             "a generator's name must not be empty",
         ));
     }
+    let with_joints = match spec {
+        GenerateSpec::Chain { .. } => Some(chain(path, spec, (so_far, density))?),
+        GenerateSpec::Ragdoll { .. } => Some(ragdolls(path, spec, (so_far, density))?),
+        _ => None,
+    };
+    if let Some(mut out) = with_joints {
+        for b in &mut out.bodies {
+            b.friction = friction;
+            b.restitution = restitution;
+        }
+        let field = match spec {
+            GenerateSpec::Chain { .. } => "start",
+            _ => "position",
+        };
+        checked(path, field, &out.bodies)?;
+        return Ok(out);
+    }
     let placed = match spec {
         GenerateSpec::Pyramid {
             base,
@@ -323,26 +485,7 @@ pub(crate) fn expand(
             ..
         } => {
             let base = count(&path.key("base"), *base, "base")?;
-            let (copies_x, copies_y) = match repeat {
-                None => (1, 1),
-                Some(r) => {
-                    let rp = path.key("repeat");
-                    let whole = |i: usize, v: f64| -> Checked<usize> {
-                        if v.fract() != 0.0 || !(1.0..=MAX_GENERATED as f64).contains(&v) {
-                            return Err(Problem::new(
-                                &rp.index(i),
-                                ErrorKind::InvalidValue,
-                                format!(
-                                    "a number of copies must be a whole number from 1 to {MAX_GENERATED}, got {}",
-                                    engine::error::readable(v)
-                                ),
-                            ));
-                        }
-                        Ok(v as usize)
-                    };
-                    (whole(0, r.x)?, whole(1, r.y)?)
-                }
-            };
+            let (copies_x, copies_y) = copies(&path.key("repeat"), repeat.as_ref())?;
             let shift = crate::build::xy(&path.key("repeat_spacing"), repeat_spacing)?;
             let copies = copies_x.saturating_mul(copies_y);
             let total = (base * (base + 1) / 2).saturating_mul(copies);
@@ -466,6 +609,9 @@ pub(crate) fn expand(
             }
             out
         }
+        GenerateSpec::Chain { .. } | GenerateSpec::Ragdoll { .. } => {
+            unreachable!("generators with joints returned above")
+        }
     };
     let velocity = match spec {
         GenerateSpec::Grid { velocity, .. } => crate::build::xy(&path.key("velocity"), velocity)?,
@@ -489,19 +635,151 @@ pub(crate) fn expand(
             },
             friction,
             restitution,
+            collision_group: None,
         })
         .collect::<Vec<_>>();
-    for def in &bodies {
+    checked(path, "origin", &bodies)?;
+    Ok(Generated {
+        bodies,
+        colours: None,
+        joints: Vec::new(),
+    })
+}
+
+/// `repeat = [columns, rows]`: whole numbers from 1; `[1, 1]` when absent.
+fn copies(path: &FieldPath, repeat: Option<&Xy>) -> Checked<(usize, usize)> {
+    let Some(r) = repeat else {
+        return Ok((1, 1));
+    };
+    let whole = |i: usize, v: f64| -> Checked<usize> {
+        if v.fract() != 0.0 || !(1.0..=MAX_GENERATED as f64).contains(&v) {
+            return Err(Problem::new(
+                &path.index(i),
+                ErrorKind::InvalidValue,
+                format!(
+                    "a number of copies must be a whole number from 1 to {MAX_GENERATED}, got {}",
+                    engine::error::readable(v)
+                ),
+            ));
+        }
+        Ok(v as usize)
+    };
+    Ok((whole(0, r.x)?, whole(1, r.y)?))
+}
+
+/// The engine's check of generated bodies, and of their positions'
+/// finiteness (huge origins), at the generator's `field`.
+fn checked(path: &FieldPath, field: &str, bodies: &[BodyDef]) -> Checked<()> {
+    for def in bodies {
         engine::Body::from_def(def).map_err(|e| Problem::engine(path, e))?;
     }
-    // A check that the last body's numbers are finite (huge origins).
     if let Some(last) = bodies.last() {
         finite(
-            &path.key("origin"),
+            &path.key(field),
             last.state.position.x + last.state.position.y,
         )?;
     }
-    Ok(bodies)
+    Ok(())
+}
+
+/// A chain's links and joints.
+fn chain(
+    path: &FieldPath,
+    spec: &GenerateSpec,
+    (so_far, density): (usize, f64),
+) -> Checked<Generated> {
+    let GenerateSpec::Chain {
+        count: n,
+        link_length,
+        link_width,
+        start,
+        end,
+        direction,
+        ..
+    } = spec
+    else {
+        unreachable!("called for chains");
+    };
+    let n = count(&path.key("count"), *n, "count")?;
+    check_total(path, so_far, n)?;
+    let chain = crate::chain::ChainSpec {
+        count: n,
+        link_length: *link_length,
+        link_width: *link_width,
+        start,
+        end: end.as_ref(),
+        direction: direction.as_ref(),
+    };
+    let (bodies, joints) = crate::chain::expand(path, &chain, (spec.prefix(), so_far), density)?;
+    Ok(Generated {
+        bodies,
+        colours: None,
+        joints,
+    })
+}
+
+/// Ragdolls' bones and joints, each ragdoll its own collision group (the
+/// id of its first bone).
+fn ragdolls(
+    path: &FieldPath,
+    spec: &GenerateSpec,
+    (so_far, density): (usize, f64),
+) -> Checked<Generated> {
+    let GenerateSpec::Ragdoll {
+        position,
+        scale,
+        repeat,
+        repeat_spacing,
+        joint_friction,
+        joint_hertz,
+        joint_damping_ratio,
+        velocity,
+        ..
+    } = spec
+    else {
+        unreachable!("called for ragdolls");
+    };
+    let (columns, rows) = copies(&path.key("repeat"), repeat.as_ref())?;
+    let total = columns.saturating_mul(rows);
+    check_total(path, so_far, total.saturating_mul(crate::ragdoll::BONES))?;
+    let origin = crate::build::xy(&path.key("position"), position)?;
+    let shift = crate::build::xy(&path.key("repeat_spacing"), repeat_spacing)?;
+    let doll = crate::ragdoll::RagdollSpec {
+        scale: *scale,
+        joint_friction: *joint_friction,
+        joint_hertz: *joint_hertz,
+        joint_damping_ratio: *joint_damping_ratio,
+        density,
+        velocity: crate::build::xy(&path.key("velocity"), velocity)?,
+    };
+    let mut out = Generated {
+        colours: Some(Vec::new()),
+        ..Generated::default()
+    };
+    for row in 0..rows {
+        for column in 0..columns {
+            let k = row * columns + column;
+            let name = if total == 1 {
+                spec.prefix().to_owned()
+            } else {
+                format!("{}_{k}", spec.prefix())
+            };
+            let first = so_far + out.bodies.len();
+            let group = u32::try_from(first).unwrap_or(u32::MAX);
+            let at = origin + Vector2::new(column as f64 * shift.x, row as f64 * shift.y);
+            let (bodies, colours, joints) =
+                crate::ragdoll::expand(path, &doll, at, (&name, first, group))?;
+            out.bodies.extend(bodies);
+            if let Some(c) = out.colours.as_mut() {
+                c.extend(colours);
+            }
+            out.joints.extend(joints);
+        }
+    }
+    if spec.colour().is_some() {
+        out.colours = None;
+    }
+    Ok(out)
 }
 
 fn check_total(path: &FieldPath, so_far: usize, more: usize) -> Checked<()> {
@@ -559,7 +837,9 @@ mod tests {
 
     #[test]
     fn a_pyramid_has_its_triangle_number_of_boxes_touching_side_by_side() {
-        let bodies = expand(&FieldPath::root().key("generate").index(0), &pyramid(4), 0).unwrap();
+        let bodies = expand(&FieldPath::root().key("generate").index(0), &pyramid(4), 0)
+            .unwrap()
+            .bodies;
         assert_eq!(bodies.len(), 10);
         let xs: Vec<f64> = bodies[..4].iter().map(|b| b.state.position.x).collect();
         assert_eq!(xs, [-1.5, -0.5, 0.5, 1.5]);
@@ -587,9 +867,9 @@ mod tests {
             colour: None,
         };
         let path = FieldPath::root().key("generate").index(0);
-        let a = expand(&path, &grid(5), 0).unwrap();
-        assert_eq!(a, expand(&path, &grid(5), 0).unwrap());
-        assert_ne!(a, expand(&path, &grid(6), 0).unwrap());
+        let a = expand(&path, &grid(5), 0).unwrap().bodies;
+        assert_eq!(a, expand(&path, &grid(5), 0).unwrap().bodies);
+        assert_ne!(a, expand(&path, &grid(6), 0).unwrap().bodies);
         assert_eq!(a.len(), 12);
     }
 

@@ -148,6 +148,7 @@
 #![warn(missing_docs)]
 
 mod build;
+mod chain;
 mod colour;
 mod energy_check;
 pub mod error;
@@ -155,9 +156,11 @@ mod forces;
 mod form_error;
 pub mod format;
 pub mod generate;
+mod joints;
 mod linear_test;
 mod load;
 mod location;
+mod ragdoll;
 mod read;
 
 pub use build::{MAX_MAGNITUDE, MIN_MAGNITUDE};

@@ -65,7 +65,7 @@ impl Scene {
     }
 
     /// Builds a fresh world at t = 0: the bodies in file order (the body
-    /// `bodies[i]` has id `i`), then the forces and events. Integrated by
+    /// `bodies[i]` has id `i`), then the forces, events and joints. Integrated by
     /// the file's method, or by `method_override` (for sweeps over methods;
     /// an override of `dormand_prince` carries its own tolerance).
     ///
@@ -179,8 +179,28 @@ impl Scene {
         self.body_id(name).map(|i| self.colours()[i])
     }
 
+    /// The joints, as the engine takes them: the file's `[[joints]]` in
+    /// order, then the generators' (joint id = position). Anchors are as
+    /// written (world points at t = 0, or body-frame points); resolve them
+    /// with [`engine::JointDef::local_anchors`] at the bodies' initial
+    /// states, or read them back from a built world
+    /// ([`engine::World::joint`]).
+    pub fn joints(&self) -> impl Iterator<Item = &engine::JointDef> {
+        let joints = match &self.plan.content {
+            Content::World(w) => w.joints.as_slice(),
+            Content::LinearTest(_) => &[],
+        };
+        joints.iter().map(|j| &j.def)
+    }
+
+    /// How many joints a world built from this scene holds.
+    pub fn joint_count(&self) -> usize {
+        self.joints().count()
+    }
+
     /// The contact model and its settings from `[contact]`, validated and
-    /// with every default filled in; `None` when contacts are off.
+    /// with every default filled in; `None` when contacts are off. A scene
+    /// with joints and no `[contact]` runs the soft step at its defaults.
     pub fn contact(&self) -> Option<engine::ContactModel> {
         match &self.plan.content {
             Content::World(w) => w.contact,

@@ -59,6 +59,43 @@ pub(crate) fn position_of(source: &str, path: &FieldPath) -> Option<(usize, usiz
     Some(line_column(source, span.start))
 }
 
+/// Where `key` sits in the table at `table`: directly (`table.key`), or
+/// in one of its inline tables (`table.child.key`, the first that has it);
+/// `None` if neither. For errors that serde reports on a whole buffered
+/// table, naming a key of a table inside it.
+pub(crate) fn key_below(source: &str, table: &FieldPath, key: &str) -> Option<FieldPath> {
+    let root = DeTable::parse(source).ok()?;
+    let mut node = Node::Table(root.get_ref());
+    for segment in &table.0 {
+        let next = match (segment, node) {
+            (Segment::Key(k), Node::Table(t)) => t
+                .iter()
+                .find(|(name, _)| name.get_ref().as_ref() == k.as_str())
+                .map(|(_, v)| v),
+            (Segment::Index(i), Node::Value(DeValue::Array(array))) => array.get(*i),
+            (Segment::Key(k), Node::Value(DeValue::Table(t))) => t
+                .iter()
+                .find(|(name, _)| name.get_ref().as_ref() == k.as_str())
+                .map(|(_, v)| v),
+            _ => None,
+        };
+        node = Node::Value(next?.get_ref());
+    }
+    let entries: Vec<_> = match node {
+        Node::Table(t) | Node::Value(DeValue::Table(t)) => t.iter().collect(),
+        Node::Value(_) => return None,
+    };
+    if entries.iter().any(|(k, _)| k.get_ref().as_ref() == key) {
+        return Some(table.key(key));
+    }
+    entries.iter().find_map(|(k, v)| match v.get_ref() {
+        DeValue::Table(inner) if inner.iter().any(|(n, _)| n.get_ref().as_ref() == key) => {
+            Some(table.key(k.get_ref()).key(key))
+        }
+        _ => None,
+    })
+}
+
 #[derive(Clone, Copy)]
 enum Node<'a, 'i> {
     Table(&'a DeTable<'i>),

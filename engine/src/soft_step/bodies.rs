@@ -136,6 +136,8 @@ pub(crate) struct BodySim {
     pub friction: f64,
     /// Restitution (its own, or the settings' default).
     pub restitution: f64,
+    /// Collision group ([`crate::BodyDef::collision_group`]).
+    pub group: Option<u32>,
     /// Whether the body sleeps (its island is at rest).
     pub asleep: bool,
     /// How long (s) the body has been slower than the sleep threshold.
@@ -179,6 +181,7 @@ impl BodySim {
             rotation: UnitComplex::new(angle),
             friction: body.friction.unwrap_or(friction),
             restitution: body.restitution.unwrap_or(restitution),
+            group: body.collision_group,
             asleep: false,
             sleep_time: 0.0,
         }

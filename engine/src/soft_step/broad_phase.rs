@@ -79,6 +79,15 @@ impl BroadPhase {
         }
     }
 
+    /// Puts proxy `id` in the move buffer, so that the next pair search
+    /// looks at its overlaps again (a filter between it and another body
+    /// was lifted).
+    pub(crate) fn refresh(&mut self, id: BodyId) {
+        if self.proxies[id].is_some() {
+            self.buffer_move(id);
+        }
+    }
+
     /// Body `id`'s fat box, if it has a shape.
     pub(crate) fn fat_aabb(&self, id: BodyId) -> Option<&Aabb> {
         self.proxies[id].map(|(tree, proxy)| match tree {

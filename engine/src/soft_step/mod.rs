@@ -22,21 +22,24 @@
 //!    anchors, effective masses, inherited impulses, approach speed),
 //!    written into its lane of a four-lane record of its colour
 //!    ([`wide_solver`]); the few that find no colour (the overflow) stay
-//!    scalar;
+//!    scalar; each joint of an awake body gets its frame for the step
+//!    ([`joints`]);
 //! 4. n times: **integrate velocities** (gravity and every force generator
 //!    active in the step, evaluated at the substep's start state),
 //!    **warm start**, **solve** with the soft bias
 //!    ([`softness`]), **integrate positions** (symplectic Euler:
 //!    x += h v, θ += h ω), **relax** (solve again without bias, with
-//!    friction); each solver pass runs the overflow one constraint at a
-//!    time ([`contact_solver`]), then the records, colour after colour,
-//!    four constraints at a time ([`wide_solver`]);
+//!    friction); each solver pass runs the joints one at a time
+//!    ([`joints`]), the contact overflow one constraint at a time
+//!    ([`contact_solver`]), then the records, colour after colour, four
+//!    constraints at a time ([`wide_solver`]);
 //! 5. **restitution**: points that approached faster than the threshold
 //!    bounce with their restitution (overflow, then records);
 //! 6. **store**: impulses back into the contacts, states into the world;
 //! 7. **continuous**: bounding boxes into the broad phase, fast bodies
 //!    swept against static ones ([`continuous`]);
-//! 8. **sleep** (when on): islands at rest fall asleep ([`islands`]).
+//! 8. **sleep** (when on): islands at rest fall asleep ([`islands`];
+//!    jointed bodies share an island).
 //!
 //! Events (landing, apex) are located inside each substep by linear
 //! interpolation, exact for positions (they move linearly in a substep;
@@ -116,14 +119,17 @@ mod events;
 mod geometry;
 mod integrate;
 mod islands;
+pub mod joints;
 mod lanes;
 #[cfg(target_arch = "x86_64")]
 mod lanes_avx;
 mod manifold;
 mod prepare;
 mod settings;
+mod sleep;
 mod softness;
 mod wide_solver;
+mod world_joints;
 
 pub use settings::SoftStepSettings;
 pub use softness::Softness;
@@ -169,6 +175,7 @@ pub struct SoftStep {
     /// order).
     constrained: Vec<usize>,
     islands: islands::Islands,
+    joints: joints::JointSet,
     stats: Stats,
     // Scratch reused by every step.
     wrenches: Vec<Wrench>,
@@ -195,6 +202,7 @@ impl SoftStep {
             colouring: Colouring::default(),
             constrained: Vec::new(),
             islands: islands::Islands::default(),
+            joints: joints::JointSet::default(),
             stats: Stats::default(),
             wrenches: Vec::new(),
             force_states: Vec::new(),
@@ -230,18 +238,6 @@ impl SoftStep {
             for sim in &mut self.sims {
                 sim.asleep = false;
                 sim.sleep_time = 0.0;
-            }
-        }
-    }
-
-    fn rebuild_islands(&mut self) {
-        self.islands = islands::Islands::default();
-        for (id, sim) in self.sims.iter().enumerate() {
-            self.islands.add_body(id, sim.kind == BodyKind::Dynamic);
-        }
-        for c in &self.contacts.contacts {
-            if c.touching {
-                self.islands.link(c.body_a, c.body_b);
             }
         }
     }
@@ -284,6 +280,7 @@ impl SoftStep {
         }
         self.bodies.push(solver_body(state, body.kind));
         self.islands.add_body(id, body.kind == BodyKind::Dynamic);
+        self.joints.body_added();
         self.sims.push(sim);
     }
 
@@ -331,6 +328,9 @@ impl SoftStep {
         let started = core.profiler.start();
         self.load_bodies(core);
         self.prepare(core, h);
+        let warm = settings.warm_starting;
+        self.joints
+            .prepare(core, (&self.masses, &self.sims), h, warm);
         core.profiler.stop(Phase::Prepare, started);
 
         // Forces active during this segment (the world split the step at
@@ -358,11 +358,13 @@ impl SoftStep {
             core.profiler.stop(Phase::Integrate, started);
 
             let started = core.profiler.start();
+            self.joints.warm_start(&mut self.bodies);
             contact_solver::warm_start(&mut self.constraints, &mut self.bodies);
             wide_solver::warm_start(&mut self.wide, &mut self.bodies);
             core.profiler.stop(Phase::WarmStart, started);
 
             let started = core.profiler.start();
+            self.joints.solve(&mut self.bodies, h, true);
             contact_solver::solve(
                 &mut self.constraints,
                 &mut self.bodies,
@@ -383,6 +385,7 @@ impl SoftStep {
             core.profiler.stop(Phase::Integrate, started);
 
             let started = core.profiler.start();
+            self.joints.solve(&mut self.bodies, h, false);
             contact_solver::solve(
                 &mut self.constraints,
                 &mut self.bodies,
@@ -448,6 +451,7 @@ impl SoftStep {
         let sims = &self.sims;
         let colliders = &self.colliders;
         let contacts = &mut self.contacts;
+        let joints = &self.joints;
         self.broad.find_pairs(|a, b| {
             let (ca, cb) = (&colliders[a], &colliders[b]);
             if ca.body == cb.body {
@@ -455,8 +459,12 @@ impl SoftStep {
             }
             let (sa, sb) = (&sims[ca.body], &sims[cb.body]);
             // At least one dynamic body: static and kinematic bodies do not
-            // push each other.
-            if sa.kind != BodyKind::Dynamic && sb.kind != BodyKind::Dynamic {
+            // push each other. Bodies of one collision group, or held by a
+            // joint that does not let them collide, do not either.
+            if (sa.kind != BodyKind::Dynamic && sb.kind != BodyKind::Dynamic)
+                || (sa.group.is_some() && sa.group == sb.group)
+                || joints.keeps_apart(ca.body, cb.body)
+            {
                 return;
             }
             if contacts.contains(a, b) {
@@ -613,6 +621,10 @@ impl SoftStep {
             }
             let sim = &self.sims[id];
             if sim.colliders.is_empty() {
+                // No shape, but its joints' anchors turn with it.
+                if r.dtheta != 0.0 {
+                    self.sims[id].rotation = UnitComplex::new(core.states[id].angle);
+                }
                 continue;
             }
             let motion = r.dp.norm() + sim.max_extent * r.dtheta.abs();
@@ -669,74 +681,10 @@ impl SoftStep {
         }
     }
 
-    /// Stage 8: islands whose every body has been at rest for the time to
-    /// sleep fall asleep.
-    #[inline(never)]
-    fn sleep(&mut self, core: &mut WorldCore) {
-        self.touching_pairs.clear();
-        for c in &self.contacts.contacts {
-            if c.touching
-                && self.sims[c.body_a].kind == BodyKind::Dynamic
-                && self.sims[c.body_b].kind == BodyKind::Dynamic
-            {
-                self.touching_pairs.push((c.body_a, c.body_b));
-            }
-        }
-        // A moving kinematic body keeps the bodies it touches awake.
-        for c in &self.contacts.contacts {
-            if !c.touching {
-                continue;
-            }
-            for (k, other) in [(c.body_a, c.body_b), (c.body_b, c.body_a)] {
-                let r = &self.bodies[k + 1];
-                if self.sims[k].kind == BodyKind::Kinematic && (r.v.norm() > 0.0 || r.w != 0.0) {
-                    self.sims[other].sleep_time = 0.0;
-                }
-            }
-        }
-        let time_to_sleep = self.settings.time_to_sleep;
-        let sims = &self.sims;
-        self.islands.resting(
-            |b| sims[b].sleep_time >= time_to_sleep,
-            &self.touching_pairs,
-            &mut self.resting,
-        );
-        for k in 0..self.resting.len() {
-            let island = self.resting[k];
-            self.islands.set_asleep(island, true);
-            for &b in self.islands.bodies(island) {
-                self.sims[b].asleep = true;
-                self.bodies[b + 1] = SolverBody::AT_REST;
-                core.states[b].velocity = Vector2::zeros();
-                core.states[b].angular_velocity = 0.0;
-            }
-        }
-    }
-
-    /// Wakes the island of `body` if it sleeps.
-    fn wake_body(&mut self, body: BodyId) {
-        if !self.sims[body].asleep {
-            return;
-        }
-        let Some(island) = self.islands.island(body) else {
-            self.sims[body].asleep = false;
-            return;
-        };
-        self.islands.set_asleep(island, false);
-        for &b in self.islands.bodies(island) {
-            self.sims[b].asleep = false;
-            self.sims[b].sleep_time = 0.0;
-        }
-    }
-
-    /// Whether body `id` sleeps now.
-    pub(crate) fn is_asleep(&self, id: BodyId) -> bool {
-        self.sims[id].asleep
-    }
-
     /// Body `id` was removed (it is now an inert static body without a
-    /// shape): its proxy, contacts and island membership go.
+    /// shape): its joints, proxy, contacts and island membership go.
     pub(crate) fn body_removed(&mut self, core: &WorldCore, id: BodyId) {
+        self.remove_joints_of(id);
         for c in self.sims[id].colliders.clone() {
             self.broad.remove(c);
         }

@@ -2,7 +2,7 @@
 //! filmstrip, an RGB buffer for the GIF): the static part once
 //! ([`background`]: axes in metres, ground lines, static bodies, spring
 //! anchors, their names), then per frame the moving part ([`foreground`]:
-//! trails, springs, bodies at their pose and true size, their names where
+//! trails, springs, joints, bodies at their pose and true size, their names where
 //! they fit, event markers drawn once per place, zoomed insets of bodies
 //! too small to see, the time), as the seed drew its simulations on screen
 //! (§2.1.2, figures 5.3 and 6.6: the bodies' vertices and colours; the
@@ -274,9 +274,26 @@ pub(crate) fn foreground<DB: DrawingBackend>(
             draw_body(area, film, view, i, &states[i])?;
         }
     }
-    // Springs over the bodies, so that the bodies do not hide them.
+    // Springs and joints over the bodies, so that the bodies do not hide
+    // them.
     for (a, b) in &film.springs {
         draw_spring(area, view.to_px(a.at(states)), view.to_px(b.at(states)))?;
+    }
+    // A joint as Box2D draws it: each body's centre to its anchor, and
+    // anchor to anchor (a revolute's coincide: its pivot).
+    for (a, b) in &film.joints {
+        let (pa, pb) = (view.to_px(a.at(states)), view.to_px(b.at(states)));
+        let centre = |end: &SpringEnd, p: (i32, i32)| match end {
+            SpringEnd::Body { body, .. } => view.to_px(states[*body].position),
+            SpringEnd::World(_) => p,
+        };
+        let path = vec![centre(a, pa), pa, pb, centre(b, pb)];
+        area.draw(&PathElement::new(path, rgb(INK).stroke_width(1)))
+            .map_err(plot_err)?;
+        for p in [pa, pb] {
+            area.draw(&Circle::new(p, 2, rgb(INK).filled()))
+                .map_err(plot_err)?;
+        }
     }
     let mut taken = Vec::new();
     // Events at one place (the apex of 100 bounces) are one marker and one

@@ -1,7 +1,7 @@
 //! [`Film`]: what a picture of a run needs, independent of how it is drawn:
 //! each body's look (name, colour, shape, kind), the springs between
-//! bodies and anchors, the ground lines of landing events, the sampled
-//! states, and the located events.
+//! bodies and anchors, the joints' anchors, the ground lines of landing
+//! events, the sampled states, and the located events.
 
 use engine::{Body, BodyState, EventRecord, Shape};
 use nalgebra::Vector2;
@@ -88,6 +88,9 @@ pub struct Film {
     pub bodies: Vec<BodyLook>,
     /// Springs, drawn as zigzags.
     pub springs: Vec<(SpringEnd, SpringEnd)>,
+    /// Joints, by their two anchors: drawn as a thin line between them
+    /// with a dot at each end (a revolute's coincide: its pivot).
+    pub joints: Vec<(SpringEnd, SpringEnd)>,
     /// Heights of ground lines (m): the levels of landing events.
     pub grounds: Vec<f64>,
     /// Sample times (s), increasing.
@@ -145,6 +148,19 @@ impl Film {
                 _ => None,
             })
             .collect();
+        // The joints' anchors in the bodies' frames, resolved at t = 0.
+        let initial: Vec<BodyState> = scene.bodies().iter().map(|b| b.state).collect();
+        let joint_end = |body: Option<usize>, local: Vector2<f64>| match body {
+            None => SpringEnd::World(local),
+            Some(body) => SpringEnd::Body { body, local },
+        };
+        let joints = scene
+            .joints()
+            .map(|j| {
+                let (a, b) = j.local_anchors(&initial);
+                (joint_end(j.body_a, a), joint_end(j.body_b, b))
+            })
+            .collect();
         let mut grounds: Vec<f64> = scene
             .file()
             .events
@@ -161,6 +177,7 @@ impl Film {
             subtitle,
             bodies: looks,
             springs,
+            joints,
             grounds,
             times: Vec::new(),
             states: Vec::new(),
@@ -258,7 +275,7 @@ impl Film {
                 }
             }
         }
-        for (a, b) in &self.springs {
+        for (a, b) in self.springs.iter().chain(&self.joints) {
             for end in [a, b] {
                 if let SpringEnd::World(p) = end {
                     add(*p, 0.0);

@@ -13,9 +13,14 @@ pub const LISTED_BODIES: usize = 12;
 
 /// `contacts: soft_step (4 substeps, …)`, `contacts: exact (…)` or
 /// `contacts: off (…)`: the model that runs and every setting that changes
-/// what it computes.
+/// what it computes, then the number of joints if any (`; 2 joints`).
 pub fn model_line(world: &World) -> String {
-    match world.contact_model() {
+    let joints = match world.joint_count() {
+        0 => String::new(),
+        1 => "; 1 joint".to_owned(),
+        n => format!("; {n} joints"),
+    };
+    let model = match world.contact_model() {
         Some(ContactModel::SoftStep(s)) => format!(
             "contacts: soft_step ({} substeps, contact {} Hz, damping ratio {}, push-out {} m/s, \
              friction {}, restitution {} above {} m/s, speculative {} m, continuous {}, sleeping {})",
@@ -44,7 +49,8 @@ pub fn model_line(world: &World) -> String {
         ),
         None => "contacts: off (the scene has no [contact] table: shapes pass through each other)"
             .to_owned(),
-    }
+    };
+    format!("{model}{joints}")
 }
 
 fn on_off(on: bool) -> &'static str {

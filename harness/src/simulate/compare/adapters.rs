@@ -228,6 +228,12 @@ fn contact_scene(
 /// cannot.
 pub(super) fn prepare(scene: &Scene, with: CompareWith, dt: f64) -> Result<Prepared> {
     let adapter = adapter_words(with, scene);
+    if scene.joint_count() > 0 {
+        bail!(
+            "{}: the scene has joints, which the {adapter} does not translate (yet): remove the option",
+            scene.origin()
+        );
+    }
     let settings = RapierSettings::new(dt);
     let prepared = match (with, scene.contact()) {
         (CompareWith::Rapier, None) => {

@@ -1,0 +1,562 @@
+//! Every joint of a soft-step world: the definitions as resolved when they
+//! were added (bodies, anchors in the bodies' frames, reference angle),
+//! the solver records (frame, rows and impulses, one enum per joint), the
+//! joints of each body (for the collision filter and for removal), and the
+//! passes over them: prepare once per step, then warm start, solve and
+//! relax in every substep, one joint at a time in the order added.
+
+use super::distance::DistanceRows;
+use super::frame::JointFrame;
+use super::prismatic::PrismaticRows;
+use super::revolute::RevoluteRows;
+use super::target::TargetRows;
+use super::weld::WeldRows;
+use super::{
+    Distance, JointDef, JointId, JointKind, JointState, JointType, Target, invalid, world_point,
+    wrap_angle,
+};
+use crate::body::{BodyId, BodyKind, BodyState};
+use crate::error::{EngineError, Result};
+use crate::soft_step::Softness;
+use crate::soft_step::bodies::{BodyMass, BodySim, SolverBody, solver_index};
+use crate::world_core::WorldCore;
+use nalgebra::Vector2;
+use smallvec::SmallVec;
+
+/// The rows of one joint, by type.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum JointRows {
+    Revolute(RevoluteRows),
+    Prismatic(PrismaticRows),
+    Distance(DistanceRows),
+    Weld(WeldRows),
+    Target(TargetRows),
+}
+
+/// A joint's solver record.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct JointSim {
+    /// Whether it is solved this step (not removed, an awake body).
+    pub active: bool,
+    pub frame: JointFrame,
+    pub rows: JointRows,
+}
+
+/// A joint's definition as resolved when it was added.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct JointInfo {
+    pub name: String,
+    pub body_a: Option<BodyId>,
+    pub body_b: Option<BodyId>,
+    /// Anchors in the bodies' frames, from each centre of mass (a world
+    /// point on the world side) (m).
+    pub local_a: Vector2<f64>,
+    pub local_b: Vector2<f64>,
+    /// θref (rad).
+    pub reference_angle: f64,
+    pub collide_connected: bool,
+    pub constraint_hertz: f64,
+    pub constraint_damping_ratio: f64,
+    pub removed: bool,
+}
+
+/// A joint as one of its bodies sees it: which joint, the body at its
+/// other end, and whether it keeps the two from colliding (what the pair
+/// filter reads, without touching the joint itself).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct JointEdge {
+    joint: u32,
+    /// The other body, [`WORLD`] for the world.
+    other: u32,
+    keeps_apart: bool,
+}
+
+/// The other end of a joint to the world.
+const WORLD: u32 = u32::MAX;
+
+/// The joints of a world.
+#[derive(Debug, Default)]
+pub(crate) struct JointSet {
+    pub sims: Vec<JointSim>,
+    pub infos: Vec<JointInfo>,
+    /// Per body: its joints.
+    body_joints: Vec<SmallVec<[JointEdge; 4]>>,
+    /// 1/h of the last step's substep (1/s), for the reaction forces.
+    inv_h: f64,
+}
+
+/// A body's pose and masses as prepare reads them.
+struct Side {
+    index: usize,
+    inv_mass: f64,
+    inv_inertia: f64,
+    position: Vector2<f64>,
+    angle: f64,
+    rotation: (f64, f64),
+    moving: bool,
+}
+
+impl Side {
+    const WORLD: Side = Side {
+        index: 0,
+        inv_mass: 0.0,
+        inv_inertia: 0.0,
+        position: Vector2::new(0.0, 0.0),
+        angle: 0.0,
+        rotation: (1.0, 0.0),
+        moving: false,
+    };
+
+    fn rotate(&self, r: Vector2<f64>) -> Vector2<f64> {
+        let (c, s) = self.rotation;
+        Vector2::new(c * r.x - s * r.y, s * r.x + c * r.y)
+    }
+}
+
+impl JointSet {
+    /// Registers the next body.
+    pub(crate) fn body_added(&mut self) {
+        self.body_joints.push(SmallVec::new());
+    }
+
+    /// How many joints were added (removed ones included).
+    pub(crate) fn len(&self) -> usize {
+        self.infos.len()
+    }
+
+    /// The first joint of `body`, if it has any.
+    pub(crate) fn first_of_body(&self, body: BodyId) -> Option<JointId> {
+        self.body_joints[body].first().map(|e| e.joint as usize)
+    }
+
+    /// Whether a joint between `a` and `b` keeps them from colliding:
+    /// walks the shorter of the two bodies' joint lists (Box2D's
+    /// `b2ShouldBodiesCollide`); nothing to walk for bodies without joints.
+    #[inline]
+    pub(crate) fn keeps_apart(&self, a: BodyId, b: BodyId) -> bool {
+        let (ja, jb) = (&self.body_joints[a], &self.body_joints[b]);
+        if ja.is_empty() || jb.is_empty() {
+            return false;
+        }
+        let (list, other) = if ja.len() <= jb.len() {
+            (ja, b)
+        } else {
+            (jb, a)
+        };
+        list.iter()
+            .any(|e| e.keeps_apart && e.other as usize == other)
+    }
+
+    /// Validates `def` against the world in `core` and adds it.
+    pub(crate) fn add(&mut self, core: &WorldCore, def: &JointDef) -> Result<JointId> {
+        def.check_numbers()?;
+        let name = def.name.as_str();
+        let count = core.bodies.len();
+        for (side, body) in [("A", def.body_a), ("B", def.body_b)] {
+            if let Some(id) = body {
+                if id >= count {
+                    return Err(invalid(
+                        name,
+                        format!("body {side} is index {id}, and the world has {count} bodies"),
+                    ));
+                }
+                if core.removed[id] {
+                    return Err(invalid(
+                        name,
+                        format!("body {side} '{}' was removed", core.bodies[id].name),
+                    ));
+                }
+            }
+        }
+        if def.body_a.is_some() && def.body_a == def.body_b {
+            return Err(invalid(
+                name,
+                format!(
+                    "it joins body '{}' to itself: give two different bodies (or the world)",
+                    core.bodies[def.body_a.unwrap_or(0)].name
+                ),
+            ));
+        }
+        let dynamic = |b: Option<BodyId>| b.is_some_and(|id| core.bodies[id].is_dynamic());
+        if !dynamic(def.body_a) && !dynamic(def.body_b) {
+            let say = |b: Option<BodyId>| match b {
+                None => "the world".to_string(),
+                Some(id) => {
+                    let kind = match core.bodies[id].kind {
+                        BodyKind::Static => "static",
+                        BodyKind::Kinematic => "kinematic",
+                        BodyKind::Dynamic => "dynamic",
+                    };
+                    format!("the {kind} body '{}'", core.bodies[id].name)
+                }
+            };
+            return Err(invalid(
+                name,
+                format!(
+                    "it joins {} and {}: at least one body must be dynamic",
+                    say(def.body_a),
+                    say(def.body_b)
+                ),
+            ));
+        }
+        if let JointKind::Target(_) = def.kind {
+            Target::check_sides(name, def.body_a, def.body_b)?;
+        }
+        let (local_a, local_b) = def.local_anchors(&core.states);
+        let angle = |b: Option<BodyId>| b.map_or(0.0, |id| core.states[id].angle);
+        let reference_angle = def
+            .reference_angle
+            .unwrap_or_else(|| angle(def.body_b) - angle(def.body_a));
+        let pa = world_point(def.body_a, local_a, &core.states);
+        let pb = world_point(def.body_b, local_b, &core.states);
+        let rows = match &def.kind {
+            JointKind::Revolute(j) => JointRows::Revolute(RevoluteRows::new(*j)),
+            JointKind::Prismatic(j) => {
+                let u = j.axis.normalize();
+                let (s, c) = angle(def.body_a).sin_cos();
+                let local = Vector2::new(c * u.x + s * u.y, -s * u.x + c * u.y);
+                JointRows::Prismatic(PrismaticRows::new(*j, local))
+            }
+            JointKind::Distance(j) => {
+                let measured = (pb - pa).norm();
+                let needs_length = !matches!(j, Distance::Rope { .. });
+                // The anchors are finite (checked above): so is `measured`.
+                if needs_length && j.length().is_none() && measured <= 1e-9 {
+                    return Err(invalid(
+                        name,
+                        format!(
+                            "its anchors coincide (at [{}, {}] m): give a length, or anchors apart",
+                            crate::error::readable(pa.x),
+                            crate::error::readable(pa.y)
+                        ),
+                    ));
+                }
+                JointRows::Distance(DistanceRows::new(j, measured))
+            }
+            JointKind::Weld(j) => JointRows::Weld(WeldRows::new(*j)),
+            JointKind::Target(j) => JointRows::Target(TargetRows::new(*j)),
+        };
+        let id = self.infos.len();
+        self.infos.push(JointInfo {
+            name: def.name.clone(),
+            body_a: def.body_a,
+            body_b: def.body_b,
+            local_a,
+            local_b,
+            reference_angle,
+            collide_connected: def.collide_connected,
+            constraint_hertz: def.constraint_hertz,
+            constraint_damping_ratio: def.constraint_damping_ratio,
+            removed: false,
+        });
+        self.sims.push(JointSim {
+            active: false,
+            frame: JointFrame::EMPTY,
+            rows,
+        });
+        let end = |b: Option<BodyId>| b.map_or(WORLD, |id| id as u32);
+        for (body, other) in [(def.body_a, def.body_b), (def.body_b, def.body_a)] {
+            if let Some(body) = body {
+                self.body_joints[body].push(JointEdge {
+                    joint: id as u32,
+                    other: end(other),
+                    keeps_apart: !def.collide_connected,
+                });
+            }
+        }
+        Ok(id)
+    }
+
+    /// Checks that joint `id` exists.
+    pub(crate) fn check(&self, id: JointId) -> Result<()> {
+        if id < self.infos.len() {
+            Ok(())
+        } else {
+            Err(EngineError::UnknownJoint {
+                index: id,
+                count: self.infos.len(),
+            })
+        }
+    }
+
+    /// Removes joint `id` (it stays, inert); returns whether it was there.
+    pub(crate) fn remove(&mut self, id: JointId) -> bool {
+        let info = &mut self.infos[id];
+        if info.removed {
+            return false;
+        }
+        info.removed = true;
+        self.sims[id].active = false;
+        for body in [info.body_a, info.body_b].into_iter().flatten() {
+            self.body_joints[body].retain(|e| e.joint as usize != id);
+        }
+        true
+    }
+
+    /// Moves joint `id`'s target (a target joint only).
+    pub(crate) fn set_target(&mut self, id: JointId, target: Vector2<f64>) -> Result<BodyId> {
+        let name = &self.infos[id].name;
+        if !(target.x.is_finite() && target.y.is_finite()) {
+            return Err(invalid(name, "the target must be a finite point".into()));
+        }
+        let JointRows::Target(_) = self.sims[id].rows else {
+            return Err(invalid(
+                name,
+                "only a target joint has a target to move".into(),
+            ));
+        };
+        self.infos[id].local_a = target;
+        Ok(self.infos[id].body_b.unwrap_or(0))
+    }
+
+    /// Sets joint `id`'s motor speed (rad/s or m/s): a revolute or
+    /// prismatic joint with a motor.
+    pub(crate) fn set_motor_speed(&mut self, id: JointId, speed: f64) -> Result<()> {
+        let name = &self.infos[id].name;
+        super::finite(name, "motor speed", speed)?;
+        match &mut self.sims[id].rows {
+            JointRows::Revolute(RevoluteRows {
+                joint: super::Revolute { motor: Some(m), .. },
+                ..
+            }) => m.speed = speed,
+            JointRows::Prismatic(PrismaticRows {
+                joint: super::Prismatic { motor: Some(m), .. },
+                ..
+            }) => m.speed = speed,
+            _ => {
+                return Err(invalid(
+                    name,
+                    "it has no motor (only a revolute or prismatic joint with a motor has a speed)"
+                        .into(),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Prepare: each joint of an awake body gets its frame for a step of
+    /// substeps `h` (s).
+    #[inline(never)]
+    pub(crate) fn prepare(
+        &mut self,
+        core: &WorldCore,
+        (masses, sims): (&[BodyMass], &[BodySim]),
+        h: f64,
+        warm: bool,
+    ) {
+        self.inv_h = 1.0 / h;
+        let side = |body: Option<BodyId>| -> Side {
+            let Some(id) = body else {
+                return Side::WORLD;
+            };
+            let m = &masses[id];
+            let s = &core.states[id];
+            let q = sims[id].rotation;
+            Side {
+                index: solver_index(id, m.kind),
+                inv_mass: m.inv_mass,
+                inv_inertia: m.inv_inertia,
+                position: s.position,
+                angle: s.angle,
+                rotation: (q.re, q.im),
+                moving: m.moving,
+            }
+        };
+        for (sim, info) in self.sims.iter_mut().zip(&self.infos) {
+            if info.removed {
+                sim.active = false;
+                continue;
+            }
+            let (a, b) = (side(info.body_a), side(info.body_b));
+            sim.active = a.moving || b.moving;
+            if !sim.active {
+                continue;
+            }
+            let hertz = info.constraint_hertz.min(0.25 / h);
+            let frame = JointFrame {
+                a: a.index,
+                b: b.index,
+                ma: a.inv_mass,
+                ia: a.inv_inertia,
+                mb: b.inv_mass,
+                ib: b.inv_inertia,
+                ra: a.rotate(info.local_a),
+                rb: b.rotate(info.local_b),
+                delta_center: b.position - a.position,
+                angle: wrap_angle(b.angle - a.angle - info.reference_angle),
+                softness: Softness::new(hertz, info.constraint_damping_ratio, h),
+            };
+            sim.frame = frame;
+            match &mut sim.rows {
+                JointRows::Revolute(r) => r.prepare(&frame, h, warm),
+                JointRows::Prismatic(p) => p.prepare(h, a.rotation, warm),
+                JointRows::Distance(d) => d.prepare(h, warm),
+                JointRows::Weld(w) => w.prepare(&frame, h, warm),
+                JointRows::Target(t) => t.prepare(h, warm),
+            }
+        }
+    }
+
+    /// Applies every active joint's accumulated impulses.
+    #[inline(never)]
+    pub(crate) fn warm_start(&self, bodies: &mut [SolverBody]) {
+        for sim in self.sims.iter().filter(|s| s.active) {
+            let f = &sim.frame;
+            let (mut a, mut b) = (bodies[f.a], bodies[f.b]);
+            match &sim.rows {
+                JointRows::Revolute(r) => r.warm_start(f, &mut a, &mut b),
+                JointRows::Prismatic(p) => p.warm_start(f, &mut a, &mut b),
+                JointRows::Distance(d) => d.warm_start(f, &mut a, &mut b),
+                JointRows::Weld(w) => w.warm_start(f, &mut a, &mut b),
+                JointRows::Target(t) => t.warm_start(f, &mut a, &mut b),
+            }
+            store(bodies, f, &a, &b);
+        }
+    }
+
+    /// One pass of sequential impulses over the active joints, with the
+    /// rigid rows' soft bias (`use_bias`, the solve pass) or without (the
+    /// relax pass), for substeps of `h` (s).
+    #[inline(never)]
+    pub(crate) fn solve(&mut self, bodies: &mut [SolverBody], h: f64, use_bias: bool) {
+        let inv_h = 1.0 / h;
+        for sim in self.sims.iter_mut().filter(|s| s.active) {
+            let f = &sim.frame;
+            let (mut a, mut b) = (bodies[f.a], bodies[f.b]);
+            let pair = (&mut a, &mut b);
+            match &mut sim.rows {
+                JointRows::Revolute(r) => r.solve(f, pair, (h, inv_h), use_bias),
+                JointRows::Prismatic(p) => p.solve(f, pair, (h, inv_h), use_bias),
+                JointRows::Distance(d) => d.solve(f, pair, inv_h, use_bias),
+                JointRows::Weld(w) => w.solve(f, pair, use_bias),
+                JointRows::Target(t) => t.solve(f, pair, h),
+            }
+            store(bodies, f, &a, &b);
+        }
+    }
+
+    /// Joint `id` now, from the bodies' `states`.
+    pub(crate) fn state(&self, id: JointId, states: &[BodyState]) -> JointState {
+        let info = &self.infos[id];
+        let sim = &self.sims[id];
+        let pa = world_point(info.body_a, info.local_a, states);
+        let pb = world_point(info.body_b, info.local_b, states);
+        let angle_of = |b: Option<BodyId>| b.map_or(0.0, |id| states[id].angle);
+        let angle =
+            wrap_angle(angle_of(info.body_b) - angle_of(info.body_a) - info.reference_angle);
+        let d = pb - pa;
+        let inv_h = self.inv_h;
+        let beyond = |v: f64, (lo, hi): (f64, f64)| (lo - v).max(v - hi).max(0.0);
+        let (joint_type, translation, linear_error, angular_error, force, torque, motor) =
+            match &sim.rows {
+                JointRows::Revolute(r) => (
+                    JointType::Revolute,
+                    0.0,
+                    d.norm(),
+                    r.joint.limits.map_or(0.0, |l| beyond(angle, l)),
+                    inv_h * r.linear,
+                    inv_h * r.axial_impulse(),
+                    inv_h * r.motor,
+                ),
+                JointRows::Prismatic(p) => {
+                    let (s, c) = angle_of(info.body_a).sin_cos();
+                    let u = p.local_axis;
+                    let axis = Vector2::new(c * u.x - s * u.y, s * u.x + c * u.y);
+                    let normal = Vector2::new(-axis.y, axis.x);
+                    (
+                        JointType::Prismatic,
+                        axis.dot(&d),
+                        normal.dot(&d).abs(),
+                        angle.abs(),
+                        inv_h * (p.axial_impulse() * axis + p.block.x * normal),
+                        inv_h * p.block.y,
+                        inv_h * p.motor,
+                    )
+                }
+                JointRows::Distance(r) => {
+                    let length = d.norm();
+                    let error = if r.is_rigid() {
+                        (length - r.length).abs()
+                    } else {
+                        beyond(length, (r.min_length, r.max_length))
+                    };
+                    let u = if length > 0.0 {
+                        d / length
+                    } else {
+                        Vector2::zeros()
+                    };
+                    (
+                        JointType::Distance,
+                        length,
+                        error,
+                        0.0,
+                        inv_h * r.axial_impulse() * u,
+                        0.0,
+                        0.0,
+                    )
+                }
+                JointRows::Weld(w) => (
+                    JointType::Weld,
+                    0.0,
+                    d.norm(),
+                    angle.abs(),
+                    inv_h * w.linear,
+                    inv_h * w.angular,
+                    0.0,
+                ),
+                JointRows::Target(t) => (
+                    JointType::Target,
+                    0.0,
+                    d.norm(),
+                    0.0,
+                    inv_h * t.linear,
+                    0.0,
+                    0.0,
+                ),
+            };
+        JointState {
+            name: info.name.clone(),
+            joint_type,
+            body_a: info.body_a,
+            body_b: info.body_b,
+            local_anchor_a: info.local_a,
+            local_anchor_b: info.local_b,
+            anchor_a: pa,
+            anchor_b: pb,
+            angle,
+            translation,
+            linear_error,
+            angular_error,
+            force: if self.inv_h > 0.0 {
+                force
+            } else {
+                Vector2::zeros()
+            },
+            torque: if self.inv_h > 0.0 { torque } else { 0.0 },
+            motor: if self.inv_h > 0.0 { motor } else { 0.0 },
+            removed: info.removed,
+        }
+    }
+
+    /// The pairs of dynamic bodies held by an active joint, for the islands.
+    pub(crate) fn dynamic_pairs<'a>(
+        &'a self,
+        sims: &'a [BodySim],
+    ) -> impl Iterator<Item = (BodyId, BodyId)> + 'a {
+        self.infos.iter().filter_map(move |info| {
+            let (a, b) = (info.body_a?, info.body_b?);
+            let dynamic = |id: BodyId| sims[id].kind == BodyKind::Dynamic;
+            (!info.removed && dynamic(a) && dynamic(b)).then_some((a, b))
+        })
+    }
+}
+
+/// Writes the two bodies' velocities back; the world's record at index 0
+/// is unchanged by a joint (its inverse masses are 0).
+#[inline(always)]
+fn store(bodies: &mut [SolverBody], f: &JointFrame, a: &SolverBody, b: &SolverBody) {
+    bodies[f.a].v = a.v;
+    bodies[f.a].w = a.w;
+    bodies[f.b].v = b.v;
+    bodies[f.b].w = b.w;
+}
