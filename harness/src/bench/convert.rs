@@ -2,7 +2,8 @@
 //! [`ManyBodyScene`] of `references::many_body`, built from the same
 //! validated bodies the engine gets (shapes re-centred on their centroids,
 //! mass from the density or the given mass), with the soft step's default
-//! materials filled in, the scene's gravity, its step and its substeps.
+//! materials filled in, the scene's gravity, its step and its substeps,
+//! and its joints ([`super::neutral_joints`]).
 
 use anyhow::{Context, Result, bail};
 use engine::{Body, BodyKind, ContactModel};
@@ -58,11 +59,13 @@ pub fn neutral_scene(scene: &Scene, defaults: Defaults) -> Result<ManyBodyScene>
             ),
         }
     }
+    let mut states = Vec::with_capacity(scene.bodies().len());
     let bodies = scene
         .bodies()
         .iter()
         .map(|def| {
             let (body, state) = Body::from_def(def)?;
+            states.push(state);
             let shape = body
                 .shape
                 .clone()
@@ -87,7 +90,7 @@ pub fn neutral_scene(scene: &Scene, defaults: Defaults) -> Result<ManyBodyScene>
                 density,
                 friction: body.friction.unwrap_or(defaults.friction),
                 restitution: body.restitution.unwrap_or(defaults.restitution),
-                collision_group: None,
+                collision_group: def.collision_group,
             })
         })
         .collect::<Result<Vec<_>>>()?;
@@ -96,7 +99,8 @@ pub fn neutral_scene(scene: &Scene, defaults: Defaults) -> Result<ManyBodyScene>
         dt: scene.dt(),
         substeps: defaults.substeps,
         bodies,
-        joints: Vec::new(),
+        joints: super::neutral_joints::neutral_joints(scene.joints(), &states)
+            .with_context(|| scene.origin().to_owned())?,
     };
     scene.validate()?;
     Ok(scene)

@@ -9,6 +9,7 @@
 pub mod contact_precision;
 pub mod convert;
 pub mod measure;
+pub mod neutral_joints;
 pub mod ours;
 pub mod report;
 pub mod scenes;
