@@ -24,6 +24,13 @@
 //! otherwise give a tree of height O(n); with the rotations the height stays
 //! O(log n) (tested: a column of 1000 boxes inserted bottom-to-top).
 //!
+//! **Enlarging in place**: when many proxies move every step, removing and
+//! reinserting each is the dominant cost. [`DynamicTree::enlarge_proxy`]
+//! instead gives the leaf its new box and only grows its ancestors
+//! (marking them); [`DynamicTree::rebuild`] then regroups the marked part
+//! of the tree once, top-down (the private module `rebuild` has the
+//! method). Between the two, queries are exact but visit more nodes.
+//!
 //! **Memory**: the nodes live in one `Vec` with a free list. A tree of n
 //! proxies uses 2n − 1 nodes, and a destroyed node is reused first, so once
 //! the proxy count has peaked, creating, destroying and moving proxies
@@ -107,6 +114,11 @@ struct Node {
     user_data: u32,
     /// False while the node is in the free list.
     in_use: bool,
+    /// Internal node: a leaf below it was enlarged in place
+    /// ([`DynamicTree::enlarge_proxy`]) since the last
+    /// [`DynamicTree::rebuild`], so its box may be larger than its
+    /// children's union and its subtree is rebuilt. Never set on a leaf.
+    enlarged: bool,
 }
 
 impl Node {
@@ -127,6 +139,8 @@ pub struct DynamicTree {
     free_list: u32,
     /// The number of leaves.
     proxy_count: usize,
+    /// Reused buffers of [`DynamicTree::rebuild`].
+    scratch: rebuild::Scratch,
 }
 
 impl Default for DynamicTree {
@@ -143,6 +157,7 @@ impl DynamicTree {
             root: NULL,
             free_list: NULL,
             proxy_count: 0,
+            scratch: rebuild::Scratch::default(),
         }
     }
 
@@ -185,8 +200,53 @@ impl DynamicTree {
         self.insert_leaf(leaf);
     }
 
+    /// Gives a proxy the new fat box `fat_aabb` (m) in place, without
+    /// moving its leaf: every ancestor grows to contain the new box and is
+    /// marked for the next [`DynamicTree::rebuild`], which restructures the
+    /// marked part of the tree once for all the proxies enlarged since
+    /// (Box2D v3's scheme: cheaper than a removal and reinsertion per
+    /// proxy when many move). Until then queries stay exact (a marked box
+    /// only contains more) but visit more nodes. O(depth).
+    ///
+    /// # Panics
+    /// If `id` is not a live proxy of this tree.
+    pub fn enlarge_proxy(&mut self, id: ProxyId, fat_aabb: Aabb) {
+        let leaf = self.checked_leaf(id);
+        self.nodes[leaf as usize].aabb = fat_aabb;
+        let mut i = self.nodes[leaf as usize].parent;
+        // Grow the ancestors until one already holds the box; above it only
+        // the marks are missing, up to the first ancestor already marked
+        // (whose own ancestors are marked too).
+        let mut growing = true;
+        while i != NULL {
+            let node = &mut self.nodes[i as usize];
+            if growing {
+                let grown = node.aabb.merged(&fat_aabb);
+                growing = grown != node.aabb;
+                node.aabb = grown;
+            } else if node.enlarged {
+                break;
+            }
+            node.enlarged = true;
+            i = node.parent;
+        }
+    }
+
+    /// Rebuilds the part of the tree marked by [`DynamicTree::enlarge_proxy`]
+    /// since the last rebuild: the unmarked subtrees and the leaves under
+    /// the marked nodes are regrouped top-down, each group split at the
+    /// middle of its box centres along their longer side (Box2D v3's median
+    /// split), and every box is exact again. Proxy
+    /// ids and user data are kept. Nothing to do, and O(1), when no proxy
+    /// was enlarged; allocates nothing once its buffers have grown to the
+    /// tree's size.
+    pub fn rebuild(&mut self) {
+        rebuild::rebuild(self);
+    }
+
     /// The fat box (m) of a proxy, as last given to
-    /// [`DynamicTree::create_proxy`] or [`DynamicTree::move_proxy`].
+    /// [`DynamicTree::create_proxy`], [`DynamicTree::move_proxy`] or
+    /// [`DynamicTree::enlarge_proxy`].
     ///
     /// # Panics
     /// If `id` is not a live proxy of this tree.
@@ -230,7 +290,9 @@ impl DynamicTree {
     /// root or sits in the free list (no leak, no cycle), free nodes are
     /// marked free, a leaf has height 0 and an internal node one more than
     /// its taller child, each internal box is exactly the union of its
-    /// children's boxes (so it contains them), and the leaf count matches
+    /// children's boxes (contains it, for a node marked by
+    /// [`DynamicTree::enlarge_proxy`]), no leaf is marked, and the leaf
+    /// count matches
     /// [`DynamicTree::proxy_count`]. O(n) and allocating: for tests.
     pub fn validate(&self) -> Result<(), String> {
         let n = self.nodes.len();
@@ -279,6 +341,9 @@ impl DynamicTree {
                 if node.height != 0 {
                     return Err(format!("leaf {i} has height {}", node.height));
                 }
+                if node.enlarged {
+                    return Err(format!("leaf {i} is marked enlarged"));
+                }
                 leaves += 1;
                 continue;
             }
@@ -292,7 +357,12 @@ impl DynamicTree {
             if node.height != 1 + a.height.max(b.height) {
                 return Err(format!("node {i} has a wrong height {}", node.height));
             }
-            if !same_box(&node.aabb, &a.aabb.merged(&b.aabb)) {
+            let union = a.aabb.merged(&b.aabb);
+            if node.enlarged {
+                if !node.aabb.contains(&union) && !same_box(&node.aabb, &union) {
+                    return Err(format!("the box of node {i} does not hold its children's"));
+                }
+            } else if !same_box(&node.aabb, &union) {
                 return Err(format!("the box of node {i} is not its children's union"));
             }
             stack.push(c0);
@@ -388,6 +458,7 @@ impl DynamicTree {
             height: 0,
             user_data: 0,
             in_use: true,
+            enlarged: false,
         };
         if self.free_list != NULL {
             let i = self.free_list;
@@ -410,6 +481,7 @@ impl DynamicTree {
         node.in_use = false;
         node.children = [NULL, NULL];
         node.height = 0;
+        node.enlarged = false;
         node.parent = self.free_list;
         self.free_list = i;
     }
@@ -435,6 +507,7 @@ impl DynamicTree {
             height: sibling_node.height + 1,
             user_data: 0,
             in_use: true,
+            enlarged: false,
         };
         self.nodes[new_parent as usize] = node;
         self.replace_child(old_parent, sibling, new_parent);
@@ -532,15 +605,18 @@ impl DynamicTree {
     }
 
     /// Recomputes the height and box of the internal node `i` from its
-    /// children.
+    /// children; it stays marked for the rebuild if it or a child was (so
+    /// the marks still reach the root after a rotation).
     fn refit(&mut self, i: u32) {
         let [c0, c1] = self.nodes[i as usize].children;
         let (a, b) = (&self.nodes[c0 as usize], &self.nodes[c1 as usize]);
         let height = 1 + a.height.max(b.height);
         let aabb = a.aabb.merged(&b.aabb);
+        let enlarged = a.enlarged || b.enlarged;
         let node = &mut self.nodes[i as usize];
         node.height = height;
         node.aabb = aabb;
+        node.enlarged |= enlarged;
     }
 
     /// If the children of the internal node `a` differ in height by more
@@ -607,5 +683,6 @@ fn same_box(a: &Aabb, b: &Aabb) -> bool {
         && same(a.max.y, b.max.y)
 }
 
+mod rebuild;
 #[cfg(test)]
 mod tests;

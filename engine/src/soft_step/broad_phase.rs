@@ -3,11 +3,23 @@
 //! buffer of the bodies whose box left its fat box.
 //!
 //! A body that moves less than the margin stays inside its fat box and costs
-//! nothing here; only bodies in the move buffer are re-inserted and queried
-//! for new pairs (seed §7.2–7.3 ask the collision system to keep few
-//! candidates; Box2D's `broad_phase.c` and rapier's BVH do the same). Pairs
-//! persist as [`super::contacts::Contact`]s until their fat boxes part, so
-//! the cost of a resting pile is O(1) per body per step.
+//! nothing here; only bodies in the move buffer are queried for new pairs
+//! (seed §7.2–7.3 ask the collision system to keep few candidates; Box2D's
+//! `broad_phase.c` and rapier's BVH do the same). Pairs persist as
+//! [`super::contacts::Contact`]s until their fat boxes part, so the cost of
+//! a resting pile is O(1) per body per step.
+//!
+//! A moving proxy that left its fat box is not reinserted: its leaf gets
+//! the new fat box in place ([`DynamicTree::enlarge_proxy`]), and the
+//! moving tree's enlarged part is rebuilt once before the next queries
+//! ([`DynamicTree::rebuild`]; Box2D v3's scheme). When hundreds of bodies
+//! fall or fly, one binned-SAH rebuild costs much less than a removal and
+//! a reinsertion each, and gives a tighter tree to query.
+//!
+//! The new pairs of one moved proxy are reported in increasing order of
+//! the other proxy (not in the tree's order), so contacts are created in
+//! an order that depends on the bodies' boxes only, never on the trees'
+//! internal shape.
 
 use crate::body::BodyId;
 use crate::collision::{Aabb, DynamicTree, ProxyId};
@@ -31,7 +43,18 @@ pub(crate) struct BroadPhase {
     moved: Vec<BodyId>,
     /// Per body: whether it is in `moved`.
     in_move_buffer: Vec<bool>,
+    /// Per body: its fat box (a copy of its leaf's box, read by the
+    /// collide stage for every contact), [`NO_BOX`] without a shape.
+    fat: Vec<Aabb>,
+    /// The overlaps found by one query, sorted before they are reported.
+    hits: Vec<u32>,
 }
+
+/// The box of a body without a shape: it overlaps nothing.
+const NO_BOX: Aabb = Aabb {
+    min: nalgebra::Vector2::new(f64::INFINITY, f64::INFINITY),
+    max: nalgebra::Vector2::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+};
 
 impl BroadPhase {
     /// Registers body `id` (the next one) with its fat box, or none
@@ -48,6 +71,7 @@ impl BroadPhase {
             (tree, proxy)
         });
         self.proxies.push(proxy);
+        self.fat.push(fat.unwrap_or(NO_BOX));
         self.in_move_buffer.push(false);
         if proxy.is_some() {
             self.buffer_move(id);
@@ -59,6 +83,7 @@ impl BroadPhase {
         if let Some((tree, proxy)) = self.proxies[id].take() {
             self.tree_mut(tree).destroy_proxy(proxy);
         }
+        self.fat[id] = NO_BOX;
         if self.in_move_buffer[id] {
             self.moved.retain(|&b| b != id);
             self.in_move_buffer[id] = false;
@@ -80,62 +105,68 @@ impl BroadPhase {
     }
 
     /// Body `id`'s fat box, if it has a shape.
+    #[cfg(test)]
     pub(crate) fn fat_aabb(&self, id: BodyId) -> Option<&Aabb> {
-        self.proxies[id].map(|(tree, proxy)| match tree {
-            Tree::Static => self.static_tree.fat_aabb(proxy),
-            Tree::Moving => self.moving_tree.fat_aabb(proxy),
-        })
+        self.proxies[id].map(|_| &self.fat[id])
     }
 
-    /// Whether two bodies' fat boxes overlap.
+    /// Whether two bodies' fat boxes overlap (false if either has no
+    /// shape).
+    #[inline]
     pub(crate) fn fat_overlap(&self, a: BodyId, b: BodyId) -> bool {
-        match (self.fat_aabb(a), self.fat_aabb(b)) {
-            (Some(a), Some(b)) => a.overlaps(b),
-            _ => false,
-        }
+        self.fat[a].overlaps(&self.fat[b])
     }
 
     /// Body `id` now has the (speculatively grown) box `aabb`: if it left
-    /// its fat box, the proxy moves to `aabb` grown by `margin` (m) and the
+    /// its fat box, its fat box becomes `aabb` grown by `margin` (m) and the
     /// body joins the move buffer.
     pub(crate) fn update(&mut self, id: BodyId, aabb: &Aabb, margin: f64) {
+        if self.fat[id].contains(aabb) {
+            return;
+        }
         let Some((tree, proxy)) = self.proxies[id] else {
             return;
         };
-        let tree_ref = self.tree_mut(tree);
-        if tree_ref.fat_aabb(proxy).contains(aabb) {
-            return;
+        let fat = aabb.loosened(margin);
+        self.fat[id] = fat;
+        match tree {
+            Tree::Moving => self.moving_tree.enlarge_proxy(proxy, fat),
+            Tree::Static => self.static_tree.move_proxy(proxy, fat),
         }
-        tree_ref.move_proxy(proxy, aabb.loosened(margin));
         self.buffer_move(id);
     }
 
     /// Calls `new_pair(a, b)` once for every pair with at least one body in
     /// the move buffer whose fat boxes overlap, then empties the buffer.
     /// Pairs of two moved bodies are reported once; the callback decides
-    /// whether a pair is new and wanted.
+    /// whether a pair is new and wanted. The moved bodies are taken in the
+    /// buffer's order, and the other bodies of each in increasing order.
     pub(crate) fn find_pairs(&mut self, mut new_pair: impl FnMut(BodyId, BodyId)) {
+        self.moving_tree.rebuild();
         for i in 0..self.moved.len() {
             let id = self.moved[i];
-            let Some((tree, proxy)) = self.proxies[id] else {
+            let Some((tree, _)) = self.proxies[id] else {
                 continue;
             };
-            let fat = match tree {
-                Tree::Static => *self.static_tree.fat_aabb(proxy),
-                Tree::Moving => *self.moving_tree.fat_aabb(proxy),
-            };
+            let fat = self.fat[id];
             let in_buffer = &self.in_move_buffer;
+            let hits = &mut self.hits;
+            hits.clear();
             let mut visit = |_: ProxyId, other: u32| {
-                let other = other as usize;
+                let o = other as usize;
                 // A pair of two moved bodies is reported by the lower id.
-                if other != id && !(in_buffer[other] && other < id) {
-                    new_pair(id, other);
+                if o != id && !(in_buffer[o] && o < id) {
+                    hits.push(other);
                 }
                 true
             };
             self.moving_tree.query(&fat, &mut visit);
             if tree == Tree::Moving {
                 self.static_tree.query(&fat, &mut visit);
+            }
+            hits.sort_unstable();
+            for &other in hits.iter() {
+                new_pair(id, other as usize);
             }
         }
         for &id in &self.moved {
