@@ -1,6 +1,11 @@
-//! The soft step's broad phase: two dynamic AABB trees (static bodies in
-//! one, moving bodies in the other) of enlarged ("fat") boxes, and a move
-//! buffer of the bodies whose box left its fat box.
+//! The soft step's broad phase: three dynamic AABB trees of enlarged
+//! ("fat") boxes, one per kind of body (static, kinematic, dynamic; as
+//! Box2D v3), and a move buffer of the bodies whose box left its fat box.
+//! A moved dynamic body queries all three trees, a moved kinematic one the
+//! dynamic tree only (static and kinematic bodies do not collide with each
+//! other), so a few large kinematic bodies, such as the walls of a turning
+//! container, do not bloat the boxes of the dynamic tree's nodes that
+//! every query descends through.
 //!
 //! A body that moves less than the margin stays inside its fat box and costs
 //! nothing here; only bodies in the move buffer are queried for new pairs
@@ -11,7 +16,8 @@
 //!
 //! A moving proxy that left its fat box is not reinserted: its leaf gets
 //! the new fat box in place ([`DynamicTree::enlarge_proxy`]), and the
-//! moving tree's enlarged part is rebuilt once before the next queries
+//! enlarged part of the dynamic and kinematic trees is rebuilt once before
+//! the next queries
 //! ([`DynamicTree::rebuild`]; Box2D v3's scheme). When hundreds of bodies
 //! fall or fly, one binned-SAH rebuild costs much less than a removal and
 //! a reinsertion each, and gives a tighter tree to query.
@@ -21,14 +27,15 @@
 //! an order that depends on the bodies' boxes only, never on the trees'
 //! internal shape.
 
-use crate::body::BodyId;
+use crate::body::{BodyId, BodyKind};
 use crate::collision::{Aabb, DynamicTree, ProxyId};
 
-/// Which tree a proxy lives in.
+/// Which tree a proxy lives in: its body's kind.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Tree {
     Static,
-    Moving,
+    Kinematic,
+    Dynamic,
 }
 
 /// The trees, the proxies of the bodies that have a shape, and the move
@@ -36,7 +43,8 @@ enum Tree {
 #[derive(Debug, Default)]
 pub(crate) struct BroadPhase {
     static_tree: DynamicTree,
-    moving_tree: DynamicTree,
+    kinematic_tree: DynamicTree,
+    dynamic_tree: DynamicTree,
     /// Per body: its tree and proxy, `None` without a shape.
     proxies: Vec<Option<(Tree, ProxyId)>>,
     /// Bodies whose proxy was created or moved since pairs were last found.
@@ -57,15 +65,15 @@ const NO_BOX: Aabb = Aabb {
 };
 
 impl BroadPhase {
-    /// Registers body `id` (the next one) with its fat box, or none
-    /// without a shape.
-    pub(crate) fn add(&mut self, id: BodyId, fat: Option<Aabb>, is_static: bool) {
+    /// Registers body `id` (the next one), of kind `kind`, with its fat
+    /// box, or none without a shape.
+    pub(crate) fn add(&mut self, id: BodyId, fat: Option<Aabb>, kind: BodyKind) {
         debug_assert_eq!(id, self.proxies.len());
         let proxy = fat.map(|fat| {
-            let tree = if is_static {
-                Tree::Static
-            } else {
-                Tree::Moving
+            let tree = match kind {
+                BodyKind::Static => Tree::Static,
+                BodyKind::Kinematic => Tree::Kinematic,
+                BodyKind::Dynamic => Tree::Dynamic,
             };
             let proxy = self.tree_mut(tree).create_proxy(fat, id as u32);
             (tree, proxy)
@@ -93,7 +101,8 @@ impl BroadPhase {
     fn tree_mut(&mut self, tree: Tree) -> &mut DynamicTree {
         match tree {
             Tree::Static => &mut self.static_tree,
-            Tree::Moving => &mut self.moving_tree,
+            Tree::Kinematic => &mut self.kinematic_tree,
+            Tree::Dynamic => &mut self.dynamic_tree,
         }
     }
 
@@ -130,8 +139,8 @@ impl BroadPhase {
         let fat = aabb.loosened(margin);
         self.fat[id] = fat;
         match tree {
-            Tree::Moving => self.moving_tree.enlarge_proxy(proxy, fat),
             Tree::Static => self.static_tree.move_proxy(proxy, fat),
+            moving => self.tree_mut(moving).enlarge_proxy(proxy, fat),
         }
         self.buffer_move(id);
     }
@@ -142,7 +151,8 @@ impl BroadPhase {
     /// whether a pair is new and wanted. The moved bodies are taken in the
     /// buffer's order, and the other bodies of each in increasing order.
     pub(crate) fn find_pairs(&mut self, mut new_pair: impl FnMut(BodyId, BodyId)) {
-        self.moving_tree.rebuild();
+        self.dynamic_tree.rebuild();
+        self.kinematic_tree.rebuild();
         for i in 0..self.moved.len() {
             let id = self.moved[i];
             let Some((tree, _)) = self.proxies[id] else {
@@ -160,8 +170,9 @@ impl BroadPhase {
                 }
                 true
             };
-            self.moving_tree.query(&fat, &mut visit);
-            if tree == Tree::Moving {
+            self.dynamic_tree.query(&fat, &mut visit);
+            if tree == Tree::Dynamic {
+                self.kinematic_tree.query(&fat, &mut visit);
                 self.static_tree.query(&fat, &mut visit);
             }
             hits.sort_unstable();
@@ -199,11 +210,12 @@ mod tests {
         Aabb::new(c - e, c + e)
     }
 
-    /// Pairs (lo, hi) with at least one moving body whose boxes overlap.
-    fn oracle(boxes: &[Aabb], is_static: &[bool], involving: &[bool]) -> BTreeSet<(usize, usize)> {
+    /// Pairs (lo, hi) with at least one dynamic body whose boxes overlap.
+    fn oracle(boxes: &[Aabb], kinds: &[BodyKind], involving: &[bool]) -> BTreeSet<(usize, usize)> {
+        let dynamic = |i: usize| kinds[i] == BodyKind::Dynamic;
         brute_force_pairs(boxes)
             .into_iter()
-            .filter(|&(a, b)| !(is_static[a] && is_static[b]))
+            .filter(|&(a, b)| dynamic(a) || dynamic(b))
             .filter(|&(a, b)| involving[a] || involving[b])
             .map(|(a, b)| (a.min(b), a.max(b)))
             .collect()
@@ -216,37 +228,46 @@ mod tests {
             let n = 50 + round * 10;
             let mut broad = BroadPhase::default();
             let mut boxes = Vec::new();
-            let mut is_static = Vec::new();
+            let mut kinds = Vec::new();
             for id in 0..n {
                 let b = random_box(&mut rng);
-                let s = rng.unit() < 0.2;
-                broad.add(id, Some(b), s);
+                let kind = match rng.unit() {
+                    u if u < 0.2 => BodyKind::Static,
+                    u if u < 0.3 => BodyKind::Kinematic,
+                    _ => BodyKind::Dynamic,
+                };
+                broad.add(id, Some(b), kind);
                 boxes.push(b);
-                is_static.push(s);
+                kinds.push(kind);
             }
             let mut found = Vec::new();
             broad.find_pairs(|a, b| found.push((a.min(b), a.max(b))));
             let unique: BTreeSet<_> = found.iter().copied().collect();
             assert_eq!(unique.len(), found.len(), "a pair reported twice");
-            assert_eq!(unique, oracle(&boxes, &is_static, &vec![true; n]));
+            assert_eq!(unique, oracle(&boxes, &kinds, &vec![true; n]));
             // Give a third of the moving bodies a new box; those that left
             // their fat box move (margin 0: to exactly the new box).
             let mut moved = vec![false; n];
             for id in 0..n {
-                if !is_static[id] && rng.unit() < 0.33 {
+                if kinds[id] != BodyKind::Static && rng.unit() < 0.33 {
                     let b = random_box(&mut rng);
                     moved[id] = !broad.fat_aabb(id).unwrap().contains(&b);
                     broad.update(id, &b, 0.0);
                 }
             }
-            let mut found = Vec::new();
-            broad.find_pairs(|a, b| found.push((a.min(b), a.max(b))));
+            let mut raw = Vec::new();
+            broad.find_pairs(|a, b| raw.push((a, b)));
+            // Each moved body's partners come in increasing order.
+            for w in raw.windows(2) {
+                assert!(w[0].0 != w[1].0 || w[0].1 < w[1].1, "{w:?} out of order");
+            }
+            let found: Vec<_> = raw.iter().map(|&(a, b)| (a.min(b), a.max(b))).collect();
             let unique: BTreeSet<_> = found.iter().copied().collect();
             assert_eq!(unique.len(), found.len(), "a pair reported twice");
             // Every overlapping pair of the stored fat boxes that involves a
-            // moved body, once.
+            // moved body and a dynamic one, once.
             let fat: Vec<Aabb> = (0..n).map(|id| *broad.fat_aabb(id).unwrap()).collect();
-            assert_eq!(unique, oracle(&fat, &is_static, &moved));
+            assert_eq!(unique, oracle(&fat, &kinds, &moved));
         }
     }
 
@@ -259,12 +280,12 @@ mod tests {
                 Vector2::new(-50.0, -1.0),
                 Vector2::new(50.0, 0.0),
             )),
-            true,
+            BodyKind::Static,
         );
         for i in 0..1000 {
             let y = i as f64;
             let b = Aabb::new(Vector2::new(-0.5, y), Vector2::new(0.5, y + 1.0)).loosened(0.02);
-            broad.add(i + 1, Some(b.loosened(0.1)), false);
+            broad.add(i + 1, Some(b.loosened(0.1)), BodyKind::Dynamic);
         }
         let mut count = 0;
         broad.find_pairs(|_, _| count += 1);

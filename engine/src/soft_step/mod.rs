@@ -280,7 +280,7 @@ impl SoftStep {
                 .shape
                 .aabb_at(&self.colliders[c].pose(&pose))
                 .loosened(self.settings.speculative_distance);
-            self.broad.add(c, Some(aabb.loosened(margin)), is_static);
+            self.broad.add(c, Some(aabb.loosened(margin)), body.kind);
         }
         self.bodies.push(solver_body(state, body.kind));
         self.islands.add_body(id, body.kind == BodyKind::Dynamic);
