@@ -72,10 +72,12 @@
 
 use super::aabb::Aabb;
 
-/// The depth of the fixed stack a query walks the tree with. A balanced tree
-/// of a billion proxies is about 45 levels deep; a deeper walk continues
-/// recursively rather than failing.
-pub const QUERY_STACK_CAPACITY: usize = 256;
+/// The depth of the fixed stack a query walks the tree with: a walk holds
+/// at most one entry per level plus one, and a balanced tree of a billion
+/// proxies is about 45 levels deep; a deeper walk continues recursively
+/// rather than failing. (256 entries cost 12 % of the soft step's queries
+/// in filling the array.)
+pub const QUERY_STACK_CAPACITY: usize = 64;
 
 /// Marks "no node": the root's parent, a leaf's children, the free list's
 /// end, the empty tree's root.

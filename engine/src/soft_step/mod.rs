@@ -280,6 +280,7 @@ impl SoftStep {
                 .shape
                 .aabb_at(&self.colliders[c].pose(&pose))
                 .loosened(self.settings.speculative_distance);
+            let margin = self.colliders[c].aabb_margin(margin);
             self.broad.add(c, Some(aabb.loosened(margin)), body.kind);
         }
         self.bodies.push(solver_body(state, body.kind));
@@ -664,7 +665,8 @@ impl SoftStep {
                     .shape
                     .aabb_at(&collider.pose(&pose))
                     .loosened(settings.speculative_distance);
-                self.broad.update(c, &aabb, settings.aabb_margin);
+                self.broad
+                    .update(c, &aabb, collider.aabb_margin(settings.aabb_margin));
             }
         }
     }
