@@ -396,6 +396,14 @@ impl DynamicTree {
         if self.root == NULL || N == 0 {
             return self.root == NULL || self.query_recursive(self.root, aabb, callback);
         }
+        if !self.nodes[self.root as usize].aabb.overlaps(aabb) {
+            return true;
+        }
+        // The stack holds nodes whose box overlaps the query. Each child is
+        // written on top of the stack and kept there only if it overlaps
+        // (the test's result moves the top, without a branch: whether a
+        // box overlaps is what a processor predicts worst, and the
+        // mispredictions were most of the queries' time).
         let mut stack = [NULL; N];
         stack[0] = self.root;
         let mut len = 1;
@@ -403,9 +411,6 @@ impl DynamicTree {
             len -= 1;
             let i = stack[len];
             let node = &self.nodes[i as usize];
-            if !node.aabb.overlaps(aabb) {
-                continue;
-            }
             if node.is_leaf() {
                 if !callback(ProxyId(i), node.user_data) {
                     return false;
@@ -413,10 +418,11 @@ impl DynamicTree {
                 continue;
             }
             for child in node.children {
+                let overlaps = overlap(&self.nodes[child as usize].aabb, aabb);
                 if len < N {
                     stack[len] = child;
-                    len += 1;
-                } else if !self.query_recursive(child, aabb, callback) {
+                    len += usize::from(overlaps);
+                } else if overlaps && !self.query_recursive(child, aabb, callback) {
                     return false;
                 }
             }
@@ -674,6 +680,12 @@ impl DynamicTree {
         self.refit(p);
         p
     }
+}
+
+/// [`Aabb::overlaps`] computed without branches (all four comparisons).
+#[inline(always)]
+fn overlap(a: &Aabb, b: &Aabb) -> bool {
+    (a.min.x <= b.max.x) & (b.min.x <= a.max.x) & (a.min.y <= b.max.y) & (b.min.y <= a.max.y)
 }
 
 /// Box equality for [`DynamicTree::validate`], with NaN equal to NaN.
