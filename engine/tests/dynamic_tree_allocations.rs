@@ -1,6 +1,7 @@
 //! The dynamic tree's memory promises, counted by a global allocator (this
 //! test binary only): a query allocates nothing, and once the proxy count
-//! has peaked, creating, destroying and moving proxies allocate nothing.
+//! has peaked, creating, destroying, moving and enlarging proxies and
+//! rebuilding the tree allocate nothing.
 //!
 //! The count is kept per thread, so the test harness's own threads and
 //! other tests running in parallel do not disturb it.
@@ -94,6 +95,23 @@ fn queries_and_steady_state_updates_allocate_nothing() {
     });
     assert_eq!(updated, 0);
     assert_eq!(tree.proxy_count(), 900);
+    tree.validate().unwrap();
+
+    // Enlarging in place and rebuilding: the first rebuild grows its work
+    // lists, later ones (of as many proxies or fewer) allocate nothing.
+    let mut enlarge_all = |tree: &mut DynamicTree, shift: f64| {
+        for (k, &id) in ids.iter().enumerate() {
+            tree.enlarge_proxy(id, fat_unit_box((k % 30) as f64 + shift, (k / 30) as f64));
+        }
+        tree.rebuild();
+    };
+    enlarge_all(&mut tree, 0.5);
+    let rebuilt = allocations_in(|| {
+        for round in 0..20 {
+            enlarge_all(&mut tree, 0.05 * round as f64);
+        }
+    });
+    assert_eq!(rebuilt, 0);
     tree.validate().unwrap();
 
     // The counter does see allocations: growing past the peak allocates.
