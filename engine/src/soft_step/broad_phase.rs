@@ -186,6 +186,11 @@ impl BroadPhase {
         self.moved.clear();
     }
 
+    /// Whether any static shape is registered.
+    pub(crate) fn has_static(&self) -> bool {
+        self.static_tree.proxy_count() > 0
+    }
+
     /// Calls `f(body)` for every body whose shape's fat box overlaps
     /// `aabb` in the static tree.
     pub(crate) fn query_static(&self, aabb: &Aabb, mut f: impl FnMut(BodyId)) {

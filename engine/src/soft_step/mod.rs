@@ -616,9 +616,13 @@ impl SoftStep {
             if sim.colliders.is_empty() {
                 continue;
             }
+            // The end pose's rotation, kept unless an impact moves the body.
+            let mut rotation = UnitComplex::new(core.states[id].angle);
             let motion = r.dp.norm() + sim.max_extent * r.dtheta.abs();
+            // Only static shapes are swept against: none, nothing to do.
             if settings.continuous
                 && sim.kind == BodyKind::Dynamic
+                && self.broad.has_static()
                 && motion > continuous::FAST_FRACTION * sim.min_extent
             {
                 let s = core.states[id];
@@ -628,7 +632,7 @@ impl SoftStep {
                     dt,
                 };
                 let start = Isometry2::new(sweep.start.0, sweep.start.1);
-                let end = Isometry2::new(sweep.end.0, sweep.end.1);
+                let end = Isometry2::from_parts(Translation2::from(sweep.end.0), rotation);
                 let swept = sim
                     .colliders
                     .clone()
@@ -653,10 +657,10 @@ impl SoftStep {
                     let state = &mut core.states[id];
                     state.position = sweep.start.0 + f * (sweep.end.0 - sweep.start.0);
                     state.angle = sweep.start.1 + f * (sweep.end.1 - sweep.start.1);
+                    rotation = UnitComplex::new(state.angle);
                 }
             }
             let s = &core.states[id];
-            let rotation = UnitComplex::new(s.angle);
             self.sims[id].rotation = rotation;
             let pose = Isometry2::from_parts(Translation2::from(s.position), rotation);
             for c in self.sims[id].colliders.clone() {
