@@ -143,6 +143,8 @@ pub struct DynamicTree {
     proxy_count: usize,
     /// Reused buffers of [`DynamicTree::rebuild`].
     scratch: rebuild::Scratch,
+    /// Reused buffers of [`DynamicTree::moved_pairs`].
+    pair_scratch: pairs::Scratch,
 }
 
 impl Default for DynamicTree {
@@ -160,6 +162,7 @@ impl DynamicTree {
             free_list: NULL,
             proxy_count: 0,
             scratch: rebuild::Scratch::default(),
+            pair_scratch: pairs::Scratch::default(),
         }
     }
 
@@ -697,6 +700,7 @@ fn same_box(a: &Aabb, b: &Aabb) -> bool {
         && same(a.max.y, b.max.y)
 }
 
+mod pairs;
 mod rebuild;
 #[cfg(test)]
 mod tests;

@@ -49,14 +49,24 @@ pub(crate) struct BroadPhase {
     proxies: Vec<Option<(Tree, ProxyId)>>,
     /// Bodies whose proxy was created or moved since pairs were last found.
     moved: Vec<BodyId>,
-    /// Per body: whether it is in `moved`.
-    in_move_buffer: Vec<bool>,
+    /// Per body: its position in `moved`, [`NOT_MOVED`] if it is not
+    /// there.
+    move_position: Vec<u32>,
     /// Per body: its fat box (a copy of its leaf's box, read by the
     /// collide stage for every contact), [`NO_BOX`] without a shape.
     fat: Vec<Aabb>,
-    /// The overlaps found by one query, sorted before they are reported.
-    hits: Vec<u32>,
+    /// Scratch of [`BroadPhase::find_pairs`]: the moved dynamic proxies,
+    /// the pairs found as (position in `moved` of the body reporting it,
+    /// other body), the start of each position's pairs, and the other
+    /// bodies in reporting order.
+    moved_dynamic: Vec<ProxyId>,
+    found: Vec<(u32, u32)>,
+    starts: Vec<u32>,
+    ordered: Vec<u32>,
 }
+
+/// The move position of a body not in the move buffer.
+const NOT_MOVED: u32 = u32::MAX;
 
 /// The box of a body without a shape: it overlaps nothing.
 const NO_BOX: Aabb = Aabb {
@@ -80,7 +90,7 @@ impl BroadPhase {
         });
         self.proxies.push(proxy);
         self.fat.push(fat.unwrap_or(NO_BOX));
-        self.in_move_buffer.push(false);
+        self.move_position.push(NOT_MOVED);
         if proxy.is_some() {
             self.buffer_move(id);
         }
@@ -92,9 +102,12 @@ impl BroadPhase {
             self.tree_mut(tree).destroy_proxy(proxy);
         }
         self.fat[id] = NO_BOX;
-        if self.in_move_buffer[id] {
+        if self.move_position[id] != NOT_MOVED {
             self.moved.retain(|&b| b != id);
-            self.in_move_buffer[id] = false;
+            self.move_position[id] = NOT_MOVED;
+            for (k, &b) in self.moved.iter().enumerate() {
+                self.move_position[b] = k as u32;
+            }
         }
     }
 
@@ -107,8 +120,8 @@ impl BroadPhase {
     }
 
     fn buffer_move(&mut self, id: BodyId) {
-        if !self.in_move_buffer[id] {
-            self.in_move_buffer[id] = true;
+        if self.move_position[id] == NOT_MOVED {
+            self.move_position[id] = self.moved.len() as u32;
             self.moved.push(id);
         }
     }
@@ -146,42 +159,90 @@ impl BroadPhase {
     }
 
     /// Calls `new_pair(a, b)` once for every pair with at least one body in
-    /// the move buffer whose fat boxes overlap, then empties the buffer.
-    /// Pairs of two moved bodies are reported once; the callback decides
-    /// whether a pair is new and wanted. The moved bodies are taken in the
-    /// buffer's order, and the other bodies of each in increasing order.
+    /// the move buffer whose fat boxes overlap (and one dynamic body), then
+    /// empties the buffer. A pair of two moved bodies is reported by the
+    /// lower id, as `new_pair(lower, higher)`; the callback decides whether
+    /// a pair is new and wanted. The moved bodies are taken in the buffer's
+    /// order, and the other bodies of each in increasing order.
+    ///
+    /// The pairs of two dynamic bodies are found by one walk of the dynamic
+    /// tree against itself ([`DynamicTree::moved_pairs`]), the others by
+    /// querying the kinematic and static trees with each moved dynamic
+    /// body, and the dynamic tree with each moved kinematic or static one.
     pub(crate) fn find_pairs(&mut self, mut new_pair: impl FnMut(BodyId, BodyId)) {
         self.dynamic_tree.rebuild();
         self.kinematic_tree.rebuild();
-        for i in 0..self.moved.len() {
-            let id = self.moved[i];
+        let position = &self.move_position;
+        let found = &mut self.found;
+        found.clear();
+        // Who reports a pair: the moved one, or the lower of two moved.
+        let mut add = |id: usize, other: usize| {
+            let moved_other = position[other] != NOT_MOVED;
+            if !(moved_other && other < id) {
+                found.push((position[id], other as u32));
+            }
+        };
+        self.moved_dynamic.clear();
+        for &id in &self.moved {
+            if let Some((Tree::Dynamic, proxy)) = self.proxies[id] {
+                self.moved_dynamic.push(proxy);
+            }
+        }
+        self.dynamic_tree.moved_pairs(&self.moved_dynamic, |x, y| {
+            let (x, y) = (x as usize, y as usize);
+            match (position[x] != NOT_MOVED, position[y] != NOT_MOVED) {
+                (true, true) => add(x.min(y), x.max(y)),
+                (true, false) => add(x, y),
+                _ => add(y, x),
+            }
+        });
+        for &id in &self.moved {
             let Some((tree, _)) = self.proxies[id] else {
                 continue;
             };
-            let fat = self.fat[id];
-            let in_buffer = &self.in_move_buffer;
-            let hits = &mut self.hits;
-            hits.clear();
             let mut visit = |_: ProxyId, other: u32| {
-                let o = other as usize;
-                // A pair of two moved bodies is reported by the lower id.
-                if o != id && !(in_buffer[o] && o < id) {
-                    hits.push(other);
-                }
+                add(id, other as usize);
                 true
             };
-            self.dynamic_tree.query(&fat, &mut visit);
+            let fat = &self.fat[id];
             if tree == Tree::Dynamic {
-                self.kinematic_tree.query(&fat, &mut visit);
-                self.static_tree.query(&fat, &mut visit);
-            }
-            hits.sort_unstable();
-            for &other in hits.iter() {
-                new_pair(id, other as usize);
+                self.kinematic_tree.query(fat, &mut visit);
+                self.static_tree.query(fat, &mut visit);
+            } else {
+                self.dynamic_tree.query(fat, &mut visit);
             }
         }
+        // Group by reporting position (a counting sort), then each group by
+        // the other body.
+        let n = self.moved.len();
+        self.starts.clear();
+        self.starts.resize(n + 1, 0);
+        for &(k, _) in found.iter() {
+            self.starts[k as usize + 1] += 1;
+        }
+        for k in 0..n {
+            self.starts[k + 1] += self.starts[k];
+        }
+        self.ordered.clear();
+        self.ordered.resize(found.len(), 0);
+        for &(k, other) in found.iter() {
+            let slot = &mut self.starts[k as usize];
+            self.ordered[*slot as usize] = other;
+            *slot += 1;
+        }
+        // `starts[k]` is now the end of group k, the start of group k + 1.
+        let mut begin = 0;
+        for k in 0..n {
+            let end = self.starts[k] as usize;
+            let group = &mut self.ordered[begin..end];
+            group.sort_unstable();
+            for &other in group.iter() {
+                new_pair(self.moved[k], other as usize);
+            }
+            begin = end;
+        }
         for &id in &self.moved {
-            self.in_move_buffer[id] = false;
+            self.move_position[id] = NOT_MOVED;
         }
         self.moved.clear();
     }

@@ -583,3 +583,33 @@ fn the_same_enlargements_rebuild_the_same_tree() {
     let (a, b) = (run(), run());
     assert!(a.nodes == b.nodes && a.root == b.root && a.free_list == b.free_list);
 }
+
+#[test]
+fn moved_pairs_are_the_brute_force_pairs_with_a_moved_proxy_each_once() {
+    let mut rng = Rng::new(0x7EE_000B);
+    for round in 0..12 {
+        let n = 20 + 40 * round;
+        let boxes: Vec<Aabb> = (0..n).map(|_| random_box(&mut rng, 30.0, 1.5)).collect();
+        let (mut tree, ids) = build(&boxes);
+        // None, a few, about half, or all of the proxies moved.
+        let share = [0.0, 0.05, 0.5, 1.0][round % 4];
+        let moved: Vec<bool> = (0..n).map(|_| rng.unit() < share).collect();
+        let moved_ids: Vec<ProxyId> = (0..n).filter(|&k| moved[k]).map(|k| ids[k]).collect();
+        let mut found = Vec::new();
+        tree.moved_pairs(&moved_ids, |a, b| {
+            found.push((a.min(b) as usize, a.max(b) as usize));
+        });
+        let count = found.len();
+        found.sort_unstable();
+        found.dedup();
+        assert_eq!(found.len(), count, "a pair reported twice");
+        let expected: Vec<(usize, usize)> = brute_force_pairs(&boxes)
+            .into_iter()
+            .map(|(a, b)| (a.min(b), a.max(b)))
+            .filter(|&(a, b)| moved[a] || moved[b])
+            .collect::<std::collections::BTreeSet<_>>()
+            .into_iter()
+            .collect();
+        assert_eq!(found, expected, "round {round}");
+    }
+}
