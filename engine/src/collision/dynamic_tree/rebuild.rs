@@ -140,10 +140,14 @@ fn split(pieces: &mut [u32], centres: &mut [Vector2<f64>]) -> usize {
     if n == 2 {
         return 1;
     }
+    // Plain comparisons (one min/max instruction each; a NaN centre is
+    // skipped, and a NaN first centre only gives a poor split).
     let (mut lo, mut hi) = (centres[0], centres[0]);
     for c in centres.iter() {
-        lo = Vector2::new(lo.x.min(c.x), lo.y.min(c.y));
-        hi = Vector2::new(hi.x.max(c.x), hi.y.max(c.y));
+        lo.x = if c.x < lo.x { c.x } else { lo.x };
+        lo.y = if c.y < lo.y { c.y } else { lo.y };
+        hi.x = if c.x > hi.x { c.x } else { hi.x };
+        hi.y = if c.y > hi.y { c.y } else { hi.y };
     }
     let d = hi - lo;
     let axis = usize::from(d.y > d.x);
