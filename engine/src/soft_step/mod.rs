@@ -648,6 +648,7 @@ impl SoftStep {
                 if let Some(toi) = continuous::first_impact(
                     &core.bodies[id],
                     &sweep,
+                    start,
                     &swept,
                     &self.broad,
                     &core.bodies,
