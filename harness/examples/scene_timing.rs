@@ -8,7 +8,7 @@
 //! steps are counted.
 //!
 //! ```text
-//! cargo run --release -p harness --example scene_timing -- bench/tumbler [steps repeats all|ours]
+//! cargo run --release -p harness --example scene_timing -- bench/tumbler [steps repeats all|ours [watched body]]
 //! ```
 
 use harness::bench::convert::many_body_scene;
@@ -30,10 +30,20 @@ fn timed_steps(engine: &mut dyn ManyBodyEngine, steps: usize) {
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let file = args.first().map(String::as_str).unwrap_or("bench/tumbler");
+    let scene = harness::scenes::load(file)?;
     let steps: usize = args.get(1).map_or(Ok(120), |a| a.parse())?;
     let repeats: usize = args.get(2).map_or(Ok(3), |a| a.parse())?;
     let all = args.get(3).map(String::as_str) != Some("ours");
-    let scene = harness::scenes::load(file)?;
+    // A body to watch (the bench's top box): its sink and sideways drift
+    // after this engine's run are printed.
+    let watched = match args.get(4) {
+        Some(name) => Some(
+            scene
+                .body_id(name)
+                .ok_or_else(|| anyhow::anyhow!("{file}: no body named '{name}'"))?,
+        ),
+        None => None,
+    };
     let neutral = many_body_scene(&scene)?;
     let engines = if all { 3 } else { 1 };
     let mut best = [f64::INFINITY; 3];
@@ -50,6 +60,18 @@ fn main() -> anyhow::Result<()> {
             timed_steps(engine.as_mut(), steps);
             let ms = 1e3 * started.elapsed().as_secs_f64() / steps as f64;
             *best = best.min(ms);
+            if let (0, Some(i)) = (e, watched) {
+                let mut samples = Vec::new();
+                engine.samples(&mut samples)?;
+                let (start, end) = (neutral.bodies[i].position, samples[i].position);
+                let fastest = samples.iter().map(|s| s.speed()).fold(0.0, f64::max);
+                println!(
+                    "  watched: sink {:.4e} m, drift {:.4e} m; fastest {:.4e} m/s",
+                    start[1] - end[1],
+                    (end[0] - start[0]).abs(),
+                    fastest
+                );
+            }
         }
     }
     for e in 0..engines {

@@ -19,13 +19,17 @@
 //! enlarged part of the dynamic and kinematic trees is rebuilt once before
 //! the next queries
 //! ([`DynamicTree::rebuild`]; Box2D v3's scheme). When hundreds of bodies
-//! fall or fly, one binned-SAH rebuild costs much less than a removal and
-//! a reinsertion each, and gives a tighter tree to query.
+//! fall or fly, one rebuild costs much less than a removal and a
+//! reinsertion each, and gives a tighter tree to query.
 //!
-//! The new pairs of one moved proxy are reported in increasing order of
-//! the other proxy (not in the tree's order), so contacts are created in
-//! an order that depends on the bodies' boxes only, never on the trees'
-//! internal shape.
+//! The new pairs are reported grouped by moved body, in the move buffer's
+//! order, and within a group in the order the trees give them (spatially
+//! coherent, deterministic). The contact order is the order the solver
+//! colours and visits constraints in, and it matters: sorted by partner
+//! id instead, the pairs of a pyramid built row by row were solved left to
+//! right row after row, and the benchmark's 5050-box pyramid's top box
+//! drifted 0.56 m sideways in 2 s instead of 0.010 m (and the 820-box one's
+//! 3.5 cm instead of 0.6 mm).
 
 use crate::body::{BodyId, BodyKind};
 use crate::collision::{Aabb, DynamicTree, ProxyId};
@@ -163,7 +167,7 @@ impl BroadPhase {
     /// empties the buffer. A pair of two moved bodies is reported by the
     /// lower id, as `new_pair(lower, higher)`; the callback decides whether
     /// a pair is new and wanted. The moved bodies are taken in the buffer's
-    /// order, and the other bodies of each in increasing order.
+    /// order, and the other bodies of each in the trees' order.
     ///
     /// The pairs of two dynamic bodies are found by one walk of the dynamic
     /// tree against itself ([`DynamicTree::moved_pairs`]), the others by
@@ -212,8 +216,7 @@ impl BroadPhase {
                 self.dynamic_tree.query(fat, &mut visit);
             }
         }
-        // Group by reporting position (a counting sort), then each group by
-        // the other body.
+        // Group by reporting position (a stable counting sort).
         let n = self.moved.len();
         self.starts.clear();
         self.starts.resize(n + 1, 0);
@@ -234,9 +237,7 @@ impl BroadPhase {
         let mut begin = 0;
         for k in 0..n {
             let end = self.starts[k] as usize;
-            let group = &mut self.ordered[begin..end];
-            group.sort_unstable();
-            for &other in group.iter() {
+            for &other in &self.ordered[begin..end] {
                 new_pair(self.moved[k], other as usize);
             }
             begin = end;
@@ -323,9 +324,13 @@ mod tests {
             }
             let mut raw = Vec::new();
             broad.find_pairs(|a, b| raw.push((a, b)));
-            // Each moved body's partners come in increasing order.
+            // Each moved body's pairs come together.
+            let mut done = BTreeSet::new();
             for w in raw.windows(2) {
-                assert!(w[0].0 != w[1].0 || w[0].1 < w[1].1, "{w:?} out of order");
+                if w[0].0 != w[1].0 {
+                    assert!(done.insert(w[0].0), "body {} reports twice", w[0].0);
+                    assert!(!done.contains(&w[1].0), "body {} reports twice", w[1].0);
+                }
             }
             let found: Vec<_> = raw.iter().map(|&(a, b)| (a.min(b), a.max(b))).collect();
             let unique: BTreeSet<_> = found.iter().copied().collect();

@@ -119,9 +119,10 @@
 //!   continuous stage; its leaf now takes the new box in place and the
 //!   enlarged part of the tree is rebuilt top-down once per step (median
 //!   split: a third of the binned surface-area heuristic's work for queries
-//!   4 % slower). New pairs are reported per moved body by increasing
-//!   partner, so contacts are created in an order independent of the
-//!   trees' shapes (this changed the results once).
+//!   4 % slower). New pairs are reported grouped by moved body, each
+//!   group in the trees' order (this changed the results: the contact
+//!   order is the solve order; see [`broad_phase`] for why the pairs are
+//!   not sorted by id).
 //! - **Margin at most 1/8 of a shape's extent** (the setting is the cap):
 //!   with 0.1 m every 0.25 m box of the tumbler, 0.4 m apart, overlapped
 //!   its eight neighbours' fat boxes, 13 000 contacts a step instead of
