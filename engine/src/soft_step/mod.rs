@@ -149,14 +149,14 @@
 //!
 //! | stage | tumbler before | after | smash before | after | rain before | after |
 //! |---|---:|---:|---:|---:|---:|---:|
-//! | pairs | 5.20 M | 3.85 M | 2.65 M | 2.20 M | 0.71 M | 1.07 M |
-//! | collide | 8.47 M | 2.71 M | 5.22 M | 3.60 M | 0.77 M | 0.43 M |
+//! | pairs | 5.20 M | 3.71 M | 2.65 M | 2.14 M | 0.71 M | 1.06 M |
+//! | collide | 8.47 M | 2.75 M | 5.22 M | 3.60 M | 0.77 M | 0.43 M |
 //! | continuous | 5.38 M | 0.96 M | 4.46 M | 0.93 M | 2.62 M | 0.73 M |
-//! | whole step | 23.4 M | 11.8 M | 25.4 M | 19.9 M | 5.08 M | 3.22 M |
+//! | whole step | 23.4 M | 11.7 M | 25.4 M | 19.7 M | 5.08 M | 3.20 M |
 //!
 //! (Rain's pairs stage grew: the tree work moved there from the
 //! continuous stage, and the smaller margins move more boxes; the two
-//! together went from 3.33 M to 1.80 M.) What is left on these scenes:
+//! together went from 3.33 M to 1.79 M.) What is left on these scenes:
 //! the pairs stage is still a third of the tumbler's instructions, about
 //! 1850 of its 2025 boxes leaving their fat boxes every step; the smash is
 //! dominated by the solver passes and prepare, as the pyramids are.
