@@ -1,6 +1,8 @@
 //! The dynamic tree's memory promises, counted by a global allocator (this
 //! test binary only): a query allocates nothing, and once the proxy count
-//! has peaked, creating, destroying and moving proxies allocate nothing.
+//! has peaked, creating, destroying, moving and enlarging proxies,
+//! rebuilding the tree and listing the moved proxies' pairs allocate
+//! nothing.
 //!
 //! The count is kept per thread, so the test harness's own threads and
 //! other tests running in parallel do not disturb it.
@@ -95,6 +97,35 @@ fn queries_and_steady_state_updates_allocate_nothing() {
     assert_eq!(updated, 0);
     assert_eq!(tree.proxy_count(), 900);
     tree.validate().unwrap();
+
+    // Enlarging in place and rebuilding: the first rebuild grows its work
+    // lists, later ones (of as many proxies or fewer) allocate nothing.
+    let enlarge_all = |tree: &mut DynamicTree, shift: f64| {
+        for (k, &id) in ids.iter().enumerate() {
+            tree.enlarge_proxy(id, fat_unit_box((k % 30) as f64 + shift, (k / 30) as f64));
+        }
+        tree.rebuild();
+    };
+    enlarge_all(&mut tree, 0.5);
+    let rebuilt = allocations_in(|| {
+        for round in 0..20 {
+            enlarge_all(&mut tree, 0.05 * round as f64);
+        }
+    });
+    assert_eq!(rebuilt, 0);
+    tree.validate().unwrap();
+
+    // The pairs of the moved proxies, by the tree's walk against itself.
+    let half: Vec<ProxyId> = ids.iter().copied().step_by(2).collect();
+    let mut walked = 0;
+    tree.moved_pairs(&half, |_, _| walked += 1);
+    let walking = allocations_in(|| {
+        for _ in 0..5 {
+            tree.moved_pairs(&half, |_, _| walked += 1);
+        }
+    });
+    assert_eq!(walking, 0);
+    assert!(walked > 0);
 
     // The counter does see allocations: growing past the peak allocates.
     let grown = allocations_in(|| {

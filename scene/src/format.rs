@@ -344,7 +344,8 @@ pub struct ContactSpec {
     /// Soft step: distance within which contacts are speculative (m, ≥ 0).
     /// Default 0.02.
     pub speculative_distance: Option<f64>,
-    /// Soft step: margin of the broad phase's boxes (m, > 0). Default 0.1.
+    /// Soft step: largest margin of the broad phase's boxes (m, > 0), at
+    /// most 1/8 of each shape's extent. Default 0.1.
     pub aabb_margin: Option<f64>,
     /// Soft step: relative motion under which a manifold is recycled (m,
     /// ≥ 0; 0 recomputes every manifold every step). Default 0.05.

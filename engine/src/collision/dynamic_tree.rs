@@ -24,6 +24,13 @@
 //! otherwise give a tree of height O(n); with the rotations the height stays
 //! O(log n) (tested: a column of 1000 boxes inserted bottom-to-top).
 //!
+//! **Enlarging in place**: when many proxies move every step, removing and
+//! reinserting each is the dominant cost. [`DynamicTree::enlarge_proxy`]
+//! instead gives the leaf its new box and only grows its ancestors
+//! (marking them); [`DynamicTree::rebuild`] then regroups the marked part
+//! of the tree once, top-down (the private module `rebuild` has the
+//! method). Between the two, queries are exact but visit more nodes.
+//!
 //! **Memory**: the nodes live in one `Vec` with a free list. A tree of n
 //! proxies uses 2n − 1 nodes, and a destroyed node is reused first, so once
 //! the proxy count has peaked, creating, destroying and moving proxies
@@ -65,10 +72,12 @@
 
 use super::aabb::Aabb;
 
-/// The depth of the fixed stack a query walks the tree with. A balanced tree
-/// of a billion proxies is about 45 levels deep; a deeper walk continues
-/// recursively rather than failing.
-pub const QUERY_STACK_CAPACITY: usize = 256;
+/// The depth of the fixed stack a query walks the tree with: a walk holds
+/// at most one entry per level plus one, and a balanced tree of a billion
+/// proxies is about 45 levels deep; a deeper walk continues recursively
+/// rather than failing. (256 entries cost 12 % of the soft step's queries
+/// in filling the array.)
+pub const QUERY_STACK_CAPACITY: usize = 64;
 
 /// Marks "no node": the root's parent, a leaf's children, the free list's
 /// end, the empty tree's root.
@@ -107,6 +116,11 @@ struct Node {
     user_data: u32,
     /// False while the node is in the free list.
     in_use: bool,
+    /// Internal node: a leaf below it was enlarged in place
+    /// ([`DynamicTree::enlarge_proxy`]) since the last
+    /// [`DynamicTree::rebuild`], so its box may be larger than its
+    /// children's union and its subtree is rebuilt. Never set on a leaf.
+    enlarged: bool,
 }
 
 impl Node {
@@ -127,6 +141,10 @@ pub struct DynamicTree {
     free_list: u32,
     /// The number of leaves.
     proxy_count: usize,
+    /// Reused buffers of [`DynamicTree::rebuild`].
+    scratch: rebuild::Scratch,
+    /// Reused buffers of [`DynamicTree::moved_pairs`].
+    pair_scratch: pairs::Scratch,
 }
 
 impl Default for DynamicTree {
@@ -143,6 +161,8 @@ impl DynamicTree {
             root: NULL,
             free_list: NULL,
             proxy_count: 0,
+            scratch: rebuild::Scratch::default(),
+            pair_scratch: pairs::Scratch::default(),
         }
     }
 
@@ -185,8 +205,53 @@ impl DynamicTree {
         self.insert_leaf(leaf);
     }
 
+    /// Gives a proxy the new fat box `fat_aabb` (m) in place, without
+    /// moving its leaf: every ancestor grows to contain the new box and is
+    /// marked for the next [`DynamicTree::rebuild`], which restructures the
+    /// marked part of the tree once for all the proxies enlarged since
+    /// (Box2D v3's scheme: cheaper than a removal and reinsertion per
+    /// proxy when many move). Until then queries stay exact (a marked box
+    /// only contains more) but visit more nodes. O(depth).
+    ///
+    /// # Panics
+    /// If `id` is not a live proxy of this tree.
+    pub fn enlarge_proxy(&mut self, id: ProxyId, fat_aabb: Aabb) {
+        let leaf = self.checked_leaf(id);
+        self.nodes[leaf as usize].aabb = fat_aabb;
+        let mut i = self.nodes[leaf as usize].parent;
+        // Grow the ancestors until one already holds the box; above it only
+        // the marks are missing, up to the first ancestor already marked
+        // (whose own ancestors are marked too).
+        let mut growing = true;
+        while i != NULL {
+            let node = &mut self.nodes[i as usize];
+            if growing {
+                let grown = node.aabb.merged(&fat_aabb);
+                growing = grown != node.aabb;
+                node.aabb = grown;
+            } else if node.enlarged {
+                break;
+            }
+            node.enlarged = true;
+            i = node.parent;
+        }
+    }
+
+    /// Rebuilds the part of the tree marked by [`DynamicTree::enlarge_proxy`]
+    /// since the last rebuild: the unmarked subtrees and the leaves under
+    /// the marked nodes are regrouped top-down, each group split at the
+    /// middle of its box centres along their longer side (Box2D v3's median
+    /// split), and every box is exact again. Proxy
+    /// ids and user data are kept. Nothing to do, and O(1), when no proxy
+    /// was enlarged; allocates nothing once its buffers have grown to the
+    /// tree's size.
+    pub fn rebuild(&mut self) {
+        rebuild::rebuild(self);
+    }
+
     /// The fat box (m) of a proxy, as last given to
-    /// [`DynamicTree::create_proxy`] or [`DynamicTree::move_proxy`].
+    /// [`DynamicTree::create_proxy`], [`DynamicTree::move_proxy`] or
+    /// [`DynamicTree::enlarge_proxy`].
     ///
     /// # Panics
     /// If `id` is not a live proxy of this tree.
@@ -230,7 +295,9 @@ impl DynamicTree {
     /// root or sits in the free list (no leak, no cycle), free nodes are
     /// marked free, a leaf has height 0 and an internal node one more than
     /// its taller child, each internal box is exactly the union of its
-    /// children's boxes (so it contains them), and the leaf count matches
+    /// children's boxes (contains it, for a node marked by
+    /// [`DynamicTree::enlarge_proxy`]), no leaf is marked, and the leaf
+    /// count matches
     /// [`DynamicTree::proxy_count`]. O(n) and allocating: for tests.
     pub fn validate(&self) -> Result<(), String> {
         let n = self.nodes.len();
@@ -279,6 +346,9 @@ impl DynamicTree {
                 if node.height != 0 {
                     return Err(format!("leaf {i} has height {}", node.height));
                 }
+                if node.enlarged {
+                    return Err(format!("leaf {i} is marked enlarged"));
+                }
                 leaves += 1;
                 continue;
             }
@@ -292,7 +362,12 @@ impl DynamicTree {
             if node.height != 1 + a.height.max(b.height) {
                 return Err(format!("node {i} has a wrong height {}", node.height));
             }
-            if !same_box(&node.aabb, &a.aabb.merged(&b.aabb)) {
+            let union = a.aabb.merged(&b.aabb);
+            if node.enlarged {
+                if !node.aabb.contains(&union) && !same_box(&node.aabb, &union) {
+                    return Err(format!("the box of node {i} does not hold its children's"));
+                }
+            } else if !same_box(&node.aabb, &union) {
                 return Err(format!("the box of node {i} is not its children's union"));
             }
             stack.push(c0);
@@ -324,6 +399,14 @@ impl DynamicTree {
         if self.root == NULL || N == 0 {
             return self.root == NULL || self.query_recursive(self.root, aabb, callback);
         }
+        if !self.nodes[self.root as usize].aabb.overlaps(aabb) {
+            return true;
+        }
+        // The stack holds nodes whose box overlaps the query. Each child is
+        // written on top of the stack and kept there only if it overlaps
+        // (the test's result moves the top, without a branch: whether a
+        // box overlaps is what a processor predicts worst, and the
+        // mispredictions were most of the queries' time).
         let mut stack = [NULL; N];
         stack[0] = self.root;
         let mut len = 1;
@@ -331,9 +414,6 @@ impl DynamicTree {
             len -= 1;
             let i = stack[len];
             let node = &self.nodes[i as usize];
-            if !node.aabb.overlaps(aabb) {
-                continue;
-            }
             if node.is_leaf() {
                 if !callback(ProxyId(i), node.user_data) {
                     return false;
@@ -341,10 +421,11 @@ impl DynamicTree {
                 continue;
             }
             for child in node.children {
+                let overlaps = overlap(&self.nodes[child as usize].aabb, aabb);
                 if len < N {
                     stack[len] = child;
-                    len += 1;
-                } else if !self.query_recursive(child, aabb, callback) {
+                    len += usize::from(overlaps);
+                } else if overlaps && !self.query_recursive(child, aabb, callback) {
                     return false;
                 }
             }
@@ -388,6 +469,7 @@ impl DynamicTree {
             height: 0,
             user_data: 0,
             in_use: true,
+            enlarged: false,
         };
         if self.free_list != NULL {
             let i = self.free_list;
@@ -410,6 +492,7 @@ impl DynamicTree {
         node.in_use = false;
         node.children = [NULL, NULL];
         node.height = 0;
+        node.enlarged = false;
         node.parent = self.free_list;
         self.free_list = i;
     }
@@ -435,6 +518,7 @@ impl DynamicTree {
             height: sibling_node.height + 1,
             user_data: 0,
             in_use: true,
+            enlarged: false,
         };
         self.nodes[new_parent as usize] = node;
         self.replace_child(old_parent, sibling, new_parent);
@@ -532,15 +616,18 @@ impl DynamicTree {
     }
 
     /// Recomputes the height and box of the internal node `i` from its
-    /// children.
+    /// children; it stays marked for the rebuild if it or a child was (so
+    /// the marks still reach the root after a rotation).
     fn refit(&mut self, i: u32) {
         let [c0, c1] = self.nodes[i as usize].children;
         let (a, b) = (&self.nodes[c0 as usize], &self.nodes[c1 as usize]);
         let height = 1 + a.height.max(b.height);
         let aabb = a.aabb.merged(&b.aabb);
+        let enlarged = a.enlarged || b.enlarged;
         let node = &mut self.nodes[i as usize];
         node.height = height;
         node.aabb = aabb;
+        node.enlarged |= enlarged;
     }
 
     /// If the children of the internal node `a` differ in height by more
@@ -598,6 +685,12 @@ impl DynamicTree {
     }
 }
 
+/// [`Aabb::overlaps`] computed without branches (all four comparisons).
+#[inline(always)]
+fn overlap(a: &Aabb, b: &Aabb) -> bool {
+    (a.min.x <= b.max.x) & (b.min.x <= a.max.x) & (a.min.y <= b.max.y) & (b.min.y <= a.max.y)
+}
+
 /// Box equality for [`DynamicTree::validate`], with NaN equal to NaN.
 fn same_box(a: &Aabb, b: &Aabb) -> bool {
     let same = |x: f64, y: f64| x == y || (x.is_nan() && y.is_nan());
@@ -607,5 +700,7 @@ fn same_box(a: &Aabb, b: &Aabb) -> bool {
         && same(a.max.y, b.max.y)
 }
 
+mod pairs;
+mod rebuild;
 #[cfg(test)]
 mod tests;

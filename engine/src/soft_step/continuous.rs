@@ -35,10 +35,13 @@ pub(crate) struct Sweep {
 }
 
 /// The earliest time of impact in [0, dt] (s) of `body` moving along
-/// `sweep` with any static shape its swept box overlaps, if any.
+/// `sweep` (whose start pose is `start`, the caller's
+/// `Isometry2::new(sweep.start.0, sweep.start.1)`) with any static shape
+/// its swept box overlaps, if any.
 pub(crate) fn first_impact(
     body: &Body,
     sweep: &Sweep,
+    start: Isometry2<f64>,
     swept_box: &Aabb,
     broad: &BroadPhase,
     bodies: &[Body],
@@ -46,7 +49,7 @@ pub(crate) fn first_impact(
 ) -> Option<f64> {
     let shape = body.shape.as_ref()?;
     let motion = Motion::new(
-        Isometry2::new(sweep.start.0, sweep.start.1),
+        start,
         (sweep.end.0 - sweep.start.0) / sweep.dt,
         (sweep.end.1 - sweep.start.1) / sweep.dt,
     );

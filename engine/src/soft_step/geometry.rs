@@ -20,6 +20,10 @@ use smallvec::SmallVec;
 /// base-100 pyramid before; boxes have 4).
 const INLINE_VERTICES: usize = 8;
 
+/// The largest broad-phase margin of a collider as a fraction of its extent
+/// ([`Collider::aabb_margin`]; Box2D's `B2_AABB_MARGIN_FRACTION`).
+pub(crate) const MARGIN_FRACTION: f64 = 0.125;
+
 /// A polygon's points or edge normals (m, or unit vectors).
 pub(crate) type Points = SmallVec<[Vector2<f64>; INLINE_VERTICES]>;
 
@@ -72,6 +76,15 @@ impl Collider {
                 }
             })
             .collect()
+    }
+
+    /// The margin (m) its box is enlarged by in the broad phase: `cap` (the
+    /// setting), but at most [`MARGIN_FRACTION`] of its extent, so that
+    /// small shapes packed closer than the cap do not all overlap their
+    /// neighbours' boxes (Box2D v3.2's rule).
+    #[inline]
+    pub(crate) fn aabb_margin(&self, cap: f64) -> f64 {
+        cap.min(MARGIN_FRACTION * self.max_extent)
     }
 
     /// The collider's pose given its body's.

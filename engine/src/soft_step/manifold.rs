@@ -187,11 +187,14 @@ fn collide_polygon_circle(
 }
 
 /// The largest separation of `b`'s vertices along `a`'s edge normals, and
-/// the edge that gives it.
+/// the edge that gives it; or, as soon as one edge separates them by more
+/// than `stop` (m), that edge (the pair is then apart whatever the others
+/// give, and most pairs of a large scene are).
 fn max_separation(
     a_vertices: &[Vector2<f64>],
     a_normals: &[Vector2<f64>],
     b_vertices: &[Vector2<f64>],
+    stop: f64,
 ) -> (usize, f64) {
     let mut best = (0, f64::NEG_INFINITY);
     for (i, (n, v)) in a_normals.iter().zip(a_vertices).enumerate() {
@@ -201,6 +204,9 @@ fn max_separation(
         }
         if si > best.1 {
             best = (i, si);
+            if si > stop {
+                break;
+            }
         }
     }
     best
@@ -237,16 +243,19 @@ fn collide_polygons(
     scratch
         .b_vertices
         .extend(pb.vertices.iter().map(|v| xf.rotation * v + shift));
+    let (av, an) = (&scratch.a_vertices[..], &pa.normals[..]);
+    let (mut edge_a, separation_a) = max_separation(av, an, &scratch.b_vertices, speculative);
+    if separation_a > speculative {
+        return LocalManifold::default();
+    }
     scratch.b_normals.clear();
     scratch
         .b_normals
         .extend(pb.normals.iter().map(|n| xf.rotation * n));
     let (av, an) = (&scratch.a_vertices[..], &pa.normals[..]);
     let (bv, bn) = (&scratch.b_vertices[..], &scratch.b_normals[..]);
-
-    let (mut edge_a, separation_a) = max_separation(av, an, bv);
-    let (mut edge_b, separation_b) = max_separation(bv, bn, av);
-    if separation_a > speculative || separation_b > speculative {
+    let (mut edge_b, separation_b) = max_separation(bv, bn, av, speculative);
+    if separation_b > speculative {
         return LocalManifold::default();
     }
     let flip = separation_a < separation_b;

@@ -39,9 +39,13 @@ pub struct SoftStepSettings {
     /// body arriving at moderate speed stops on contact instead of
     /// overlapping first. Default 0.02 m (4 × Box2D's linear slop).
     pub speculative_distance: f64,
-    /// Margin (m, > 0) by which a moving body's bounding box is enlarged in
-    /// the broad phase: a body that moves less than this stays in its box
-    /// and costs no broad-phase work. Default 0.1 m.
+    /// Largest margin (m, > 0) by which a moving body's bounding box is
+    /// enlarged in the broad phase: a body that moves less than its margin
+    /// stays in its box and costs no broad-phase work. Each shape's margin
+    /// is this, but at most 1/8 of the shape's extent (Box2D v3.2's rule):
+    /// small shapes packed closer than this would otherwise all overlap
+    /// their neighbours' boxes and each such pair cost a contact. Default
+    /// 0.1 m.
     pub aabb_margin: f64,
     /// Friction coefficient μ (≥ 0) of a body that does not give its own.
     /// A pair uses the geometric mean √(μa μb) (Box2D's rule). Default 0.6

@@ -444,3 +444,172 @@ fn destroying_a_proxy_twice_is_refused() {
     tree.destroy_proxy(a);
     tree.destroy_proxy(a);
 }
+
+/// The tree's cost in the insertion heuristic's measure: the sum of its
+/// internal nodes' perimeters (m).
+fn internal_perimeter(tree: &DynamicTree) -> f64 {
+    tree.nodes
+        .iter()
+        .filter(|n| n.in_use && !n.is_leaf())
+        .map(|n| n.aabb.perimeter())
+        .sum()
+}
+
+#[test]
+fn enlarging_then_rebuilding_keeps_queries_exact_and_the_pool_fixed() {
+    let mut rng = Rng::new(0x7EE_0008);
+    let mut tree = DynamicTree::new();
+    let mut live: Vec<(u32, Aabb)> = Vec::new();
+    let mut ids = Vec::new();
+    for k in 0..300 {
+        let b = random_box(&mut rng, 40.0, 1.0);
+        ids.push(tree.create_proxy(b, k));
+        live.push((k, b));
+    }
+    let nodes = tree.nodes.len();
+    let mut compared = 0;
+    for round in 0..40 {
+        // A share of the proxies (a few, or most) get new boxes that need
+        // not contain their old ones, as bodies leaving their fat boxes.
+        let share = [0.02, 0.3, 1.0][round % 3];
+        for k in 0..ids.len() {
+            if rng.unit() < share {
+                let (x, y) = (live[k].1.min.x, live[k].1.min.y);
+                let d = Vector2::new(rng.range(-2.0, 2.0), rng.range(-2.0, 2.0));
+                let b = aabb(x, y, x + rng.range(0.1, 2.0), y + rng.range(0.1, 2.0));
+                let b = Aabb::new(b.min + d, b.max + d);
+                tree.enlarge_proxy(ids[k], b);
+                live[k].1 = b;
+                assert_eq!(*tree.fat_aabb(ids[k]), b);
+            }
+        }
+        tree.validate().unwrap();
+        // Exact before the rebuild (marked boxes are only larger) and after.
+        for pass in 0..2 {
+            for _ in 0..20 {
+                let query = random_box(&mut rng, 40.0, [0.0, 1.0, 6.0][pass]);
+                let expected = brute_hits(&live, &query);
+                compared += expected.len();
+                assert_eq!(hits(&tree, &query), expected, "round {round}");
+            }
+            tree.rebuild();
+            tree.validate().unwrap();
+            assert!(tree.nodes.iter().all(|n| !n.enlarged), "marks left");
+        }
+        assert_eq!(tree.nodes.len(), nodes, "the pool grew");
+        assert_eq!(tree.proxy_count(), 300);
+        for (k, &id) in ids.iter().enumerate() {
+            assert_eq!(tree.user_data(id), k as u32);
+        }
+    }
+    assert!(compared > 300, "{compared} hits compared");
+}
+
+#[test]
+fn a_rebuild_without_enlarged_proxies_changes_nothing() {
+    let mut rng = Rng::new(0x7EE_0009);
+    let boxes: Vec<Aabb> = (0..100).map(|_| random_box(&mut rng, 20.0, 1.0)).collect();
+    let (mut tree, ids) = build(&boxes);
+    tree.move_proxy(ids[3], aabb(5.0, 5.0, 6.0, 6.0));
+    let before = tree.clone();
+    tree.rebuild();
+    assert!(tree.nodes == before.nodes && tree.root == before.root);
+}
+
+#[test]
+fn rebuilding_a_column_inserted_in_order_gives_a_shallow_cheap_tree() {
+    // Enlarging every proxy of a column by 1 mm and rebuilding regroups the
+    // whole tree: the binned heuristic splits it near the middle each time.
+    let n = 1024;
+    let (mut tree, ids) = build(&column(n));
+    let inserted = internal_perimeter(&tree);
+    for (i, &id) in ids.iter().enumerate() {
+        tree.enlarge_proxy(id, column(n)[i].loosened(1e-3));
+    }
+    tree.rebuild();
+    tree.validate().unwrap();
+    // A perfectly balanced tree of 1024 leaves has height 10; the slices
+    // of 8 bins split 1:7 at worst, so allow a few levels more.
+    assert!(tree.height() <= 14, "height {}", tree.height());
+    let rebuilt = internal_perimeter(&tree);
+    assert!(rebuilt <= inserted, "{rebuilt} vs {inserted}");
+    let pairs = pairs_by_query(&tree, &ids);
+    assert_eq!(
+        pairs,
+        brute_force_pairs(
+            &column(n)
+                .iter()
+                .map(|b| b.loosened(1e-3))
+                .collect::<Vec<_>>()
+        )
+    );
+}
+
+#[test]
+fn a_rebuild_handles_coincident_and_nan_boxes() {
+    let mut tree = DynamicTree::new();
+    let same = aabb(0.0, 0.0, 1.0, 1.0);
+    let ids: Vec<ProxyId> = (0..64).map(|k| tree.create_proxy(same, k)).collect();
+    for &id in &ids[..40] {
+        tree.enlarge_proxy(id, same.loosened(0.5));
+    }
+    let nan = Aabb::new(Vector2::new(f64::NAN, 0.0), Vector2::new(1.0, f64::NAN));
+    tree.enlarge_proxy(ids[50], nan);
+    tree.rebuild();
+    tree.validate().unwrap();
+    // Coincident centres are halved: a balanced tree of 64 leaves.
+    assert!(tree.height() <= 8, "height {}", tree.height());
+    let found = hits(&tree, &aabb(0.2, 0.2, 0.3, 0.3));
+    let expected: Vec<u32> = (0..64).filter(|&k| k != 50).collect();
+    assert_eq!(found, expected);
+}
+
+#[test]
+fn the_same_enlargements_rebuild_the_same_tree() {
+    let run = || {
+        let mut rng = Rng::new(0x7EE_000A);
+        let boxes: Vec<Aabb> = (0..200).map(|_| random_box(&mut rng, 30.0, 1.0)).collect();
+        let (mut tree, ids) = build(&boxes);
+        for round in 0..10 {
+            for (k, &id) in ids.iter().enumerate() {
+                if (k + round) % 3 == 0 {
+                    tree.enlarge_proxy(id, random_box(&mut rng, 30.0, 1.0));
+                }
+            }
+            tree.rebuild();
+        }
+        tree
+    };
+    let (a, b) = (run(), run());
+    assert!(a.nodes == b.nodes && a.root == b.root && a.free_list == b.free_list);
+}
+
+#[test]
+fn moved_pairs_are_the_brute_force_pairs_with_a_moved_proxy_each_once() {
+    let mut rng = Rng::new(0x7EE_000B);
+    for round in 0..12 {
+        let n = 20 + 40 * round;
+        let boxes: Vec<Aabb> = (0..n).map(|_| random_box(&mut rng, 30.0, 1.5)).collect();
+        let (mut tree, ids) = build(&boxes);
+        // None, a few, about half, or all of the proxies moved.
+        let share = [0.0, 0.05, 0.5, 1.0][round % 4];
+        let moved: Vec<bool> = (0..n).map(|_| rng.unit() < share).collect();
+        let moved_ids: Vec<ProxyId> = (0..n).filter(|&k| moved[k]).map(|k| ids[k]).collect();
+        let mut found = Vec::new();
+        tree.moved_pairs(&moved_ids, |a, b| {
+            found.push((a.min(b) as usize, a.max(b) as usize));
+        });
+        let count = found.len();
+        found.sort_unstable();
+        found.dedup();
+        assert_eq!(found.len(), count, "a pair reported twice");
+        let expected: Vec<(usize, usize)> = brute_force_pairs(&boxes)
+            .into_iter()
+            .map(|(a, b)| (a.min(b), a.max(b)))
+            .filter(|&(a, b)| moved[a] || moved[b])
+            .collect::<std::collections::BTreeSet<_>>()
+            .into_iter()
+            .collect();
+        assert_eq!(found, expected, "round {round}");
+    }
+}

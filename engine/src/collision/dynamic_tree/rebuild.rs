@@ -1,0 +1,177 @@
+//! The partial rebuild of a [`DynamicTree`] after proxies were enlarged in
+//! place ([`DynamicTree::enlarge_proxy`]; Box2D v3 rebuilds its dynamic
+//! tree so once per step; own code).
+//!
+//! **Gathering**: walking down from the root, every marked internal node
+//! is freed, and what hangs below the marked part (each leaf, and each
+//! unmarked subtree, whose box is exact) becomes a *piece* of the rebuild,
+//! kept whole. When few proxies moved, few nodes are marked and the
+//! rebuild is small; when all moved, it is a full build.
+//!
+//! **Building**: top-down, each range of pieces is split in two at the
+//! middle of its centres' bounds along their longer side (Box2D v3's
+//! default "median split" heuristic): the pieces whose box centre lies
+//! below the middle go left, the others right; a range whose centres
+//! coincide is halved. For shapes of similar sizes this gives trees as
+//! good as the binned surface-area heuristic (Wald 2007) for a third of
+//! the work (measured on the soft step's tumbler scene, 2025 boxes: 0.8 M
+//! against 2.1 M instructions of rebuilding per step, queries 4 % slower,
+//! with 8 bins). The
+//! new internal nodes reuse the freed ones (one fewer than the pieces, as
+//! many as were freed), so the node pool does not grow; the work lists
+//! are kept in [`Scratch`] and allocate nothing once grown. The same tree
+//! gives the same rebuild: no hashing, no randomness.
+
+use super::{DynamicTree, NULL};
+use crate::collision::Aabb;
+use nalgebra::Vector2;
+
+/// One range of pieces still to be grouped under `parent`'s child `side`
+/// (`parent` is `NULL` for the root).
+#[derive(Debug, Clone, Copy)]
+struct Task {
+    parent: u32,
+    side: usize,
+    start: usize,
+    end: usize,
+}
+
+/// The rebuild's reused buffers.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Scratch {
+    /// Nodes still to visit while gathering.
+    walk: Vec<u32>,
+    /// The pieces (leaf or unmarked subtree roots), permuted by the splits.
+    pieces: Vec<u32>,
+    /// Each piece's box centre (m), permuted along with `pieces`.
+    centres: Vec<Vector2<f64>>,
+    /// Ranges still to split.
+    tasks: Vec<Task>,
+    /// The internal nodes made, in order of creation (each after its
+    /// parent).
+    made: Vec<u32>,
+}
+
+/// See [`DynamicTree::rebuild`] and the [module documentation](self).
+pub(super) fn rebuild(tree: &mut DynamicTree) {
+    let root = tree.root;
+    if root == NULL || !tree.nodes[root as usize].enlarged {
+        return;
+    }
+    let mut s = std::mem::take(&mut tree.scratch);
+    gather(tree, &mut s);
+    build(tree, &mut s);
+    tree.scratch = s;
+}
+
+/// Frees the marked nodes and lists the pieces under them.
+fn gather(tree: &mut DynamicTree, s: &mut Scratch) {
+    s.pieces.clear();
+    s.centres.clear();
+    s.walk.clear();
+    s.walk.push(tree.root);
+    while let Some(i) = s.walk.pop() {
+        let node = &mut tree.nodes[i as usize];
+        if node.is_leaf() || !node.enlarged {
+            node.parent = NULL;
+            s.pieces.push(i);
+            s.centres.push(centre(&node.aabb));
+        } else {
+            let [c0, c1] = node.children;
+            s.walk.push(c1);
+            s.walk.push(c0);
+            tree.free_node(i);
+        }
+    }
+}
+
+/// Groups the pieces into a new top of the tree and refits it.
+fn build(tree: &mut DynamicTree, s: &mut Scratch) {
+    s.made.clear();
+    s.tasks.clear();
+    s.tasks.push(Task {
+        parent: NULL,
+        side: 0,
+        start: 0,
+        end: s.pieces.len(),
+    });
+    while let Some(task) = s.tasks.pop() {
+        let Task { start, end, .. } = task;
+        let node = if end - start == 1 {
+            s.pieces[start]
+        } else {
+            let left = split(&mut s.pieces[start..end], &mut s.centres[start..end]);
+            let i = tree.allocate_node();
+            s.made.push(i);
+            let mid = start + left;
+            s.tasks.push(Task {
+                parent: i,
+                side: 1,
+                start: mid,
+                end,
+            });
+            s.tasks.push(Task {
+                parent: i,
+                side: 0,
+                start,
+                end: mid,
+            });
+            i
+        };
+        tree.nodes[node as usize].parent = task.parent;
+        if task.parent == NULL {
+            tree.root = node;
+        } else {
+            tree.nodes[task.parent as usize].children[task.side] = node;
+        }
+    }
+    // Children were made after their parents: refit in reverse.
+    for &i in s.made.iter().rev() {
+        tree.refit(i);
+    }
+}
+
+/// Reorders a range of at least two pieces (with their centres) so that
+/// the first `k` go to the left child, and returns `k`, with 0 < k < len:
+/// those whose centre lies below the middle of the centres' bounds along
+/// their longer side.
+fn split(pieces: &mut [u32], centres: &mut [Vector2<f64>]) -> usize {
+    let n = pieces.len();
+    if n == 2 {
+        return 1;
+    }
+    // Plain comparisons (one min/max instruction each; a NaN centre is
+    // skipped, and a NaN first centre only gives a poor split).
+    let (mut lo, mut hi) = (centres[0], centres[0]);
+    for c in centres.iter() {
+        lo.x = if c.x < lo.x { c.x } else { lo.x };
+        lo.y = if c.y < lo.y { c.y } else { lo.y };
+        hi.x = if c.x > hi.x { c.x } else { hi.x };
+        hi.y = if c.y > hi.y { c.y } else { hi.y };
+    }
+    let d = hi - lo;
+    let axis = usize::from(d.y > d.x);
+    let pivot = 0.5 * (lo[axis] + hi[axis]);
+    let (mut i, mut j) = (0, n);
+    loop {
+        while i < j && centres[i][axis] < pivot {
+            i += 1;
+        }
+        while i < j && centres[j - 1][axis] >= pivot {
+            j -= 1;
+        }
+        if i >= j {
+            break;
+        }
+        pieces.swap(i, j - 1);
+        centres.swap(i, j - 1);
+        i += 1;
+        j -= 1;
+    }
+    if i == 0 || i == n { n / 2 } else { i }
+}
+
+/// The centre of a box (m).
+fn centre(b: &Aabb) -> Vector2<f64> {
+    0.5 * (b.min + b.max)
+}
