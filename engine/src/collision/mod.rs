@@ -47,6 +47,7 @@ pub mod aabb;
 pub mod broad_phase;
 pub mod circle_circle;
 pub mod dynamic_tree;
+pub(crate) mod features;
 pub mod manifold;
 pub mod narrow_phase;
 pub mod obb;

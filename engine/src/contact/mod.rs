@@ -37,6 +37,7 @@
 
 mod events;
 mod impulse;
+mod persistent;
 pub(crate) mod pipeline;
 pub(crate) mod resting;
 pub(crate) mod rows;

@@ -37,12 +37,13 @@
 
 use super::events::{ContactEvent, ContactEventKind, StepProfile};
 use super::resting::{
-    FrictionMode, RestingContacts, RestingPair, islands, manifold_of, manifold_rows, pose,
+    FrictionMode, RestingContacts, RestingPair, features_of, islands, manifold_rows, pose,
 };
 use super::rows::{BodyView, Row, RowKind, Side, effective_mass, perp};
 use super::settings::ContactSettings;
 use super::solver::solve;
 use crate::body::{Body, BodyState};
+use crate::collision::features::ContactFeatures;
 use crate::collision::narrow_phase::rotation_radius;
 use crate::collision::{Aabb, Manifold, SweepAndPrune};
 use crate::world_ode::{Layout, WorldOde};
@@ -141,6 +142,7 @@ struct Found {
     a: usize,
     b: usize,
     manifold: Manifold,
+    features: ContactFeatures,
     impact: bool,
     rows: (usize, usize),
     before: f64,
@@ -264,11 +266,12 @@ impl ContactPipeline {
         let started = profiler.start();
         let mut found: Vec<Found> = Vec::new();
         for (a, b) in pairs {
-            if let Some(manifold) = manifold_of(bodies, sys.states, a, b, eps) {
+            if let Some((manifold, features)) = features_of(bodies, sys.states, a, b, eps) {
                 found.push(Found {
                     a,
                     b,
                     manifold,
+                    features,
                     impact: false,
                     rows: (0, 0),
                     before: 0.0,
@@ -324,7 +327,14 @@ impl ContactPipeline {
                     before = before.min(vn);
                     if vn < -resting_speed {
                         impact = true;
-                        -e * vn
+                        // A rebound slower than the resting speed is given
+                        // up: the point rests.
+                        let rebound = -e * vn;
+                        if rebound > resting_speed {
+                            rebound
+                        } else {
+                            0.0
+                        }
                     } else {
                         0.0
                     }
@@ -374,6 +384,35 @@ impl ContactPipeline {
                 .extend(rows.iter().map(|r| r.velocity(&self.views) - r.target));
             effective_mass(&rows, &self.views, &mut self.k);
             solve(&rows, &self.k, &self.b, &mut lambda);
+            // A touching point the impulses leave separating slower than the
+            // resting speed (and faster than the sliding speed, the speed
+            // contacts count as zero) rests: its separation is cancelled too
+            // (a hold row, which may pull), as an approach that slow is. A
+            // bounce (a restitution target) is left alone. Without it a box
+            // dropped flat rocks on its corners forever at the scale of ε
+            // (each corner falling back through the tolerance band picks up
+            // √(2 a ε)). Cancelling a relative velocity only removes kinetic
+            // energy (the velocities are projected onto a cone of admissible
+            // ones that contains rest).
+            loop {
+                let n = rows.len();
+                let mut held = false;
+                for (j, row) in rows.iter_mut().enumerate() {
+                    if row.kind != RowKind::Normal || row.target != 0.0 {
+                        continue;
+                    }
+                    let after =
+                        self.b[j] + (0..n).map(|i| self.k[j * n + i] * lambda[i]).sum::<f64>();
+                    if after > s.sliding_speed && after <= resting_speed {
+                        row.kind = RowKind::Hold;
+                        held = true;
+                    }
+                }
+                if !held {
+                    break;
+                }
+                solve(&rows, &self.k, &self.b, &mut lambda);
+            }
             for ((row, &l), &r) in rows.iter().zip(&lambda).zip(&index) {
                 self.lambda[r] = l;
                 if l != 0.0 {
@@ -407,23 +446,31 @@ impl ContactPipeline {
         // The resting pairs of the next piece of step.
         let mut next: Vec<RestingPair> = Vec::new();
         for f in found.iter() {
-            let (r0, r1) = f.rows;
-            let after = self.rows[r0..r1]
-                .iter()
-                .filter(|r| r.kind == RowKind::Normal)
-                .map(|r| r.velocity(&self.views))
-                .fold(f64::INFINITY, f64::min);
-            if after > resting_speed {
-                continue;
+            // The points that rest (a slow separation was cancelled above);
+            // a point that bounces or leaves faster than the resting speed
+            // is not held (holding keeps a speed of separation: d'' ≥ 0,
+            // module `persistent`), and one that comes back is an impact.
+            let (r0, _) = f.rows;
+            let count = f.manifold.points().len();
+            let mut kept = [false; 2];
+            for (k, keep) in kept.iter_mut().enumerate().take(count) {
+                let row = &self.rows[r0 + k];
+                *keep = row.target == 0.0 && row.velocity(&self.views) <= resting_speed;
             }
+            let Some(features) = f.features.retain(kept) else {
+                continue;
+            };
             let friction = if s.friction > 0.0 {
-                let centre = f
+                let (sum, n) = f
                     .manifold
                     .points()
                     .iter()
-                    .map(|p| p.point)
-                    .sum::<Vector2<f64>>()
-                    / f.manifold.points().len() as f64;
+                    .zip(kept)
+                    .filter(|(_, k)| *k)
+                    .fold((Vector2::zeros(), 0.0), |(sum, n), (p, _)| {
+                        (sum + p.point, n + 1.0)
+                    });
+                let centre = sum / n;
                 let v = self.views[f.b].point_velocity(centre - self.views[f.b].position)
                     - self.views[f.a].point_velocity(centre - self.views[f.a].position);
                 let tangent = perp(f.manifold.normal);
@@ -442,6 +489,7 @@ impl ContactPipeline {
                 a: f.a,
                 b: f.b,
                 friction,
+                features,
             });
         }
         next.sort_by_key(|p| (p.a, p.b));
@@ -497,10 +545,11 @@ impl ContactPipeline {
                 });
             }
         }
-        if next != resting.pairs {
-            changed = true;
-            resting.pairs = next;
-        }
+        // The features move with the bodies: always take the new ones, but
+        // only a change of pairs, friction modes or features stales the
+        // integrator's cached derivative.
+        changed |= next != resting.pairs;
+        resting.pairs = next;
         resting.friction = s.friction;
         resting.tolerance = s.tolerance;
         changed
@@ -519,7 +568,7 @@ impl ContactPipeline {
             let row = &self.rows[r];
             let l = self.lambda[r];
             match row.kind {
-                RowKind::Normal => {
+                RowKind::Normal | RowKind::Hold => {
                     let p = self.views[row.sides[1].body].position + row.sides[1].arm;
                     normal_impulse += l;
                     weighted += l * p;

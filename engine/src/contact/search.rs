@@ -6,7 +6,7 @@
 //! length, so the event lies on the method's solution.
 
 use super::pipeline::{ContactPipeline, PROJECTION_SLOP, Phase, Profiler};
-use super::resting::{FrictionMode, RestingPair, manifold_of, pose};
+use super::resting::{FrictionMode, RestingPair, pose};
 use super::rows::BodyView;
 use super::settings::ToiMethod;
 use crate::body::{Body, BodyState};
@@ -135,13 +135,46 @@ impl ContactPipeline {
                     keep(s);
                 }
             }
-            // Stick times of the sliding pairs.
-            let sliding: Vec<RestingPair> = sys
+            let resting: Vec<RestingPair> = sys
                 .contacts
                 .as_deref()
                 .map(|c| c.pairs.clone())
                 .unwrap_or_default();
-            for p in sliding {
+            // Releases: a resting point whose separation rises above 2ε.
+            // The contact set is fixed over a piece (module `persistent`),
+            // so the step is cut where the point has left, between ε and
+            // 2ε, and the next settle drops it.
+            for p in &resting {
+                let (_, end) = p.follow(&states_b);
+                let (_, start) = p.follow(&states_a);
+                for k in 0..p.features.count() {
+                    if !(end[k].separation > 2.0 * eps && start[k].separation <= eps) {
+                        continue;
+                    }
+                    let started = profiler.start();
+                    profiler.profile.toi_searches += 1;
+                    let mut evaluations = 0u64;
+                    let mut minus_separation = |s: f64| -> Result<f64> {
+                        evaluations += 1;
+                        probe.resize(y_a.len(), 0.0);
+                        integrator.single_step(sys, t, y_a, s, probe)?;
+                        layout.unpack(probe, &mut probe_states);
+                        Ok(-p.follow(&probe_states).1[k].separation)
+                    };
+                    let s = bisect(
+                        &mut minus_separation,
+                        (0.0, h),
+                        (-2.0 * eps, -eps),
+                        max_it,
+                        t,
+                    )?;
+                    profiler.profile.toi_evaluations += evaluations;
+                    profiler.stop(Phase::Toi, started);
+                    keep(s);
+                }
+            }
+            // Stick times of the sliding pairs.
+            for p in resting {
                 let FrictionMode::Sliding { direction } = p.friction else {
                     continue;
                 };
@@ -195,7 +228,10 @@ fn sliding_speed(
     direction: Vector2<f64>,
     eps: f64,
 ) -> Option<f64> {
-    let m = manifold_of(bodies, states, p.a, p.b, eps)?;
+    let (m, _) = p.follow(states);
+    if m.max_depth() < -eps {
+        return None;
+    }
     let centre = m.points().iter().map(|q| q.point).sum::<Vector2<f64>>() / m.points().len() as f64;
     let (va, vb) = (
         BodyView::new(&bodies[p.a], &states[p.a]),

@@ -48,9 +48,14 @@ pub struct ContactSettings {
     /// *resting*: no restitution is applied (the approach velocity is
     /// cancelled) and the pair is held by contact forces computed inside
     /// the integration (seed §7.1 after Baraff). Above it, an impact with
-    /// restitution. Default 1e-3 m/s: a bounce of at most
-    /// v²/(2g) = 5e-8 m is then given up, which ends the infinite sequence
-    /// of ever smaller bounces of e < 1 in finite time.
+    /// restitution, unless the rebound e·v would itself be slower than the
+    /// resting speed (the point then rests). A touching point left
+    /// separating slower than the resting speed (and faster than
+    /// [`Self::sliding_speed`]) after the impulses rests too: its
+    /// separation is cancelled, which only removes energy. Default
+    /// 1e-3 m/s: a bounce of at most v²/(2g) = 5e-8 m is then given up,
+    /// which ends the infinite sequence of ever smaller bounces of e < 1
+    /// (and of a box rocking on its corners) in finite time.
     pub resting_speed: f64,
     /// Tangential speed (m/s) ≥ 0 at or below which a resting contact with
     /// friction *sticks* (static friction holds it, within the cone);
