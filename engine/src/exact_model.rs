@@ -394,7 +394,7 @@ fn contact_segment(
     let limit = pipeline.settings.max_events_per_step;
     let events_before = pipeline.events.len();
     let mut pieces = 0usize;
-    if pipeline.settle(sys, t, y, profiler) {
+    if pipeline.settle(sys, t, y, profiler)? {
         integrator.invalidate_cache();
     }
     while t < segment_end {
@@ -459,7 +459,7 @@ fn contact_segment(
             )?;
         }
         t = t_kept;
-        if pipeline.settle(sys, t, y, profiler) {
+        if pipeline.settle(sys, t, y, profiler)? {
             integrator.invalidate_cache();
         }
     }

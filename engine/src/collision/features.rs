@@ -25,7 +25,7 @@
 
 use super::manifold::Manifold;
 use super::polygon_circle::{PolygonFeature, closest_polygon_circle, edge_normal};
-use super::polygon_polygon::{IncidentPoint, clip_polygon_polygon};
+use super::polygon_polygon::{Face, IncidentPoint, clip_polygon_polygon_on, equally_deep_faces};
 use crate::shape::Shape;
 use nalgebra::{Isometry2, Point2, Vector2};
 
@@ -148,9 +148,40 @@ pub(crate) fn collide_with_features(
     pose_b: &Isometry2<f64>,
     margin: f64,
 ) -> Option<(Manifold, ContactFeatures)> {
+    collide_on_face(a, pose_a, b, pose_b, margin, None)
+}
+
+/// The faces along which two polygons are equally deep, to `tolerance` (m),
+/// best first, each with its normal from A to B ([`equally_deep_faces`]);
+/// empty unless both shapes are polygons.
+pub(crate) fn equally_deep(
+    a: &Shape,
+    pose_a: &Isometry2<f64>,
+    b: &Shape,
+    pose_b: &Isometry2<f64>,
+    tolerance: f64,
+) -> Vec<(Face, Vector2<f64>)> {
     match (a, b) {
         (Shape::Polygon(pa), Shape::Polygon(pb)) => {
-            let (m, f) = clip_polygon_polygon(pa, pose_a, pb, pose_b, margin)?;
+            equally_deep_faces(pa, pose_a, pb, pose_b, tolerance)
+        }
+        _ => Vec::new(),
+    }
+}
+
+/// [`collide_with_features`] with two polygons clipped on the reference
+/// face `face` instead of the SAT's best (ignored for circles).
+pub(crate) fn collide_on_face(
+    a: &Shape,
+    pose_a: &Isometry2<f64>,
+    b: &Shape,
+    pose_b: &Isometry2<f64>,
+    margin: f64,
+    face: Option<Face>,
+) -> Option<(Manifold, ContactFeatures)> {
+    match (a, b) {
+        (Shape::Polygon(pa), Shape::Polygon(pb)) => {
+            let (m, f) = clip_polygon_polygon_on(pa, pose_a, pb, pose_b, margin, face)?;
             let (reference, incident_pose) = if f.reference_is_a {
                 (pa, pose_b)
             } else {

@@ -65,7 +65,7 @@ pub use circle_circle::{
 };
 pub use dynamic_tree::{DynamicTree, ProxyId};
 pub use manifold::{Contact, Manifold, ManifoldPoint, Proximity};
-pub use narrow_phase::{collide, proximity};
+pub use narrow_phase::{collide, inner_radius, proximity};
 pub use obb::{Obb, obb_overlap, obb_separation};
 pub use polygon_circle::{
     collide_polygon_circle, collide_polygon_circle_with_margin, distance_polygon_circle,

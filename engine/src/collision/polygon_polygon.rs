@@ -256,8 +256,86 @@ pub(crate) fn clip_polygon_polygon(
     pose_b: &Isometry2<f64>,
     margin: f64,
 ) -> Option<(Manifold, ClippedFeatures)> {
+    clip_polygon_polygon_on(a, pose_a, b, pose_b, margin, None)
+}
+
+/// A reference face: whether it is A's (else B's), and its edge index.
+pub(crate) type Face = (bool, usize);
+
+/// The faces of either polygon whose SAT separation is within `tolerance`
+/// (m) of the best one, best first: the axes along which the pair is
+/// equally deep, to the contact tolerance (every axis of two coincident
+/// squares), each with its unit normal from A to B (world frame).
+pub(crate) fn equally_deep_faces(
+    a: &ConvexPolygon,
+    pose_a: &Isometry2<f64>,
+    b: &ConvexPolygon,
+    pose_b: &Isometry2<f64>,
+    tolerance: f64,
+) -> Vec<(Face, Vector2<f64>)> {
     let (pa, pb) = place(a, pose_a, b, pose_b);
-    let s = sat(&pa, &pb, margin);
+    let best = sat(&pa, &pb, f64::INFINITY);
+    let mut faces = vec![(
+        (best.reference_is_a, best.edge),
+        if best.reference_is_a {
+            pa.normals[best.edge]
+        } else {
+            -pb.normals[best.edge]
+        },
+    )];
+    for (reference_is_a, reference, incident) in [(true, &pa, &pb), (false, &pb, &pa)] {
+        for edge in 0..reference.vertices.len() {
+            if (reference_is_a, edge) == (best.reference_is_a, best.edge) {
+                continue;
+            }
+            if separation_on(reference, incident, edge) >= best.separation - tolerance {
+                let n = reference.normals[edge];
+                faces.push(((reference_is_a, edge), if reference_is_a { n } else { -n }));
+            }
+        }
+    }
+    faces
+        .into_iter()
+        .map(|(face, n)| (face, pose_a.rotation * n))
+        .collect()
+}
+
+/// The separation of `incident` from the half-plane of `reference`'s edge.
+fn separation_on(reference: &Placed, incident: &Placed, edge: usize) -> f64 {
+    let (v, n) = (reference.vertices[edge], reference.normals[edge]);
+    incident
+        .vertices
+        .iter()
+        .map(|w| n.dot(&(w - v)))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// [`clip_polygon_polygon`] on the reference face `face`, or on the SAT's
+/// best face when `None`.
+pub(crate) fn clip_polygon_polygon_on(
+    a: &ConvexPolygon,
+    pose_a: &Isometry2<f64>,
+    b: &ConvexPolygon,
+    pose_b: &Isometry2<f64>,
+    margin: f64,
+    face: Option<Face>,
+) -> Option<(Manifold, ClippedFeatures)> {
+    let (pa, pb) = place(a, pose_a, b, pose_b);
+    let s = match face {
+        None => sat(&pa, &pb, margin),
+        Some((reference_is_a, edge)) => {
+            let (reference, incident) = if reference_is_a {
+                (&pa, &pb)
+            } else {
+                (&pb, &pa)
+            };
+            Sat {
+                separation: separation_on(reference, incident, edge),
+                edge,
+                reference_is_a,
+            }
+        }
+    };
     // A NaN separation (non-finite input) reports no contact.
     if s.separation.is_nan() || s.separation > margin {
         return None;

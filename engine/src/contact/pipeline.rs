@@ -41,11 +41,14 @@ use super::resting::{
 };
 use super::rows::{BodyView, Row, RowKind, Side, effective_mass, perp};
 use super::settings::ContactSettings;
-use super::solver::solve;
+use super::solver::{MAX_CONTACT_ROWS, solve};
 use crate::body::{Body, BodyState};
 use crate::collision::features::ContactFeatures;
+use crate::collision::features::{collide_on_face, equally_deep};
 use crate::collision::narrow_phase::rotation_radius;
+use crate::collision::polygon_polygon::Face;
 use crate::collision::{Aabb, Manifold, SweepAndPrune};
+use crate::error::{EngineError, Result};
 use crate::world_ode::{Layout, WorldOde};
 use nalgebra::Vector2;
 use std::time::{Duration, Instant};
@@ -54,6 +57,10 @@ use std::time::{Duration, Instant};
 /// settle. Above the 2ε a located impact can leave, so a pair found by the
 /// time-of-impact search is never moved.
 pub const PROJECTION_SLOP: f64 = 4.0;
+
+/// Most projection passes at one settle: each is linearised, so a deep
+/// overlap (bodies created inside each other) may need a few.
+const PROJECTION_PASSES: usize = 16;
 
 /// Per-phase timing, on only when asked (an `Instant::now` per phase would
 /// otherwise cost more than a cheap step).
@@ -257,16 +264,57 @@ impl ContactPipeline {
         t: f64,
         y: &mut [f64],
         profiler: &mut Profiler,
-    ) -> bool {
+    ) -> Result<bool> {
         let bodies = sys.bodies;
         let layout = sys.layout;
         layout.unpack(y, sys.states);
         let eps = self.settings.tolerance;
-        let pairs = self.candidates(bodies, sys.states, eps, None, profiler);
+        let mut found = self.touching(bodies, sys.states, profiler);
+        // Pairs that sank by more than the slop are pushed apart first, as
+        // often as it takes (the projection is linearised: deep overlaps,
+        // bodies created inside each other, need a few passes), then the
+        // impulses act on what touches.
+        let mut moved = false;
+        for _ in 0..PROJECTION_PASSES {
+            if !found
+                .iter()
+                .any(|f| f.manifold.max_depth() > PROJECTION_SLOP * eps)
+            {
+                break;
+            }
+            let started = profiler.start();
+            let pushed = self.project(bodies, layout, sys.states, &found, y, t)?;
+            profiler.stop(Phase::Respond, started);
+            if !pushed {
+                break;
+            }
+            moved = true;
+            found = self.touching(bodies, sys.states, profiler);
+        }
+        let started = profiler.start();
+        let resting = sys
+            .contacts
+            .as_deref_mut()
+            .expect("a world with contacts carries its resting pairs");
+        let changed = self.respond(bodies, layout, sys.states, &mut found, y, t, resting)?;
+        profiler.stop(Phase::Respond, started);
+        Ok(changed || moved)
+    }
+
+    /// The manifolds (with their features) of the pairs within ε at
+    /// `states`.
+    fn touching(
+        &mut self,
+        bodies: &[Body],
+        states: &[BodyState],
+        profiler: &mut Profiler,
+    ) -> Vec<Found> {
+        let eps = self.settings.tolerance;
+        let pairs = self.candidates(bodies, states, eps, None, profiler);
         let started = profiler.start();
         let mut found: Vec<Found> = Vec::new();
         for (a, b) in pairs {
-            if let Some((manifold, features)) = features_of(bodies, sys.states, a, b, eps) {
+            if let Some((manifold, features)) = features_of(bodies, states, a, b, eps) {
                 found.push(Found {
                     a,
                     b,
@@ -279,14 +327,7 @@ impl ContactPipeline {
             }
         }
         profiler.stop(Phase::Narrow, started);
-        let started = profiler.start();
-        let resting = sys
-            .contacts
-            .as_deref_mut()
-            .expect("a world with contacts carries its resting pairs");
-        let changed = self.respond(bodies, layout, sys.states, &mut found, y, t, resting);
-        profiler.stop(Phase::Respond, started);
-        changed
+        found
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -299,7 +340,7 @@ impl ContactPipeline {
         y: &mut [f64],
         t: f64,
         resting: &mut RestingContacts,
-    ) -> bool {
+    ) -> Result<bool> {
         let s = self.settings;
         let mut changed = false;
         self.views.clear();
@@ -379,6 +420,7 @@ impl ContactPipeline {
                     index.push(r);
                 }
             }
+            check_size(rows.len(), end - start, t)?;
             self.b.clear();
             self.b
                 .extend(rows.iter().map(|r| r.velocity(&self.views) - r.target));
@@ -441,8 +483,6 @@ impl ContactPipeline {
                 self.events.push(event);
             }
         }
-        // Projection of pairs that sank by more than the slop.
-        changed |= self.project(bodies, layout, states, found, y, s.tolerance);
         // The resting pairs of the next piece of step.
         let mut next: Vec<RestingPair> = Vec::new();
         for f in found.iter() {
@@ -552,7 +592,7 @@ impl ContactPipeline {
         resting.pairs = next;
         resting.friction = s.friction;
         resting.tolerance = s.tolerance;
-        changed
+        Ok(changed)
     }
 
     /// The record of manifold `f` after the impulses.
@@ -601,7 +641,17 @@ impl ContactPipeline {
 
     /// Pushes apart (positions only) the pairs overlapping by more than
     /// [`PROJECTION_SLOP`] ε, by the linearised least motion that removes
-    /// the overlap of their points. Returns whether anything moved.
+    /// the overlap of their points while every other touching pair (a body
+    /// resting on a static one, above all) sinks no deeper: nothing is
+    /// pushed through a static body. Moving positions injects no kinetic
+    /// energy. Returns whether anything moved.
+    ///
+    /// A deep pair of polygons that is as deep along several faces (two
+    /// equal boxes created at the same place are 1 m deep along all eight)
+    /// is separated along the one whose motion its bodies' contacts with
+    /// immovable bodies oppose least: along the ground rather than into it
+    /// or off it, the least motion (three coincident boxes on the ground
+    /// end side by side, not stacked, with their energy unchanged).
     #[allow(clippy::too_many_arguments)]
     fn project(
         &mut self,
@@ -610,42 +660,92 @@ impl ContactPipeline {
         states: &mut [BodyState],
         found: &[Found],
         y: &mut [f64],
-        eps: f64,
-    ) -> bool {
-        let deep: Vec<&Found> = found
+        t: f64,
+    ) -> Result<bool> {
+        let eps = self.settings.tolerance;
+        let views: Vec<BodyView> = bodies
             .iter()
-            .filter(|f| f.manifold.max_depth() > PROJECTION_SLOP * eps)
+            .zip(states.iter())
+            .map(|(b, st)| BodyView::new(b, st))
             .collect();
-        if deep.is_empty() {
-            return false;
+        let immovable = |i: usize| views[i].inv_mass == 0.0 && views[i].inv_inertia == 0.0;
+        // Each dynamic body's supports: the normals of its contacts with
+        // immovable bodies, pointing into it.
+        let mut supports: Vec<(usize, Vector2<f64>)> = Vec::new();
+        for f in found {
+            if immovable(f.a) && !immovable(f.b) {
+                supports.push((f.b, f.manifold.normal));
+            } else if immovable(f.b) && !immovable(f.a) {
+                supports.push((f.a, -f.manifold.normal));
+            }
         }
+        // How much the supports oppose separating (a, b) along n (A moves
+        // along −n, B along +n).
+        let opposed = |a: usize, b: usize, n: Vector2<f64>| -> f64 {
+            supports
+                .iter()
+                .map(|&(body, u)| {
+                    if body == a {
+                        n.dot(&u).max(0.0)
+                    } else if body == b {
+                        (-n.dot(&u)).max(0.0)
+                    } else {
+                        0.0
+                    }
+                })
+                .sum()
+        };
         let mut rows = Vec::new();
         let mut b = Vec::new();
-        for f in &deep {
-            for p in f.manifold.points() {
+        for f in found {
+            let deep = f.manifold.max_depth() > PROJECTION_SLOP * eps;
+            let mut manifold = f.manifold;
+            if deep && !immovable(f.a) && !immovable(f.b) {
+                let (sa, sb) = (
+                    bodies[f.a].shape.as_ref().expect("collidable"),
+                    bodies[f.b].shape.as_ref().expect("collidable"),
+                );
+                let (pa, pb) = (pose(&states[f.a]), pose(&states[f.b]));
+                let faces = equally_deep(sa, &pa, sb, &pb, eps);
+                let mut best: Option<(f64, Face)> = None;
+                for (face, n) in faces {
+                    let cost = opposed(f.a, f.b, n);
+                    if best.is_none_or(|(c, _)| cost < c) {
+                        best = Some((cost, face));
+                    }
+                }
+                let refaced = best.and_then(|(_, face)| {
+                    collide_on_face(sa, &pa, sb, &pb, eps, Some(face)).map(|(m, _)| m)
+                });
+                manifold = refaced.unwrap_or(manifold);
+            }
+            for p in manifold.points() {
                 let sides = [
                     Side {
                         body: f.a,
                         sign: -1.0,
-                        arm: p.point - self.views[f.a].position,
+                        arm: p.point - views[f.a].position,
                     },
                     Side {
                         body: f.b,
                         sign: 1.0,
-                        arm: p.point - self.views[f.b].position,
+                        arm: p.point - views[f.b].position,
                     },
                 ];
                 rows.push(Row {
                     kind: RowKind::Normal,
                     sides,
-                    measure: f.manifold.normal,
-                    push: f.manifold.normal,
+                    measure: manifold.normal,
+                    push: manifold.normal,
                     target: 0.0,
                 });
-                b.push(-p.depth);
+                // A deep point is pushed out; a touching one sinks no
+                // deeper.
+                b.push(if deep { -p.depth } else { 0.0 });
             }
         }
-        effective_mass(&rows, &self.views, &mut self.k);
+        check_size(rows.len(), found.len(), t)?;
+        effective_mass(&rows, &views, &mut self.k);
         let mut lambda = Vec::new();
         solve(&rows, &self.k, &b, &mut lambda);
         let mut out = vec![(Vector2::zeros(), 0.0); bodies.len()];
@@ -654,7 +754,7 @@ impl ContactPipeline {
         }
         let mut moved = false;
         for (i, (dx, dth)) in out.iter().enumerate() {
-            let v = &self.views[i];
+            let v = &views[i];
             if v.inv_mass > 0.0 && (dx.norm() > 0.0 || *dth != 0.0) {
                 states[i].position += v.inv_mass * dx;
                 if bodies[i].rotates() {
@@ -664,6 +764,22 @@ impl ContactPipeline {
                 moved = true;
             }
         }
-        moved
+        Ok(moved)
     }
+}
+
+/// Refuses a contact problem of `rows` rows (over `pairs` touching pairs)
+/// larger than [`MAX_CONTACT_ROWS`], naming the remedy.
+fn check_size(rows: usize, pairs: usize, t: f64) -> Result<()> {
+    if rows <= MAX_CONTACT_ROWS {
+        return Ok(());
+    }
+    Err(EngineError::Contact {
+        t,
+        reason: format!(
+            "{pairs} touching pairs make one contact problem of {rows} rows, more than the \
+             {MAX_CONTACT_ROWS} the exact model's dense solver takes (it is meant for a few \
+             bodies); use the soft_step contact model for many bodies in contact"
+        ),
+    })
 }

@@ -23,6 +23,13 @@
 
 use super::rows::{Row, RowKind};
 
+/// The largest contact problem (rows) the dense solver takes: its matrix
+/// has n² entries (2 MiB at 512 rows) and the polish eliminates up to n
+/// unknowns (n³/3 ≈ 4.5e7 operations), and the exact model solves one per
+/// right-hand-side evaluation. A larger problem is refused with a typed
+/// error rather than left to run for minutes.
+pub(crate) const MAX_CONTACT_ROWS: usize = 512;
+
 /// Most PGS sweeps.
 const MAX_SWEEPS: usize = 500;
 
