@@ -60,6 +60,7 @@ registry! {
     collision_slide,
     collision_incline,
     collision_rest,
+    rolling_disc,
     stack,
     pyramid,
     friction_ramp,
