@@ -87,9 +87,9 @@ pub(crate) fn check_energy_value(
             step,
             reason: format!(
                 "energy {} J at t = {} s beyond the bound {} J{}",
-                crate::error::readable(energy),
+                crate::error::approximate(energy),
                 crate::error::readable(t_next),
-                crate::error::readable(limit),
+                crate::error::approximate(limit),
                 culprit(bodies, states)
             ),
         });
@@ -114,8 +114,8 @@ fn culprit(bodies: &[Body], states: &[BodyState]) -> String {
         Some((b, s, e)) => format!(
             "; body '{}' carries the most kinetic energy ({} J, speed {} m/s)",
             b.name,
-            crate::error::readable(e),
-            crate::error::readable(s.velocity.norm())
+            crate::error::approximate(e),
+            crate::error::approximate(s.velocity.norm())
         ),
         None => String::new(),
     }
