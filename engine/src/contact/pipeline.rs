@@ -5,29 +5,39 @@
 //! **Settle** (the response, seed §7.2 "calculer l'état après la
 //! collision"), at a time t where the world stands still:
 //! 1. broad phase: bounding boxes grown by ε, sort-and-sweep;
-//! 2. narrow phase: the manifold of every candidate pair within ε;
-//! 3. impulses: for every touching point, the relative normal velocity
-//!    v_n. A point approaching faster than the resting speed gets the
-//!    restitution target v_n' = −e v_n (seed eq. 7.10), every other touching
-//!    point the target v_n' ≥ 0; with friction, one friction row per manifold
-//!    (Coulomb impulse, |j_t| ≤ μ Σ j_n). Solved simultaneously per island
-//!    ([`super::solver`]); for one frictionless point this is exactly seed
-//!    eq. 7.15;
-//! 4. projection: a pair overlapping by more than [`PROJECTION_SLOP`] ε is
+//! 2. narrow phase: the manifold of every candidate pair within ε, with the
+//!    features it is made of;
+//! 3. projection: a pair overlapping by more than [`PROJECTION_SLOP`] ε is
 //!    pushed apart along its normal (positions only, velocities untouched,
-//!    so no energy is injected the way a Baumgarte velocity bias would);
+//!    so no energy is injected the way a Baumgarte velocity bias would),
+//!    every other touching pair sinking no deeper (nothing goes through a
+//!    static body); repeated, with the narrow phase, until none is that
+//!    deep (bodies created inside each other need a few passes);
+//! 4. impulses: for every touching point, the relative normal velocity
+//!    v_n. A point approaching faster than the resting speed gets the
+//!    restitution target v_n' = −e v_n (seed eq. 7.10), unless that rebound
+//!    is itself slower than the resting speed; every other touching point
+//!    the target v_n' ≥ 0, and one left separating slower than the resting
+//!    speed is held at v_n' = 0; with friction, one friction row per
+//!    manifold (Coulomb impulse, |j_t| ≤ μ Σ j_n). Solved simultaneously per
+//!    island ([`super::solver`]); for one frictionless point this is
+//!    exactly seed eq. 7.15;
 //! 5. classification: a touching pair whose points no longer separate
-//!    faster than the resting speed *rests*: it is held by contact forces
-//!    during the next piece of step ([`super::resting`]), sticking or sliding.
+//!    *rests*: it is held by contact forces during the next piece of step
+//!    ([`super::resting`]), sticking or sliding, followed by the features of
+//!    its resting points (module `persistent`).
 //!
-//! **First event** (module `search`) of a trial step from t to t + h (integrated with the
-//! resting pairs' forces): the earliest of
+//! **First event** (module `search`) of a trial step from t to t + h
+//! (integrated with the resting pairs' forces): the earliest of
 //! - a time of impact: a pair separated at t and overlapping by more than ε
 //!   at t + h is located by the seed's bisection of the step (seed Fig.
 //!   7.7–7.8: each probe is the integrator's own step from t of a shorter
-//!   length) until the separation is within ±ε, or by conservative
-//!   advancement; a pair that was touching at t and overlaps by more than ε
-//!   at t + h (a second corner coming down) is located until its overlap is
+//!   length) until the separation is within ±ε; a pair apart at both ends
+//!   that moved fast enough to have gone deep in between, by conservative
+//!   advancement (the swept search, [`super::ToiMethod::Swept`]); a pair
+//!   that was touching at t and overlaps by more than ε at t + h (a second
+//!   corner coming down) is located until its overlap is between ε and 2ε;
+//! - a release: a resting point whose separation rises above 2ε, located
 //!   between ε and 2ε;
 //! - a stick time: a sliding pair's tangential velocity reaching zero, by
 //!   root finding on the same sub-steps.

@@ -66,6 +66,7 @@ registry! {
     friction_ramp,
     overlap_recovery,
     mass_ratio,
+    fuzz_scenes,
 }
 
 /// The case with this id.
