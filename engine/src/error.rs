@@ -120,7 +120,8 @@ pub fn readable(value: f64) -> String {
     }
 }
 
-/// A computed quantity for messages (an energy, a speed): four significant
+/// A computed quantity for messages where its exact digits are noise (the
+/// kinetic energy and speed of the body a blow-up names): four significant
 /// digits, in scientific notation outside [1e-4, 1e4), trailing zeros
 /// dropped (`1.798e308`, `1.414e149`, `12.35`, `0.5`), where [`readable`]'s
 /// exact digits would be noise. Zero, infinities and NaN print as Rust

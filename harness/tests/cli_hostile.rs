@@ -145,11 +145,11 @@ fn an_energy_that_overflows_is_an_error_not_nan() {
     done.refused(&[
         "blow-up",
         "energy inf J",
-        "beyond the bound 1.798e308 J; body 'p' carries the most kinetic energy",
+        "beyond the largest finite f64, 1.8e308 J; body 'p' carries the most kinetic energy",
         "hint: the total energy is no longer a finite number (the fastest body when the step \
          began: 'p', at 1.273e154 m/s)",
     ]);
-    // Computed quantities in four digits, not seventeen.
+    // The guard's bound is f64's range, not its seventeen digits.
     assert!(
         !done.stderr.contains("1.7976931348623157e308"),
         "{}",
