@@ -138,6 +138,36 @@ pub fn readable(value: f64) -> String {
     }
 }
 
+/// A computed quantity for messages where its exact digits are noise (the
+/// kinetic energy and speed of the body a blow-up names): four significant
+/// digits, in scientific notation outside [1e-4, 1e4), trailing zeros
+/// dropped (`1.798e308`, `1.414e149`, `12.35`, `0.5`), where [`readable`]'s
+/// exact digits would be noise. Zero, infinities and NaN print as Rust
+/// prints them.
+pub fn approximate(value: f64) -> String {
+    fn trim(digits: &str) -> &str {
+        if digits.contains('.') {
+            digits.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            digits
+        }
+    }
+    let magnitude = value.abs();
+    if value == 0.0 || !value.is_finite() {
+        return format!("{value}");
+    }
+    if (1e-4..1e4).contains(&magnitude) {
+        let decimals = (3 - magnitude.log10().floor() as i32).max(0) as usize;
+        trim(&format!("{value:.decimals$}")).to_owned()
+    } else {
+        let text = format!("{value:.3e}");
+        match text.split_once('e') {
+            Some((mantissa, exponent)) => format!("{}e{exponent}", trim(mantissa)),
+            None => text,
+        }
+    }
+}
+
 /// Short alias used across the engine.
 pub type Result<T, E = EngineError> = std::result::Result<T, E>;
 
@@ -209,6 +239,12 @@ mod tests {
         for v in [1.2345678901234567e300, 3e-310, 0.1, 123456.789] {
             assert_eq!(readable(v).parse::<f64>(), Ok(v));
         }
+        assert_eq!(approximate(f64::MAX), "1.798e308");
+        assert_eq!(approximate(1.4142135623730949e149), "1.414e149");
+        assert_eq!(approximate(12.3456), "12.35");
+        assert_eq!(approximate(0.5), "0.5");
+        assert_eq!(approximate(-2.5e-7), "-2.5e-7");
+        assert_eq!(approximate(f64::INFINITY), "inf");
         let e = require_positive("mass", -1e308).unwrap_err();
         assert_eq!(
             e.to_string(),

@@ -21,16 +21,20 @@
 //! moving body, also handles contacts; each piece of step is then, in
 //! order, one flat list of named phases, each timed into a
 //! [`crate::StepProfile`] when profiling is on:
-//! 1. **respond** (settle): at the piece's start, impulses for the touching
-//!    pairs that approach (seed eq. 7.15 with restitution), projection of
-//!    pairs that sank, and the choice of the resting pairs whose contact
-//!    forces enter the right-hand side (seed §7.1 after Baraff); the
-//!    integrator's cached derivative is dropped when anything changed;
+//! 1. **respond** (settle): at the piece's start, projection of pairs that
+//!    sank, impulses for the touching pairs that approach (seed eq. 7.15
+//!    with restitution), and the choice of the resting pairs whose contact
+//!    forces enter the right-hand side, with the features they are
+//!    followed by (seed §7.1 after Baraff); the integrator's cached
+//!    derivative is dropped when anything changed;
 //! 2. **integrate** a trial step to the end of the step (or segment);
 //! 3. **broad phase** (sort-and-sweep of bounding boxes) and **narrow
 //!    phase** (exact distances) at the trial step's end;
-//! 4. **time of impact**: the first contact inside the trial step, by the
-//!    seed's bisection (Fig. 7.7–7.8) or conservative advancement, and the
+//! 4. **time of impact**: the first contact event inside the trial step: a
+//!    pair that overlaps at its end, by the seed's bisection (Fig.
+//!    7.7–7.8), one apart at both ends that moved fast enough to have gone
+//!    deep in between, by conservative advancement (the default swept
+//!    search; [`crate::ToiMethod`]), a resting point that leaves, and the
 //!    first stop of a sliding contact, by root finding; the step is cut
 //!    there, events are located in the piece kept, and the next piece
 //!    starts with a settle. Several contacts in one step are so handled in
@@ -401,7 +405,7 @@ fn contact_segment(
     let limit = pipeline.settings.max_events_per_step;
     let events_before = pipeline.events.len();
     let mut pieces = 0usize;
-    if pipeline.settle(sys, t, y, profiler) {
+    if pipeline.settle(sys, t, y, profiler)? {
         integrator.invalidate_cache();
     }
     while t < segment_end {
@@ -466,7 +470,7 @@ fn contact_segment(
             )?;
         }
         t = t_kept;
-        if pipeline.settle(sys, t, y, profiler) {
+        if pipeline.settle(sys, t, y, profiler)? {
             integrator.invalidate_cache();
         }
     }

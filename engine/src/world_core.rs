@@ -86,10 +86,15 @@ pub(crate) fn check_energy_value(
             t,
             step,
             reason: format!(
-                "energy {} J at t = {} s beyond the bound {} J{}",
+                "energy {} J at t = {} s beyond {}{}",
                 crate::error::readable(energy),
                 crate::error::readable(t_next),
-                crate::error::readable(limit),
+                if limit == f64::MAX {
+                    // The guard of a world built from a scene: finite.
+                    "the largest finite f64, 1.8e308 J".to_owned()
+                } else {
+                    format!("the bound {} J", crate::error::readable(limit))
+                },
                 culprit(bodies, states)
             ),
         });
@@ -114,8 +119,8 @@ fn culprit(bodies: &[Body], states: &[BodyState]) -> String {
         Some((b, s, e)) => format!(
             "; body '{}' carries the most kinetic energy ({} J, speed {} m/s)",
             b.name,
-            crate::error::readable(e),
-            crate::error::readable(s.velocity.norm())
+            crate::error::approximate(e),
+            crate::error::approximate(s.velocity.norm())
         ),
         None => String::new(),
     }

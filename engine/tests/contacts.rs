@@ -382,13 +382,16 @@ fn several_contacts_in_one_step_are_handled_in_time_order() {
     assert!((s[right].position.x - (1.7 - 0.5)).abs() < 1e-9);
 }
 
-/// Conservative advancement sees a bullet cross a thin wall inside one
-/// step; the seed's bisection, looking only at the end, does not.
+/// Conservative advancement, and the default swept search, see a bullet
+/// cross a thin wall inside one step; the seed's bisection, looking only at
+/// the end, does not.
 #[test]
-fn conservative_advancement_catches_what_bisection_tunnels_through() {
+fn the_default_search_catches_what_bisection_tunnels_through() {
+    assert_eq!(ContactSettings::default().toi_method, ToiMethod::Swept);
     for (method, hits) in [
         (ToiMethod::Bisection, 0),
         (ToiMethod::ConservativeAdvancement, 1),
+        (ToiMethod::Swept, 1),
     ] {
         let mut world = World::new(Method::Rk4).unwrap();
         world

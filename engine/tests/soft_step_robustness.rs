@@ -165,9 +165,11 @@ proptest! {
     fn random_small_worlds_step_finite_or_refuse(
         seeds in prop::collection::vec(body_seed(), 1..7),
         soft in any::<bool>(),
+        search in 0usize..3,
         restitution in 0.0f64..1.0,
         friction in 0.0f64..1.5,
     ) {
+        let toi_method = [ToiMethod::Swept, ToiMethod::Bisection, ToiMethod::ConservativeAdvancement][search];
         let mut world = if soft {
             World::with_model(Method::SemiImplicitEuler, ContactModel::SoftStep(SoftStepSettings {
                 restitution, friction, ..SoftStepSettings::default()
@@ -175,7 +177,7 @@ proptest! {
         } else {
             let mut w = World::new(Method::Rk4).unwrap();
             w.set_contact_settings(ContactSettings {
-                restitution, friction, toi_method: ToiMethod::ConservativeAdvancement,
+                restitution, friction, toi_method,
                 max_events_per_step: 200, ..ContactSettings::default()
             }).unwrap();
             w

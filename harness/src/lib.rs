@@ -7,6 +7,7 @@ pub mod bench;
 pub mod cases;
 pub mod clip;
 pub mod convergence;
+pub mod fuzz;
 pub mod links;
 pub mod pictures;
 pub mod plots;

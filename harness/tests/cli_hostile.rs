@@ -141,10 +141,30 @@ fn a_linear_test_that_overflows_is_refused_and_its_curve_never_hangs() {
 #[test]
 fn an_energy_that_overflows_is_an_error_not_nan() {
     let scene = format!("{HEAD}mass = 1.0\n[[forces]]\ntype = \"gravity\"\ng = [1e154, -1e154]\n");
-    simulate(scene.as_bytes(), &ALL_OUTPUTS).refused(&[
+    let done = simulate(scene.as_bytes(), &ALL_OUTPUTS);
+    done.refused(&[
         "blow-up",
-        "energy",
-        "hint: the total energy is no longer a finite number (body 'p'",
+        "energy inf J",
+        "beyond the largest finite f64, 1.8e308 J; body 'p' carries the most kinetic energy",
+        "hint: the total energy is no longer a finite number (the fastest body when the step \
+         began: 'p', at 1.273e154 m/s)",
+    ]);
+    // The guard's bound is f64's range, not its seventeen digits.
+    assert!(
+        !done.stderr.contains("1.7976931348623157e308"),
+        "{}",
+        done.stderr
+    );
+    // A force of 1e150 N on a lever of 1e150 m: the first step's rotational
+    // energy overflows.
+    let scene = format!(
+        "{HEAD}mass = 1.0\nshape = {{ type = \"circle\", radius = 1.0 }}\n[[forces]]\n\
+         type = \"point_force\"\nbody = \"p\"\nforce = [1e150, 1e150]\npoint = [0.0, 1e150]\n"
+    );
+    simulate(scene.as_bytes(), &ALL_OUTPUTS).refused(&[
+        "the run failed in step 1 of 10",
+        "speed 1.414e149 m/s",
+        "(the fastest body when the step began: 'p', at 0 m/s)",
     ]);
     let scene = format!("{HEAD}mass = 1e10\nvelocity = [1e154, 0.0]\n");
     simulate(scene.as_bytes(), &["--trace", "out.csv"]).refused(&[
@@ -244,7 +264,12 @@ fn other_encodings_are_named_and_located() {
 
 #[test]
 fn messages_name_the_field_in_the_users_words() {
-    let cases: [(String, &[&str]); 8] = [
+    let deep_values = format!(
+        "[simulation]\ndt = 0.1\nduration = 1.0\nx = {}{}\n",
+        "[".repeat(1000),
+        "]".repeat(1000)
+    );
+    let cases: [(String, &[&str]); 17] = [
         (
             "simulation = 1979-05-27\n".into(),
             &[
@@ -300,6 +325,60 @@ fn messages_name_the_field_in_the_users_words() {
             ),
             &["scene.toml:4:1", "nested 1000 levels deep"],
         ),
+        (
+            deep_values,
+            &["scene.toml:4:85", "nested more than 80 levels deep"],
+        ),
+        (
+            format!("{HEAD}mass = -1e-320\n"),
+            &["scene.toml:6:8", "bodies[0].mass", "-1e-320 is too small"],
+        ),
+        (
+            format!("{HEAD}mass = 1.0\n[contact]\nmodel = \"exact\"\ntoi_method = 3\n"),
+            &[
+                "scene.toml:9:14",
+                "contact.toi_method",
+                "expected a name (a string), found the integer 3",
+            ],
+        ),
+        (
+            format!("{HEAD}mass = 1.0\nkind = {{ static = 1 }}\n"),
+            &[
+                "scene.toml:7:8",
+                "bodies[0].kind",
+                "expected a name (a string), found a table",
+            ],
+        ),
+        (
+            "[[simulation]]\ndt = 0.1\nduration = 1.0\n".into(),
+            &[
+                "scene.toml:1:1",
+                "simulation: expected the table [simulation], found an array of tables",
+            ],
+        ),
+        (
+            "bodies = [[1.0, 2.0]]\n[simulation]\ndt = 0.1\nduration = 1.0\n".into(),
+            &[
+                "scene.toml:1:11",
+                "bodies[0]: expected a table, found an array",
+            ],
+        ),
+        (
+            format!("{HEAD}mass = 1.0\nmass = 2.0\n"),
+            &["scene.toml:7:1", "duplicate key `mass`"],
+        ),
+        (
+            format!(
+                "{HEAD}mass = 1.0\nshape = {{ type = \"polygon\", vertices = [[0.0, 0.0], [1.0, 0.0], [1.0, 0.0], [0.0, 1.0]] }}\n"
+            ),
+            &["bodies[0].shape.vertices[2]", "repeated vertex"],
+        ),
+        (
+            format!(
+                "{HEAD}mass = 1.0\nshape = {{ type = \"polygon\", vertices = [[-1e300, -1e300], [1e300, -1e300], [0.0, 1e300]] }}\n"
+            ),
+            &["bodies[0].shape.vertices[0][0]", "-1e300 is too large"],
+        ),
     ];
     for (scene, needles) in cases {
         let done = simulate(scene.as_bytes(), &["--trace", "out.csv"]);
@@ -311,6 +390,10 @@ fn messages_name_the_field_in_the_users_words() {
             "variant identifier",
             "i128",
             "Spec",
+            "wanted",
+            "recurs",
+            "sequence",
+            "map",
         ] {
             assert!(!done.stderr.contains(jargon), "{jargon}: {}", done.stderr);
         }

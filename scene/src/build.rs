@@ -1041,6 +1041,7 @@ fn contact(spec: &ContactSpec) -> Checked<ContactModel> {
                 friction: friction.unwrap_or(d.friction),
                 toi_method: match spec.toi_method {
                     None => d.toi_method,
+                    Some(ToiMethodSpec::Swept) => ToiMethod::Swept,
                     Some(ToiMethodSpec::Bisection) => ToiMethod::Bisection,
                     Some(ToiMethodSpec::ConservativeAdvancement) => {
                         ToiMethod::ConservativeAdvancement

@@ -61,6 +61,29 @@ pub(crate) fn form_error(origin: &str, text: &str, error: &toml::de::Error) -> S
         }
     }
     let mut message = message.to_owned();
+    if message.starts_with("expected table, found ") {
+        // `kind = { static = 1 }`: toml read the table as a name and its
+        // key as the name's contents; the name is the field at fault.
+        path.0.pop();
+        position = position_of(text, &path).or(position);
+        let field = (!path.0.is_empty()).then(|| path.to_string());
+        return SceneError::new(origin, kind, "expected a name (a string), found a table")
+            .with_field(field)
+            .at(position);
+    }
+    if is_enum_message(&message) {
+        // toml's own words for a name given as something else (`kind = 3`,
+        // `model = {}`): the value at the span says what was found.
+        let literal = text.get(span.clone()).unwrap_or("").trim();
+        message = format!(
+            "expected a name (a string), found {}",
+            literal_words(literal)
+        );
+        let field = (!path.0.is_empty()).then(|| path.to_string());
+        return SceneError::new(origin, kind, message)
+            .with_field(field)
+            .at(position);
+    }
     if kind == ErrorKind::InvalidType {
         if let Some((key, probe_message)) = culprit(text, &path) {
             path = path.key(&key);
@@ -82,6 +105,89 @@ pub(crate) fn form_error(origin: &str, text: &str, error: &toml::de::Error) -> S
     SceneError::new(origin, kind, plain(&message, datetime.as_deref()))
         .with_field(field)
         .at(position)
+}
+
+/// toml's messages when a name (a unit variant) is given as another kind
+/// of value: a number, an array or a table.
+fn is_enum_message(message: &str) -> bool {
+    message == "wanted string or table"
+        || message.starts_with("wanted exactly 1 element")
+        || message == "expected empty table"
+        || message == "expected empty array"
+        || message.starts_with("expected table with exactly 1 entry")
+}
+
+/// A TOML literal (the text of a value) in words: "the integer 3", "the
+/// number 1.5", "the boolean true", "an array", "a table".
+pub(crate) fn literal_words(literal: &str) -> String {
+    let first = literal.chars().next();
+    match first {
+        Some('[') => "an array".into(),
+        Some('{') => "a table".into(),
+        Some('"') | Some('\'') => format!("the string {literal}"),
+        _ if literal == "true" || literal == "false" => format!("the boolean {literal}"),
+        _ => {
+            let plain = literal.replace('_', "");
+            if plain.parse::<i64>().is_ok() {
+                format!("the integer {plain}")
+            } else if let Ok(v) = plain.parse::<f64>() {
+                format!("the number {}", engine::error::readable(v))
+            } else {
+                format!("`{literal}`")
+            }
+        }
+    }
+}
+
+/// The top-level sections' own form, checked before serde sees them: a
+/// table written as an array of tables (`[[simulation]]`), or an element of
+/// `bodies`, `forces` or `events` written as an array, would reach serde as
+/// a sequence, which it reads positionally into the table's fields and
+/// reports in Rust's terms at a field the user never wrote.
+pub(crate) fn check_sections(origin: &str, text: &str) -> Result<(), SceneError> {
+    let Ok(root) = DeTable::parse(text) else {
+        return Ok(());
+    };
+    let at = |span: std::ops::Range<usize>| Some(line_column(text, span.start));
+    for (key, value) in root.get_ref() {
+        let name = key.get_ref().as_ref();
+        let single = ["simulation", "contact", "linear_test"].contains(&name);
+        let listed = ["bodies", "forces", "events"].contains(&name);
+        match value.get_ref() {
+            DeValue::Array(items) if single => {
+                let tables = items
+                    .iter()
+                    .all(|v| matches!(v.get_ref(), DeValue::Table(_)));
+                let found = if tables {
+                    format!("an array of tables [[{name}]]: write [{name}], once")
+                } else {
+                    "an array".into()
+                };
+                return Err(SceneError::new(
+                    origin,
+                    ErrorKind::InvalidType,
+                    format!("expected the table [{name}], found {found}"),
+                )
+                .with_field(Some(name.to_owned()))
+                .at(at(value.span())));
+            }
+            DeValue::Array(items) if listed => {
+                for (i, item) in items.iter().enumerate() {
+                    if let DeValue::Array(_) = item.get_ref() {
+                        return Err(SceneError::new(
+                            origin,
+                            ErrorKind::InvalidType,
+                            "expected a table, found an array".to_owned(),
+                        )
+                        .with_field(Some(format!("{name}[{i}]")))
+                        .at(at(item.span())));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
 }
 
 /// What the table at `path` is, for "expected ...".

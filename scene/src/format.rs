@@ -354,9 +354,13 @@ pub struct ContactSpec {
     pub continuous: Option<bool>,
     /// Soft step: islands at rest fall asleep. Default false.
     pub sleeping: Option<bool>,
-    /// Exact model: how the first contact inside a step is found,
-    /// `"bisection"` (the seed's, default) or `"conservative_advancement"`
-    /// (never misses a thin body).
+    /// Exact model: how the first contact inside a step is found:
+    /// `"swept"` (the default: the seed's bisection where a pair overlaps at
+    /// the step's end, conservative advancement where its motion could have
+    /// touched inside the step, so a fast body does not pass through a
+    /// thin one), `"bisection"` (the seed's alone: looks at the step's end
+    /// only) or `"conservative_advancement"` (for every pair apart at the
+    /// step's start).
     pub toi_method: Option<ToiMethodSpec>,
 }
 
@@ -375,6 +379,9 @@ pub enum ContactModelSpec {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ToiMethodSpec {
+    /// The seed's bisection, and conservative advancement where a pair
+    /// could have touched inside the step.
+    Swept,
     /// The seed's bisection of the step.
     Bisection,
     /// Conservative advancement.

@@ -54,6 +54,7 @@ impl Scene {
         if let Err(e) = toml::de::DeTable::parse(text) {
             return Err(syntax_error(origin, text, &e));
         }
+        crate::form_error::check_sections(origin, text)?;
         let file: SceneFile = toml::from_str(text).map_err(|e| form_error(origin, text, &e))?;
         let plan = build::plan(&file).map_err(|p| locate(origin, text, p))?;
         Ok(Scene {
@@ -233,11 +234,26 @@ fn locate(origin: &str, text: &str, problem: Problem) -> SceneError {
 /// limit", with no position): its limit, 80 levels.
 const TOML_KEY_DEPTH: usize = 80;
 
+/// Arrays and inline tables nested deeper than this are refused by toml's
+/// parser ("cannot recurse further", at the value).
+const TOML_VALUE_DEPTH: usize = 80;
+
 /// A TOML syntax error, located. The parser gives no span when a dotted
 /// key nests too deep: the first line holding such a key is found here.
 fn syntax_error(origin: &str, text: &str, e: &toml::de::Error) -> SceneError {
     let message = e.message().trim();
     if let Some(span) = e.span() {
+        let message = if message.starts_with("cannot recurse further") {
+            format!(
+                "arrays or inline tables nested more than {TOML_VALUE_DEPTH} levels deep; a \
+                 scene needs 3 (a polygon's vertices, in a shape's inline table)"
+            )
+        } else if message == "duplicate key" {
+            let key = text.get(span.clone()).unwrap_or("").trim();
+            format!("duplicate key `{key}`: each key may be given once in its table")
+        } else {
+            message.to_owned()
+        };
         return SceneError::new(origin, ErrorKind::Syntax, message)
             .at(Some(line_column(text, span.start)));
     }

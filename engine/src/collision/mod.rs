@@ -47,6 +47,7 @@ pub mod aabb;
 pub mod broad_phase;
 pub mod circle_circle;
 pub mod dynamic_tree;
+pub(crate) mod features;
 pub mod manifold;
 pub mod narrow_phase;
 pub mod obb;
@@ -64,7 +65,7 @@ pub use circle_circle::{
 };
 pub use dynamic_tree::{DynamicTree, ProxyId};
 pub use manifold::{Contact, Manifold, ManifoldPoint, Proximity};
-pub use narrow_phase::{collide, proximity};
+pub use narrow_phase::{collide, inner_radius, proximity};
 pub use obb::{Obb, obb_overlap, obb_separation};
 pub use polygon_circle::{
     collide_polygon_circle, collide_polygon_circle_with_margin, distance_polygon_circle,

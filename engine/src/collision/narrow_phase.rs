@@ -93,6 +93,29 @@ pub fn proximity(
     }
 }
 
+/// The radius (m) of the largest circle about the body origin (the centre
+/// of mass) inside the shape: a circle's radius, the smallest distance from
+/// the origin to a polygon's edge lines, the largest over a compound's
+/// parts of their own less their offsets (0 if none contains the origin).
+/// Half the thinnest the shape can be across its centre.
+pub fn inner_radius(shape: &Shape) -> f64 {
+    match shape {
+        Shape::Circle(c) => c.radius,
+        Shape::Polygon(p) => {
+            let v = p.vertices();
+            (0..v.len())
+                .map(|i| super::polygon_circle::edge_normal(v[i], v[(i + 1) % v.len()]).dot(&v[i]))
+                .fold(f64::INFINITY, f64::min)
+                .max(0.0)
+        }
+        Shape::Compound(c) => c
+            .parts()
+            .iter()
+            .map(|p| inner_radius(&p.shape) - p.offset.norm())
+            .fold(0.0, f64::max),
+    }
+}
+
 /// The largest distance (m) from the body origin (the centre of rotation)
 /// to a point of the shape whose position changes when the body turns: the
 /// farthest vertex of a polygon, 0 for a circle (centred on the origin, a

@@ -29,9 +29,15 @@ pub(crate) fn closest_on_segment(
     p: Vector2<f64>,
     q: Vector2<f64>,
 ) -> Vector2<f64> {
+    closest_on_segment_at(c, p, q).0
+}
+
+/// The closest point to `c` on the segment `[p, q]`, and the unclamped
+/// parameter `t` of the foot of `c` on its line (`p + t (q − p)`).
+fn closest_on_segment_at(c: Vector2<f64>, p: Vector2<f64>, q: Vector2<f64>) -> (Vector2<f64>, f64) {
     let e = q - p;
     let t = (c - p).dot(&e) / e.norm_squared();
-    p + t.clamp(0.0, 1.0) * e
+    (p + t.clamp(0.0, 1.0) * e, t)
 }
 
 /// Exact signed distance (m) from a convex polygon (A) to a circle (B), with
@@ -42,6 +48,26 @@ pub fn distance_polygon_circle(
     circle: &Circle,
     pose_b: &Isometry2<f64>,
 ) -> Proximity {
+    closest_polygon_circle(polygon, pose_a, circle, pose_b).0
+}
+
+/// The polygon's feature nearest a circle's centre.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum PolygonFeature {
+    /// The edge from vertex i to vertex i + 1 (the centre's foot lies on it,
+    /// or the centre is inside and this edge is the nearest).
+    Edge(usize),
+    /// Vertex i.
+    Vertex(usize),
+}
+
+/// [`distance_polygon_circle`] and the polygon's feature it is attained at.
+pub(crate) fn closest_polygon_circle(
+    polygon: &ConvexPolygon,
+    pose_a: &Isometry2<f64>,
+    circle: &Circle,
+    pose_b: &Isometry2<f64>,
+) -> (Proximity, PolygonFeature) {
     let v = polygon.vertices();
     let n = v.len();
     let c = pose_a
@@ -54,33 +80,52 @@ pub fn distance_polygon_circle(
             (best_edge, best_s) = (i, s);
         }
     }
-    let (distance, normal, on_polygon) = if best_s <= 0.0 {
+    let (distance, normal, on_polygon, feature) = if best_s <= 0.0 {
         // Centre inside (or on the boundary): push out through the nearest
         // edge; its foot lies on that edge.
         let normal = edge_normal(v[best_edge], v[(best_edge + 1) % n]);
-        (best_s - circle.radius, normal, c - best_s * normal)
+        (
+            best_s - circle.radius,
+            normal,
+            c - best_s * normal,
+            PolygonFeature::Edge(best_edge),
+        )
     } else {
-        let mut q = closest_on_segment(c, v[0], v[1]);
+        let feature_of = |i: usize, t: f64| {
+            if t <= 0.0 {
+                PolygonFeature::Vertex(i)
+            } else if t >= 1.0 {
+                PolygonFeature::Vertex((i + 1) % n)
+            } else {
+                PolygonFeature::Edge(i)
+            }
+        };
+        let (mut q, t) = closest_on_segment_at(c, v[0], v[1]);
+        let mut feature = feature_of(0, t);
         for i in 1..n {
-            let qi = closest_on_segment(c, v[i], v[(i + 1) % n]);
+            let (qi, t) = closest_on_segment_at(c, v[i], v[(i + 1) % n]);
             if (c - qi).norm_squared() < (c - q).norm_squared() {
                 q = qi;
+                feature = feature_of(i, t);
             }
         }
         let d = c - q;
         let len = d.norm();
         // len > 0 since the centre is strictly outside.
-        (len - circle.radius, d / len, q)
+        (len - circle.radius, d / len, q, feature)
     };
     let rotation = pose_a.rotation;
     let normal = rotation * normal;
     let point_a = pose_a.transform_point(&Point2::from(on_polygon)).coords;
-    Proximity {
-        distance,
-        normal,
-        point_a,
-        point_b: pose_b.translation.vector - circle.radius * normal,
-    }
+    (
+        Proximity {
+            distance,
+            normal,
+            point_a,
+            point_b: pose_b.translation.vector - circle.radius * normal,
+        },
+        feature,
+    )
 }
 
 /// The contact manifold of a polygon (A) and a circle (B) if their signed

@@ -154,22 +154,29 @@ fn place(
 }
 
 /// The part of segment `points` on the side `normal · p ≤ offset`
-/// (Box2D-lite's `ClipSegmentToLine`). Returns the kept points (0 to 2).
-fn clip(points: &[Vector2<f64>], normal: Vector2<f64>, offset: f64) -> Vec<Vector2<f64>> {
+/// (Box2D-lite's `ClipSegmentToLine`), each point with where it comes from
+/// (`cut` for the intersection with the line). Returns the kept points (0
+/// to 2).
+fn clip(
+    points: &[(Vector2<f64>, IncidentPoint)],
+    normal: Vector2<f64>,
+    offset: f64,
+    cut: IncidentPoint,
+) -> Vec<(Vector2<f64>, IncidentPoint)> {
     let mut out = Vec::with_capacity(2);
     if points.len() < 2 {
         return out;
     }
-    let (p0, p1) = (points[0], points[1]);
+    let (p0, p1) = (points[0].0, points[1].0);
     let (d0, d1) = (normal.dot(&p0) - offset, normal.dot(&p1) - offset);
     if d0 <= 0.0 {
-        out.push(p0);
+        out.push(points[0]);
     }
     if d1 <= 0.0 {
-        out.push(p1);
+        out.push(points[1]);
     }
     if d0 * d1 < 0.0 {
-        out.push(p0 + (d0 / (d0 - d1)) * (p1 - p0));
+        out.push((p0 + (d0 / (d0 - d1)) * (p1 - p0), cut));
     }
     out
 }
@@ -209,8 +216,126 @@ pub fn collide_polygon_polygon_with_margin(
     pose_b: &Isometry2<f64>,
     margin: f64,
 ) -> Option<Manifold> {
+    clip_polygon_polygon(a, pose_a, b, pose_b, margin).map(|(m, _)| m)
+}
+
+/// Where a point of a polygon–polygon manifold comes from on the incident
+/// polygon.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum IncidentPoint {
+    /// Vertex i of the incident polygon.
+    Vertex(usize),
+    /// The incident edge cut by the side plane through the reference face's
+    /// first (0) or second (1) vertex.
+    Clip(u8),
+}
+
+/// The features behind a polygon–polygon manifold: the reference face and
+/// the incident polygon's points, in A's frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ClippedFeatures {
+    /// Whether the reference face is A's (else B's).
+    pub reference_is_a: bool,
+    /// The reference face: the edge from vertex `edge` to `edge + 1` of the
+    /// reference polygon.
+    pub edge: usize,
+    /// The incident polygon's points, in A's frame (m), before they are
+    /// moved midway to the reference face; `count` of them.
+    pub points: [Vector2<f64>; 2],
+    /// Where each point comes from.
+    pub ids: [IncidentPoint; 2],
+    /// 1 or 2.
+    pub count: usize,
+}
+
+/// [`collide_polygon_polygon_with_margin`] and the features of its points.
+pub(crate) fn clip_polygon_polygon(
+    a: &ConvexPolygon,
+    pose_a: &Isometry2<f64>,
+    b: &ConvexPolygon,
+    pose_b: &Isometry2<f64>,
+    margin: f64,
+) -> Option<(Manifold, ClippedFeatures)> {
+    clip_polygon_polygon_on(a, pose_a, b, pose_b, margin, None)
+}
+
+/// A reference face: whether it is A's (else B's), and its edge index.
+pub(crate) type Face = (bool, usize);
+
+/// The faces of either polygon whose SAT separation is within `tolerance`
+/// (m) of the best one, best first: the axes along which the pair is
+/// equally deep, to the contact tolerance (every axis of two coincident
+/// squares), each with its unit normal from A to B (world frame).
+pub(crate) fn equally_deep_faces(
+    a: &ConvexPolygon,
+    pose_a: &Isometry2<f64>,
+    b: &ConvexPolygon,
+    pose_b: &Isometry2<f64>,
+    tolerance: f64,
+) -> Vec<(Face, Vector2<f64>)> {
     let (pa, pb) = place(a, pose_a, b, pose_b);
-    let s = sat(&pa, &pb, margin);
+    let best = sat(&pa, &pb, f64::INFINITY);
+    let mut faces = vec![(
+        (best.reference_is_a, best.edge),
+        if best.reference_is_a {
+            pa.normals[best.edge]
+        } else {
+            -pb.normals[best.edge]
+        },
+    )];
+    for (reference_is_a, reference, incident) in [(true, &pa, &pb), (false, &pb, &pa)] {
+        for edge in 0..reference.vertices.len() {
+            if (reference_is_a, edge) == (best.reference_is_a, best.edge) {
+                continue;
+            }
+            if separation_on(reference, incident, edge) >= best.separation - tolerance {
+                let n = reference.normals[edge];
+                faces.push(((reference_is_a, edge), if reference_is_a { n } else { -n }));
+            }
+        }
+    }
+    faces
+        .into_iter()
+        .map(|(face, n)| (face, pose_a.rotation * n))
+        .collect()
+}
+
+/// The separation of `incident` from the half-plane of `reference`'s edge.
+fn separation_on(reference: &Placed, incident: &Placed, edge: usize) -> f64 {
+    let (v, n) = (reference.vertices[edge], reference.normals[edge]);
+    incident
+        .vertices
+        .iter()
+        .map(|w| n.dot(&(w - v)))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// [`clip_polygon_polygon`] on the reference face `face`, or on the SAT's
+/// best face when `None`.
+pub(crate) fn clip_polygon_polygon_on(
+    a: &ConvexPolygon,
+    pose_a: &Isometry2<f64>,
+    b: &ConvexPolygon,
+    pose_b: &Isometry2<f64>,
+    margin: f64,
+    face: Option<Face>,
+) -> Option<(Manifold, ClippedFeatures)> {
+    let (pa, pb) = place(a, pose_a, b, pose_b);
+    let s = match face {
+        None => sat(&pa, &pb, margin),
+        Some((reference_is_a, edge)) => {
+            let (reference, incident) = if reference_is_a {
+                (&pa, &pb)
+            } else {
+                (&pb, &pa)
+            };
+            Sat {
+                separation: separation_on(reference, incident, edge),
+                edge,
+                reference_is_a,
+            }
+        }
+    };
     // A NaN separation (non-finite input) reports no contact.
     if s.separation.is_nan() || s.separation > margin {
         return None;
@@ -234,13 +359,19 @@ pub fn collide_polygon_polygon_with_margin(
                 .total_cmp(&n.dot(&incident.normals[j]))
         })
         .unwrap_or(0);
-    let face = [incident.vertices[k], incident.vertices[(k + 1) % ni]];
+    let face = [
+        (incident.vertices[k], IncidentPoint::Vertex(k)),
+        (
+            incident.vertices[(k + 1) % ni],
+            IncidentPoint::Vertex((k + 1) % ni),
+        ),
+    ];
 
     // Clip to the reference face's side planes: t · p ≥ t · v1 and
     // t · p ≤ t · v2, with t the face's unit tangent.
     let t = (v2 - v1).normalize();
-    let clipped = clip(&face, -t, -t.dot(&v1));
-    let clipped = clip(&clipped, t, t.dot(&v2));
+    let clipped = clip(&face, -t, -t.dot(&v1), IncidentPoint::Clip(0));
+    let clipped = clip(&clipped, t, t.dot(&v2), IncidentPoint::Clip(1));
 
     let to_point = |p: Vector2<f64>| {
         let gap = n.dot(&(p - v1));
@@ -251,27 +382,38 @@ pub fn collide_polygon_polygon_with_margin(
             depth: -gap,
         }
     };
-    let mut kept: Vec<ManifoldPoint> = Vec::with_capacity(2);
+    let mut kept: Vec<(Vector2<f64>, IncidentPoint)> = Vec::with_capacity(2);
     if clipped.len() == 2 {
         kept.extend(
             clipped
                 .iter()
-                .filter(|p| n.dot(&(*p - v1)) <= margin)
-                .map(|p| to_point(*p)),
+                .filter(|(p, _)| n.dot(&(*p - v1)) <= margin)
+                .copied(),
         );
     }
     if kept.is_empty() {
         // Vertex against vertex: the deepest incident vertex, at the SAT
         // separation itself.
-        kept.push(to_point(incident.vertices[incident.support_min(&n)]));
+        let deepest = incident.support_min(&n);
+        kept.push((incident.vertices[deepest], IncidentPoint::Vertex(deepest)));
     }
     let local_normal = if s.reference_is_a { n } else { -n };
     let normal = pose_a.rotation * local_normal;
-    Some(match kept[..] {
-        [p] => Manifold::one(normal, p),
-        [p, q, ..] => Manifold::two(normal, p, q),
+    let first = kept[0];
+    let last = kept[kept.len() - 1];
+    let features = ClippedFeatures {
+        reference_is_a: s.reference_is_a,
+        edge: s.edge,
+        points: [first.0, last.0],
+        ids: [first.1, last.1],
+        count: kept.len().min(2),
+    };
+    let manifold = match kept[..] {
+        [(p, _)] => Manifold::one(normal, to_point(p)),
+        [(p, _), (q, _), ..] => Manifold::two(normal, to_point(p), to_point(q)),
         [] => unreachable!("the fallback pushes a point"),
-    })
+    };
+    Some((manifold, features))
 }
 
 /// The contact manifold of two touching or overlapping convex polygons

@@ -5,7 +5,8 @@
 //!
 //! - **Impact** (the seed's « force impulsive »): the integrator is stopped
 //!   at the first contact inside the step (located by the seed's bisection,
-//!   Fig. 7.7–7.8, or by conservative advancement), the velocities jump by
+//!   Fig. 7.7–7.8, or by conservative advancement where a pair could have
+//!   passed through another within the step), the velocities jump by
 //!   the impulse of eq. 7.15 with restitution e (corrected as CASES.md
 //!   states, see [`impact_eq_7_15`]), and the integrator restarts with the
 //!   rest of the step, its cached derivative dropped. Several points, pairs
@@ -15,7 +16,9 @@
 //!   approaching faster than [`ContactSettings::resting_speed`] is held by
 //!   contact forces computed inside every evaluation of the right-hand side
 //!   so that its points neither approach nor accelerate into each other
-//!   (module `resting`). The integrator keeps its order; a box on the ground
+//!   (module `resting`), followed through the piece of step by the features
+//!   it was found with (module `persistent`). The integrator keeps its
+//!   order; a box on the ground
 //!   neither sinks nor jitters, because nothing is corrected after the fact.
 //! - **Friction** (not in the seed): Coulomb, |F_t| ≤ μ F_n. A resting pair
 //!   *sticks* (the friction holds it within the cone) or *slides* (kinetic
@@ -37,6 +40,7 @@
 
 mod events;
 mod impulse;
+mod persistent;
 pub(crate) mod pipeline;
 pub(crate) mod resting;
 pub(crate) mod rows;

@@ -5,29 +5,39 @@
 //! **Settle** (the response, seed §7.2 "calculer l'état après la
 //! collision"), at a time t where the world stands still:
 //! 1. broad phase: bounding boxes grown by ε, sort-and-sweep;
-//! 2. narrow phase: the manifold of every candidate pair within ε;
-//! 3. impulses: for every touching point, the relative normal velocity
-//!    v_n. A point approaching faster than the resting speed gets the
-//!    restitution target v_n' = −e v_n (seed eq. 7.10), every other touching
-//!    point the target v_n' ≥ 0; with friction, one friction row per manifold
-//!    (Coulomb impulse, |j_t| ≤ μ Σ j_n). Solved simultaneously per island
-//!    ([`super::solver`]); for one frictionless point this is exactly seed
-//!    eq. 7.15;
-//! 4. projection: a pair overlapping by more than [`PROJECTION_SLOP`] ε is
+//! 2. narrow phase: the manifold of every candidate pair within ε, with the
+//!    features it is made of;
+//! 3. projection: a pair overlapping by more than [`PROJECTION_SLOP`] ε is
 //!    pushed apart along its normal (positions only, velocities untouched,
-//!    so no energy is injected the way a Baumgarte velocity bias would);
+//!    so no energy is injected the way a Baumgarte velocity bias would),
+//!    every other touching pair sinking no deeper (nothing goes through a
+//!    static body); repeated, with the narrow phase, until none is that
+//!    deep (bodies created inside each other need a few passes);
+//! 4. impulses: for every touching point, the relative normal velocity
+//!    v_n. A point approaching faster than the resting speed gets the
+//!    restitution target v_n' = −e v_n (seed eq. 7.10), unless that rebound
+//!    is itself slower than the resting speed; every other touching point
+//!    the target v_n' ≥ 0, and one left separating slower than the resting
+//!    speed is held at v_n' = 0; with friction, one friction row per
+//!    manifold (Coulomb impulse, |j_t| ≤ μ Σ j_n). Solved simultaneously per
+//!    island ([`super::solver`]); for one frictionless point this is
+//!    exactly seed eq. 7.15;
 //! 5. classification: a touching pair whose points no longer separate
-//!    faster than the resting speed *rests*: it is held by contact forces
-//!    during the next piece of step ([`super::resting`]), sticking or sliding.
+//!    *rests*: it is held by contact forces during the next piece of step
+//!    ([`super::resting`]), sticking or sliding, followed by the features of
+//!    its resting points (module `persistent`).
 //!
-//! **First event** (module `search`) of a trial step from t to t + h (integrated with the
-//! resting pairs' forces): the earliest of
+//! **First event** (module `search`) of a trial step from t to t + h
+//! (integrated with the resting pairs' forces): the earliest of
 //! - a time of impact: a pair separated at t and overlapping by more than ε
 //!   at t + h is located by the seed's bisection of the step (seed Fig.
 //!   7.7–7.8: each probe is the integrator's own step from t of a shorter
-//!   length) until the separation is within ±ε, or by conservative
-//!   advancement; a pair that was touching at t and overlaps by more than ε
-//!   at t + h (a second corner coming down) is located until its overlap is
+//!   length) until the separation is within ±ε; a pair apart at both ends
+//!   that moved fast enough to have gone deep in between, by conservative
+//!   advancement (the swept search, [`super::ToiMethod::Swept`]); a pair
+//!   that was touching at t and overlaps by more than ε at t + h (a second
+//!   corner coming down) is located until its overlap is between ε and 2ε;
+//! - a release: a resting point whose separation rises above 2ε, located
 //!   between ε and 2ε;
 //! - a stick time: a sliding pair's tangential velocity reaching zero, by
 //!   root finding on the same sub-steps.
@@ -37,14 +47,18 @@
 
 use super::events::{ContactEvent, ContactEventKind, StepProfile};
 use super::resting::{
-    FrictionMode, RestingContacts, RestingPair, islands, manifold_of, manifold_rows, pose,
+    FrictionMode, RestingContacts, RestingPair, features_of, islands, manifold_rows, pose,
 };
 use super::rows::{BodyView, Row, RowKind, Side, effective_mass, perp};
 use super::settings::ContactSettings;
-use super::solver::solve;
+use super::solver::{MAX_CONTACT_ROWS, solve};
 use crate::body::{Body, BodyState};
+use crate::collision::features::ContactFeatures;
+use crate::collision::features::{collide_on_face, equally_deep};
 use crate::collision::narrow_phase::rotation_radius;
+use crate::collision::polygon_polygon::Face;
 use crate::collision::{Aabb, Manifold, SweepAndPrune};
+use crate::error::{EngineError, Result};
 use crate::world_ode::{Layout, WorldOde};
 use nalgebra::Vector2;
 use std::time::{Duration, Instant};
@@ -53,6 +67,10 @@ use std::time::{Duration, Instant};
 /// settle. Above the 2ε a located impact can leave, so a pair found by the
 /// time-of-impact search is never moved.
 pub const PROJECTION_SLOP: f64 = 4.0;
+
+/// Most projection passes at one settle: each is linearised, so a deep
+/// overlap (bodies created inside each other) may need a few.
+const PROJECTION_PASSES: usize = 16;
 
 /// Per-phase timing, on only when asked (an `Instant::now` per phase would
 /// otherwise cost more than a cheap step).
@@ -141,6 +159,7 @@ struct Found {
     a: usize,
     b: usize,
     manifold: Manifold,
+    features: ContactFeatures,
     impact: bool,
     rows: (usize, usize),
     before: f64,
@@ -255,20 +274,62 @@ impl ContactPipeline {
         t: f64,
         y: &mut [f64],
         profiler: &mut Profiler,
-    ) -> bool {
+    ) -> Result<bool> {
         let bodies = sys.bodies;
         let layout = sys.layout;
         layout.unpack(y, sys.states);
         let eps = self.settings.tolerance;
-        let pairs = self.candidates(bodies, sys.states, eps, None, profiler);
+        let mut found = self.touching(bodies, sys.states, profiler);
+        // Pairs that sank by more than the slop are pushed apart first, as
+        // often as it takes (the projection is linearised: deep overlaps,
+        // bodies created inside each other, need a few passes), then the
+        // impulses act on what touches.
+        let mut moved = false;
+        for _ in 0..PROJECTION_PASSES {
+            if !found
+                .iter()
+                .any(|f| f.manifold.max_depth() > PROJECTION_SLOP * eps)
+            {
+                break;
+            }
+            let started = profiler.start();
+            let pushed = self.project(bodies, layout, sys.states, &found, y, t)?;
+            profiler.stop(Phase::Respond, started);
+            if !pushed {
+                break;
+            }
+            moved = true;
+            found = self.touching(bodies, sys.states, profiler);
+        }
+        let started = profiler.start();
+        let resting = sys
+            .contacts
+            .as_deref_mut()
+            .expect("a world with contacts carries its resting pairs");
+        let changed = self.respond(bodies, layout, sys.states, &mut found, y, t, resting)?;
+        profiler.stop(Phase::Respond, started);
+        Ok(changed || moved)
+    }
+
+    /// The manifolds (with their features) of the pairs within ε at
+    /// `states`.
+    fn touching(
+        &mut self,
+        bodies: &[Body],
+        states: &[BodyState],
+        profiler: &mut Profiler,
+    ) -> Vec<Found> {
+        let eps = self.settings.tolerance;
+        let pairs = self.candidates(bodies, states, eps, None, profiler);
         let started = profiler.start();
         let mut found: Vec<Found> = Vec::new();
         for (a, b) in pairs {
-            if let Some(manifold) = manifold_of(bodies, sys.states, a, b, eps) {
+            if let Some((manifold, features)) = features_of(bodies, states, a, b, eps) {
                 found.push(Found {
                     a,
                     b,
                     manifold,
+                    features,
                     impact: false,
                     rows: (0, 0),
                     before: 0.0,
@@ -276,14 +337,7 @@ impl ContactPipeline {
             }
         }
         profiler.stop(Phase::Narrow, started);
-        let started = profiler.start();
-        let resting = sys
-            .contacts
-            .as_deref_mut()
-            .expect("a world with contacts carries its resting pairs");
-        let changed = self.respond(bodies, layout, sys.states, &mut found, y, t, resting);
-        profiler.stop(Phase::Respond, started);
-        changed
+        found
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -296,7 +350,7 @@ impl ContactPipeline {
         y: &mut [f64],
         t: f64,
         resting: &mut RestingContacts,
-    ) -> bool {
+    ) -> Result<bool> {
         let s = self.settings;
         let mut changed = false;
         self.views.clear();
@@ -324,7 +378,14 @@ impl ContactPipeline {
                     before = before.min(vn);
                     if vn < -resting_speed {
                         impact = true;
-                        -e * vn
+                        // A rebound slower than the resting speed is given
+                        // up: the point rests.
+                        let rebound = -e * vn;
+                        if rebound > resting_speed {
+                            rebound
+                        } else {
+                            0.0
+                        }
                     } else {
                         0.0
                     }
@@ -369,11 +430,41 @@ impl ContactPipeline {
                     index.push(r);
                 }
             }
+            check_size(rows.len(), end - start, t)?;
             self.b.clear();
             self.b
                 .extend(rows.iter().map(|r| r.velocity(&self.views) - r.target));
             effective_mass(&rows, &self.views, &mut self.k);
             solve(&rows, &self.k, &self.b, &mut lambda);
+            // A touching point the impulses leave separating slower than the
+            // resting speed (and faster than the sliding speed, the speed
+            // contacts count as zero) rests: its separation is cancelled too
+            // (a hold row, which may pull), as an approach that slow is. A
+            // bounce (a restitution target) is left alone. Without it a box
+            // dropped flat rocks on its corners forever at the scale of ε
+            // (each corner falling back through the tolerance band picks up
+            // √(2 a ε)). Cancelling a relative velocity only removes kinetic
+            // energy (the velocities are projected onto a cone of admissible
+            // ones that contains rest).
+            loop {
+                let n = rows.len();
+                let mut held = false;
+                for (j, row) in rows.iter_mut().enumerate() {
+                    if row.kind != RowKind::Normal || row.target != 0.0 {
+                        continue;
+                    }
+                    let after =
+                        self.b[j] + (0..n).map(|i| self.k[j * n + i] * lambda[i]).sum::<f64>();
+                    if after > s.sliding_speed && after <= resting_speed {
+                        row.kind = RowKind::Hold;
+                        held = true;
+                    }
+                }
+                if !held {
+                    break;
+                }
+                solve(&rows, &self.k, &self.b, &mut lambda);
+            }
             for ((row, &l), &r) in rows.iter().zip(&lambda).zip(&index) {
                 self.lambda[r] = l;
                 if l != 0.0 {
@@ -402,28 +493,34 @@ impl ContactPipeline {
                 self.events.push(event);
             }
         }
-        // Projection of pairs that sank by more than the slop.
-        changed |= self.project(bodies, layout, states, found, y, s.tolerance);
         // The resting pairs of the next piece of step.
         let mut next: Vec<RestingPair> = Vec::new();
         for f in found.iter() {
-            let (r0, r1) = f.rows;
-            let after = self.rows[r0..r1]
-                .iter()
-                .filter(|r| r.kind == RowKind::Normal)
-                .map(|r| r.velocity(&self.views))
-                .fold(f64::INFINITY, f64::min);
-            if after > resting_speed {
-                continue;
+            // The points that rest (a slow separation was cancelled above);
+            // a point that bounces or leaves faster than the resting speed
+            // is not held (holding keeps a speed of separation: d'' ≥ 0,
+            // module `persistent`), and one that comes back is an impact.
+            let (r0, _) = f.rows;
+            let count = f.manifold.points().len();
+            let mut kept = [false; 2];
+            for (k, keep) in kept.iter_mut().enumerate().take(count) {
+                let row = &self.rows[r0 + k];
+                *keep = row.target == 0.0 && row.velocity(&self.views) <= resting_speed;
             }
+            let Some(features) = f.features.retain(kept) else {
+                continue;
+            };
             let friction = if s.friction > 0.0 {
-                let centre = f
+                let (sum, n) = f
                     .manifold
                     .points()
                     .iter()
-                    .map(|p| p.point)
-                    .sum::<Vector2<f64>>()
-                    / f.manifold.points().len() as f64;
+                    .zip(kept)
+                    .filter(|(_, k)| *k)
+                    .fold((Vector2::zeros(), 0.0), |(sum, n), (p, _)| {
+                        (sum + p.point, n + 1.0)
+                    });
+                let centre = sum / n;
                 let v = self.views[f.b].point_velocity(centre - self.views[f.b].position)
                     - self.views[f.a].point_velocity(centre - self.views[f.a].position);
                 let tangent = perp(f.manifold.normal);
@@ -442,6 +539,7 @@ impl ContactPipeline {
                 a: f.a,
                 b: f.b,
                 friction,
+                features,
             });
         }
         next.sort_by_key(|p| (p.a, p.b));
@@ -497,13 +595,14 @@ impl ContactPipeline {
                 });
             }
         }
-        if next != resting.pairs {
-            changed = true;
-            resting.pairs = next;
-        }
+        // The features move with the bodies: always take the new ones, but
+        // only a change of pairs, friction modes or features stales the
+        // integrator's cached derivative.
+        changed |= next != resting.pairs;
+        resting.pairs = next;
         resting.friction = s.friction;
         resting.tolerance = s.tolerance;
-        changed
+        Ok(changed)
     }
 
     /// The record of manifold `f` after the impulses.
@@ -519,7 +618,7 @@ impl ContactPipeline {
             let row = &self.rows[r];
             let l = self.lambda[r];
             match row.kind {
-                RowKind::Normal => {
+                RowKind::Normal | RowKind::Hold => {
                     let p = self.views[row.sides[1].body].position + row.sides[1].arm;
                     normal_impulse += l;
                     weighted += l * p;
@@ -552,7 +651,17 @@ impl ContactPipeline {
 
     /// Pushes apart (positions only) the pairs overlapping by more than
     /// [`PROJECTION_SLOP`] ε, by the linearised least motion that removes
-    /// the overlap of their points. Returns whether anything moved.
+    /// the overlap of their points while every other touching pair (a body
+    /// resting on a static one, above all) sinks no deeper: nothing is
+    /// pushed through a static body. Moving positions injects no kinetic
+    /// energy. Returns whether anything moved.
+    ///
+    /// A deep pair of polygons that is as deep along several faces (two
+    /// equal boxes created at the same place are 1 m deep along all eight)
+    /// is separated along the one whose motion its bodies' contacts with
+    /// immovable bodies oppose least: along the ground rather than into it
+    /// or off it, the least motion (three coincident boxes on the ground
+    /// end side by side, not stacked, with their energy unchanged).
     #[allow(clippy::too_many_arguments)]
     fn project(
         &mut self,
@@ -561,42 +670,92 @@ impl ContactPipeline {
         states: &mut [BodyState],
         found: &[Found],
         y: &mut [f64],
-        eps: f64,
-    ) -> bool {
-        let deep: Vec<&Found> = found
+        t: f64,
+    ) -> Result<bool> {
+        let eps = self.settings.tolerance;
+        let views: Vec<BodyView> = bodies
             .iter()
-            .filter(|f| f.manifold.max_depth() > PROJECTION_SLOP * eps)
+            .zip(states.iter())
+            .map(|(b, st)| BodyView::new(b, st))
             .collect();
-        if deep.is_empty() {
-            return false;
+        let immovable = |i: usize| views[i].inv_mass == 0.0 && views[i].inv_inertia == 0.0;
+        // Each dynamic body's supports: the normals of its contacts with
+        // immovable bodies, pointing into it.
+        let mut supports: Vec<(usize, Vector2<f64>)> = Vec::new();
+        for f in found {
+            if immovable(f.a) && !immovable(f.b) {
+                supports.push((f.b, f.manifold.normal));
+            } else if immovable(f.b) && !immovable(f.a) {
+                supports.push((f.a, -f.manifold.normal));
+            }
         }
+        // How much the supports oppose separating (a, b) along n (A moves
+        // along −n, B along +n).
+        let opposed = |a: usize, b: usize, n: Vector2<f64>| -> f64 {
+            supports
+                .iter()
+                .map(|&(body, u)| {
+                    if body == a {
+                        n.dot(&u).max(0.0)
+                    } else if body == b {
+                        (-n.dot(&u)).max(0.0)
+                    } else {
+                        0.0
+                    }
+                })
+                .sum()
+        };
         let mut rows = Vec::new();
         let mut b = Vec::new();
-        for f in &deep {
-            for p in f.manifold.points() {
+        for f in found {
+            let deep = f.manifold.max_depth() > PROJECTION_SLOP * eps;
+            let mut manifold = f.manifold;
+            if deep && !immovable(f.a) && !immovable(f.b) {
+                let (sa, sb) = (
+                    bodies[f.a].shape.as_ref().expect("collidable"),
+                    bodies[f.b].shape.as_ref().expect("collidable"),
+                );
+                let (pa, pb) = (pose(&states[f.a]), pose(&states[f.b]));
+                let faces = equally_deep(sa, &pa, sb, &pb, eps);
+                let mut best: Option<(f64, Face)> = None;
+                for (face, n) in faces {
+                    let cost = opposed(f.a, f.b, n);
+                    if best.is_none_or(|(c, _)| cost < c) {
+                        best = Some((cost, face));
+                    }
+                }
+                let refaced = best.and_then(|(_, face)| {
+                    collide_on_face(sa, &pa, sb, &pb, eps, Some(face)).map(|(m, _)| m)
+                });
+                manifold = refaced.unwrap_or(manifold);
+            }
+            for p in manifold.points() {
                 let sides = [
                     Side {
                         body: f.a,
                         sign: -1.0,
-                        arm: p.point - self.views[f.a].position,
+                        arm: p.point - views[f.a].position,
                     },
                     Side {
                         body: f.b,
                         sign: 1.0,
-                        arm: p.point - self.views[f.b].position,
+                        arm: p.point - views[f.b].position,
                     },
                 ];
                 rows.push(Row {
                     kind: RowKind::Normal,
                     sides,
-                    measure: f.manifold.normal,
-                    push: f.manifold.normal,
+                    measure: manifold.normal,
+                    push: manifold.normal,
                     target: 0.0,
                 });
-                b.push(-p.depth);
+                // A deep point is pushed out; a touching one sinks no
+                // deeper.
+                b.push(if deep { -p.depth } else { 0.0 });
             }
         }
-        effective_mass(&rows, &self.views, &mut self.k);
+        check_size(rows.len(), found.len(), t)?;
+        effective_mass(&rows, &views, &mut self.k);
         let mut lambda = Vec::new();
         solve(&rows, &self.k, &b, &mut lambda);
         let mut out = vec![(Vector2::zeros(), 0.0); bodies.len()];
@@ -605,7 +764,7 @@ impl ContactPipeline {
         }
         let mut moved = false;
         for (i, (dx, dth)) in out.iter().enumerate() {
-            let v = &self.views[i];
+            let v = &views[i];
             if v.inv_mass > 0.0 && (dx.norm() > 0.0 || *dth != 0.0) {
                 states[i].position += v.inv_mass * dx;
                 if bodies[i].rotates() {
@@ -615,6 +774,22 @@ impl ContactPipeline {
                 moved = true;
             }
         }
-        moved
+        Ok(moved)
     }
+}
+
+/// Refuses a contact problem of `rows` rows (over `pairs` touching pairs)
+/// larger than [`MAX_CONTACT_ROWS`], naming the remedy.
+fn check_size(rows: usize, pairs: usize, t: f64) -> Result<()> {
+    if rows <= MAX_CONTACT_ROWS {
+        return Ok(());
+    }
+    Err(EngineError::Contact {
+        t,
+        reason: format!(
+            "{pairs} touching pairs make one contact problem of {rows} rows, more than the \
+             {MAX_CONTACT_ROWS} the exact model's dense solver takes (it is meant for a few \
+             bodies); use the soft_step contact model for many bodies in contact"
+        ),
+    })
 }

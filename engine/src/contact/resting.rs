@@ -6,10 +6,15 @@
 //!
 //! At each evaluation, for every resting pair (chosen by the world at the
 //! start of each piece of step, see [`super::pipeline`]):
-//! 1. the manifold of the pair at the current poses (points within ε);
+//! 1. the manifold of the pair at the current poses, followed from the
+//!    features it was found with at the piece's start, whatever its
+//!    separation now (module `persistent`: the contact set is fixed between
+//!    events, as in Baraff's formulation);
 //! 2. one normal row per point with the *relative normal acceleration*
 //!    `a_n = n · (a_B(P) − a_A(P))` of the points, each point's
-//!    acceleration being `a + α × r − ω² r` under the applied forces;
+//!    acceleration being `a + α × r − ω² r` under the applied forces, plus
+//!    what that misses of the separation's second derivative (a circle's
+//!    centripetal term, a turning face's `2 ṅ·v`: module `persistent`);
 //! 3. Coulomb friction: while the pair *slides* (its tangential velocity is
 //!    above [`super::ContactSettings::sliding_speed`]) each normal force
 //!    carries the kinetic friction `−μ N s t` against the sliding direction
@@ -22,11 +27,13 @@
 //!
 //! A box resting flat gets exactly its weight back (zero acceleration to
 //! round-off); one sliding on flat ground or down an incline gets the
-//! closed-form acceleration g(sin θ − μ cos θ). The term 2 ṅ·v of the
-//! second derivative of the separation (a normal that turns while the points
-//! slide along it) is left out: it vanishes on a fixed surface, and the
-//! small drift it may cause elsewhere is caught between steps (the pair is
-//! re-examined, and projected if it sinks by more than a few ε).
+//! closed-form acceleration g(sin θ − μ cos θ); a disc rolling without
+//! slipping down an incline gets (2/3) g sin θ. The sticking friction row
+//! holds the tangential acceleration of the material points at the contact:
+//! exact on a face that does not turn (the rolling disc's case); on a
+//! turning or moving face the contact point's own motion adds a term that is
+//! left out, and the drift it may cause is caught between steps (the pair is
+//! re-classified at every settle).
 //!
 //! Limits: with a large μ the kinetic friction riding on the normal force
 //! can make the problem inconsistent (Painlevé's paradox: the effective
@@ -36,10 +43,12 @@
 //! `Slip` event recorded, at the end of the first piece of step over which
 //! it slid.
 
+use super::persistent::{FollowedPoint, follow};
 use super::rows::{BodyView, Row, RowKind, Side, effective_mass, perp};
 use super::solver::solve;
 use crate::body::{Body, BodyState};
-use crate::collision::{Manifold, collide};
+use crate::collision::Manifold;
+use crate::collision::features::{ContactFeatures, collide_with_features};
 use crate::forces::Wrench;
 use nalgebra::{Isometry2, Vector2};
 
@@ -56,12 +65,36 @@ pub(crate) enum FrictionMode {
     Sliding { direction: Vector2<f64> },
 }
 
-/// A pair held by contact forces.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// A pair held by contact forces, with the features its contact was found
+/// with at the start of the piece of step (module `persistent`).
+#[derive(Debug, Clone, Copy)]
 pub(crate) struct RestingPair {
     pub a: usize,
     pub b: usize,
     pub friction: FrictionMode,
+    pub features: ContactFeatures,
+}
+
+/// Two classifications are the same when the pair, its friction mode and
+/// the identity of its features agree (the features' coordinates move with
+/// the bodies from one settle to the next).
+impl PartialEq for RestingPair {
+    fn eq(&self, other: &Self) -> bool {
+        (self.a, self.b, self.friction, self.features.id())
+            == (other.a, other.b, other.friction, other.features.id())
+    }
+}
+
+impl RestingPair {
+    /// The pair's manifold at `states`, followed from its features, and
+    /// each point's geometry.
+    pub(crate) fn follow(&self, states: &[BodyState]) -> (Manifold, [FollowedPoint; 2]) {
+        follow(
+            &self.features,
+            &pose(&states[self.a]),
+            &pose(&states[self.b]),
+        )
+    }
 }
 
 /// The pose of a body (its centre of mass and angle).
@@ -69,16 +102,17 @@ pub(crate) fn pose(state: &BodyState) -> Isometry2<f64> {
     Isometry2::new(state.position, state.angle)
 }
 
-/// The manifold of bodies `a < b` at their states, within `margin` (m).
-pub(crate) fn manifold_of(
+/// The manifold of bodies `a < b` at their states within `margin` (m), with
+/// the features it is made of.
+pub(crate) fn features_of(
     bodies: &[Body],
     states: &[BodyState],
     a: usize,
     b: usize,
     margin: f64,
-) -> Option<Manifold> {
+) -> Option<(Manifold, ContactFeatures)> {
     let (sa, sb) = (bodies[a].shape.as_ref()?, bodies[b].shape.as_ref()?);
-    collide(sa, &pose(&states[a]), sb, &pose(&states[b]), margin)
+    collide_with_features(sa, &pose(&states[a]), sb, &pose(&states[b]), margin)
 }
 
 /// The rows of one manifold of pair (a, b): one normal row per point (its
@@ -182,6 +216,9 @@ pub(crate) fn islands(views: &[BodyView], pairs: &[(usize, usize)]) -> Vec<usize
 pub(crate) struct Scratch {
     pub views: Vec<BodyView>,
     pub rows: Vec<Row>,
+    /// Per row: what its material-point acceleration misses of the
+    /// separation's d'' (module `persistent`), 0 for friction rows.
+    pub corrections: Vec<f64>,
     pub k: Vec<f64>,
     pub b: Vec<f64>,
     pub lambda: Vec<f64>,
@@ -224,12 +261,16 @@ impl RestingContacts {
                 .zip(wrenches.iter())
                 .map(|(v, w)| (w.force * v.inv_mass, w.torque * v.inv_inertia)),
         );
-        let mut manifolds: Vec<(usize, usize, FrictionMode, Manifold)> = Vec::new();
-        for p in &self.pairs {
-            if let Some(m) = manifold_of(bodies, states, p.a, p.b, self.tolerance) {
-                manifolds.push((p.a, p.b, p.friction, m));
-            }
-        }
+        // Every resting pair's contact, followed from its features at these
+        // poses, whatever its separation now (module `persistent`).
+        let manifolds: Vec<(usize, usize, FrictionMode, Manifold, [FollowedPoint; 2])> = self
+            .pairs
+            .iter()
+            .map(|p| {
+                let (m, followed) = p.follow(states);
+                (p.a, p.b, p.friction, m, followed)
+            })
+            .collect();
         if manifolds.is_empty() {
             return;
         }
@@ -246,8 +287,10 @@ impl RestingContacts {
                 end += 1;
             }
             s.rows.clear();
+            s.corrections.clear();
             for &i in &order[start..end] {
-                let (a, b, mode, m) = &manifolds[i];
+                let (a, b, mode, m, followed) = &manifolds[i];
+                let first = s.rows.len();
                 manifold_rows(
                     &s.views,
                     *a,
@@ -257,12 +300,18 @@ impl RestingContacts {
                     |_, _| 0.0,
                     &mut s.rows,
                 );
+                s.corrections.resize(s.rows.len(), 0.0);
+                for (k, (point, f)) in m.points().iter().zip(followed).enumerate() {
+                    s.corrections[first + k] =
+                        f.correction(&s.views, (*a, *b), point.point, m.normal);
+                }
             }
             s.b.clear();
             s.b.extend(
                 s.rows
                     .iter()
-                    .map(|r| r.acceleration(&s.views, &s.accelerations)),
+                    .zip(&s.corrections)
+                    .map(|(r, c)| r.acceleration(&s.views, &s.accelerations) + c),
             );
             effective_mass(&s.rows, &s.views, &mut s.k);
             solve(&s.rows, &s.k, &s.b, &mut s.lambda);

@@ -81,6 +81,10 @@ pub(crate) enum RowKind {
     /// Non-penetration at one point: λ ≥ 0, and the measured relative
     /// normal motion ≥ its target, complementary.
     Normal,
+    /// A touching point held at its target (a resting point that was left
+    /// separating slower than the resting speed): λ of either sign, and the
+    /// measured motion equal to the target.
+    Hold,
     /// Static friction of one manifold: |λ| ≤ μ Σ λ of the normal rows
     /// `normals`, and the measured tangential motion equal to its target
     /// while inside the cone.

@@ -7,20 +7,36 @@ use crate::error::{EngineError, Result, require_non_negative, require_positive};
 /// How the time of first contact inside a step is found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ToiMethod {
+    /// The seed's bisection for a pair that interpenetrates at the end of
+    /// the step, and conservative advancement for a pair apart at both ends
+    /// whose motion could have closed the gap inside the step: with B the
+    /// bound on the speed at which its points approach (relative speed plus
+    /// |ω| times the rotation radius of each shape, the larger of its
+    /// values at both ends of the step) and d₀, d₁ the separations at both
+    /// ends, the pair stays apart by more than ε over the whole step when
+    /// d₀ + d₁ > B h + 2ε (its separation cannot fall faster than B, from
+    /// either end), and is advanced otherwise. A pair whose end overlaps is
+    /// located exactly as by [`ToiMethod::Bisection`], so nothing changes
+    /// where the seed's search sees the contact; a body crossing a thin one
+    /// within a step is caught. The bound takes the speeds at the step's
+    /// ends: exact under constant accelerations (bodies under gravity), a
+    /// guard otherwise. The default.
+    #[default]
+    Swept,
     /// The seed's bisection of the step (seed §7.2, Fig. 7.7–7.8): when a
     /// pair interpenetrates by more than ε at the end of a step, the
     /// integrator recomputes the state at t + Δt/2, then t + Δt/4 or
     /// t + 3Δt/4, and so on, until the separation is within ±ε. Looks only
     /// at the end of the step: a body crossing a thin one within one step is
-    /// missed (tunnelling). The default.
-    #[default]
+    /// missed (tunnelling).
     Bisection,
-    /// Conservative advancement on the integrator's own solution: from the
-    /// separation d at a time s inside the step, no point can close the gap
-    /// faster than a bound on the relative speed of the two shapes' points
-    /// (the larger of its values at both ends of the step), so the pair
-    /// cannot touch before s + d/bound; advance to it and repeat until
-    /// d ≤ ε. Stops in [0, ε] (never overlapping) and does not tunnel.
+    /// Conservative advancement on the integrator's own solution for every
+    /// pair apart at the step's start: from the separation d at a time s
+    /// inside the step, no point can close the gap faster than a bound on
+    /// the relative speed of the two shapes' points (the larger of its
+    /// values at both ends of the step), so the pair cannot touch before
+    /// s + d/bound; advance to it and repeat until d ≤ ε. Stops in [0, ε]
+    /// (never overlapping) and does not tunnel.
     ConservativeAdvancement,
 }
 
@@ -48,9 +64,14 @@ pub struct ContactSettings {
     /// *resting*: no restitution is applied (the approach velocity is
     /// cancelled) and the pair is held by contact forces computed inside
     /// the integration (seed §7.1 after Baraff). Above it, an impact with
-    /// restitution. Default 1e-3 m/s: a bounce of at most
-    /// v²/(2g) = 5e-8 m is then given up, which ends the infinite sequence
-    /// of ever smaller bounces of e < 1 in finite time.
+    /// restitution, unless the rebound e·v would itself be slower than the
+    /// resting speed (the point then rests). A touching point left
+    /// separating slower than the resting speed (and faster than
+    /// [`Self::sliding_speed`]) after the impulses rests too: its
+    /// separation is cancelled, which only removes energy. Default
+    /// 1e-3 m/s: a bounce of at most v²/(2g) = 5e-8 m is then given up,
+    /// which ends the infinite sequence of ever smaller bounces of e < 1
+    /// (and of a box rocking on its corners) in finite time.
     pub resting_speed: f64,
     /// Tangential speed (m/s) ≥ 0 at or below which a resting contact with
     /// friction *sticks* (static friction holds it, within the cone);
@@ -59,7 +80,8 @@ pub struct ContactSettings {
     /// located by root finding. Default 1e-9 m/s.
     pub sliding_speed: f64,
     /// How the first contact inside a step is found. Default
-    /// [`ToiMethod::Bisection`] (the seed's).
+    /// [`ToiMethod::Swept`] (the seed's bisection, and conservative
+    /// advancement where a pair could have touched inside the step).
     pub toi_method: ToiMethod,
     /// Most distance evaluations of one time-of-impact search before the
     /// step is refused with an error. Default 200.
@@ -78,7 +100,7 @@ impl Default for ContactSettings {
             tolerance: 1e-10,
             resting_speed: 1e-3,
             sliding_speed: 1e-9,
-            toi_method: ToiMethod::Bisection,
+            toi_method: ToiMethod::Swept,
             max_toi_iterations: 200,
             max_events_per_step: 10_000,
         }

@@ -5,7 +5,9 @@
 //! `r = K λ + b`, with `b` the row's free motion minus its target:
 //! - normal rows: `λ ≥ 0`, `r ≥ 0`, `λ r = 0` (push only, and only while
 //!   the points would otherwise approach: Signorini);
-//! - friction rows: `|λ| ≤ μ Σ λ_normal` of their manifold; `r = 0` inside
+//! - hold rows (a resting point left separating slowly, see the
+//!   pipeline): λ of either sign, `r = 0`;
+//! - friction rows: `|λ| ≤ μ max(0, Σ λ_normal)` of their manifold; `r = 0` inside
 //!   the cone, `r ≥ 0` at its lower end and `r ≤ 0` at its upper end
 //!   (Coulomb: sticking, or sliding with the largest friction).
 //!
@@ -20,6 +22,13 @@
 //! to ~1e-16), which is what the harness's 1e-9 m checks need.
 
 use super::rows::{Row, RowKind};
+
+/// The largest contact problem (rows) the dense solver takes: its matrix
+/// has n² entries (2 MiB at 512 rows) and the polish eliminates up to n
+/// unknowns (n³/3 ≈ 4.5e7 operations), and the exact model solves one per
+/// right-hand-side evaluation. A larger problem is refused with a typed
+/// error rather than left to run for minutes.
+pub(crate) const MAX_CONTACT_ROWS: usize = 512;
 
 /// Most PGS sweeps.
 const MAX_SWEEPS: usize = 500;
@@ -38,8 +47,10 @@ const POLISH_TOLERANCE: f64 = 1e-12;
 fn bounds(rows: &[Row], lambda: &[f64], k: usize) -> (f64, f64) {
     match rows[k].kind {
         RowKind::Normal => (0.0, f64::INFINITY),
+        RowKind::Hold => (f64::NEG_INFINITY, f64::INFINITY),
         RowKind::Friction { mu, normals } => {
-            let limit = mu * lambda[normals.0..normals.1].iter().sum::<f64>();
+            // A held row may pull (λ < 0): the cone never turns inside out.
+            let limit = mu * lambda[normals.0..normals.1].iter().sum::<f64>().max(0.0);
             (-limit, limit)
         }
     }
@@ -111,6 +122,10 @@ fn polish(rows: &[Row], k: &[f64], b: &[f64], pgs: &[f64], scale: f64) -> Option
     let mut unknowns = Vec::with_capacity(n);
     for row in 0..n {
         roles[row] = match rows[row].kind {
+            RowKind::Hold => {
+                unknowns.push(row);
+                Role::Unknown(unknowns.len() - 1)
+            }
             RowKind::Normal => {
                 if pgs[row] > tiny {
                     unknowns.push(row);
@@ -148,7 +163,7 @@ fn polish(rows: &[Row], k: &[f64], b: &[f64], pgs: &[f64], scale: f64) -> Option
                         _ => None,
                     })
                     .collect(),
-                RowKind::Normal => Vec::new(),
+                RowKind::Normal | RowKind::Hold => Vec::new(),
             },
         }
     };
@@ -176,6 +191,7 @@ fn polish(rows: &[Row], k: &[f64], b: &[f64], pgs: &[f64], scale: f64) -> Option
         let ok = match (rows[row].kind, roles[row]) {
             (RowKind::Normal, Role::Unknown(_)) => lambda[row] >= -tol_l,
             (RowKind::Normal, _) => r >= -tol_r,
+            (RowKind::Hold, _) => true,
             (RowKind::Friction { .. }, Role::Unknown(_)) => {
                 let (_, hi) = bounds(rows, &lambda, row);
                 lambda[row].abs() <= hi + tol_l

@@ -60,12 +60,14 @@ registry! {
     collision_slide,
     collision_incline,
     collision_rest,
+    rolling_disc,
     stack,
     pyramid,
     friction_ramp,
     overlap_recovery,
     mass_ratio,
     container,
+    fuzz_scenes,
 }
 
 /// The case with this id.

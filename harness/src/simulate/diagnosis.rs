@@ -145,11 +145,12 @@ fn energy_hint(scene: &Scene, world: &World) -> String {
         .enumerate()
         .filter(|(i, _)| world.bodies()[*i].is_dynamic())
         .max_by(|a, b| a.1.velocity.norm().total_cmp(&b.1.velocity.norm()));
+    // The world is left at the start of the failed step.
     let body = fastest.map_or(String::new(), |(i, s)| {
         format!(
-            " (body '{}' moves at {} m/s)",
+            " (the fastest body when the step began: '{}', at {} m/s)",
             names[i],
-            readable(s.velocity.norm())
+            engine::error::approximate(s.velocity.norm())
         )
     });
     format!(

@@ -45,6 +45,7 @@ pub fn model_line(world: &World) -> String {
             match s.toi_method {
                 ToiMethod::Bisection => "bisection",
                 ToiMethod::ConservativeAdvancement => "conservative advancement",
+                ToiMethod::Swept => "swept search (bisection, conservative advancement when fast)",
             },
         ),
         None => "contacts: off (the scene has no [contact] table: shapes pass through each other)"

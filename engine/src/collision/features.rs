@@ -1,0 +1,290 @@
+//! The features a contact is made of, in the shapes' own frames: what a
+//! contact that persists over a stretch of time needs in order to be
+//! followed as the bodies move, without asking the narrow phase again.
+//!
+//! The narrow phase ([`super::collide`]) answers "do these shapes touch, and
+//! where?" for one pair of poses. A resting contact of the exact model is
+//! held by forces computed at every evaluation of the right-hand side, at
+//! poses that an integrator's stages extrapolate (an RK4 stage is off the
+//! true path by O(h²)); asking the narrow phase there, with a margin of ε,
+//! loses a contact whose stage pose lifts its point by more than ε, and the
+//! contact force vanishes for that stage. Instead, the features found when
+//! the contact was classified are kept, fixed in each body's frame, and
+//! re-evaluated exactly at every pose:
+//!
+//! - [`ContactFeatures::Face`]: points of the *incident* shape (polygon
+//!   vertices or clip points, or a circle's centre with its radius) against
+//!   the *reference* face of the other polygon, as the SAT found them
+//!   (seed §7.2, Fig. 7.2–7.4);
+//! - [`ContactFeatures::Round`]: two round features (circle centres with
+//!   their radii, or a polygon vertex with radius 0), the normal along the
+//!   line between them.
+//!
+//! Frames: a shape's frame is its body's (origin at the centre of mass); a
+//! circle is centred on it.
+
+use super::manifold::Manifold;
+use super::polygon_circle::{PolygonFeature, closest_polygon_circle, edge_normal};
+use super::polygon_polygon::{Face, IncidentPoint, clip_polygon_polygon_on, equally_deep_faces};
+use crate::shape::Shape;
+use nalgebra::{Isometry2, Point2, Vector2};
+
+/// The features of one contact manifold, in the shapes' frames (m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum ContactFeatures {
+    /// Points of the incident shape against a face of the reference one.
+    Face {
+        /// Whether the reference face is on shape A (else on B).
+        reference_is_a: bool,
+        /// The reference face's outward unit normal, reference frame.
+        normal: Vector2<f64>,
+        /// A point of the reference face (its first vertex), reference
+        /// frame (m).
+        face_point: Vector2<f64>,
+        /// The incident shape's points, incident frame (m); `count` of them.
+        points: [Vector2<f64>; 2],
+        /// 1 or 2.
+        count: usize,
+        /// The incident shape's radius (m): a circle's, 0 for a polygon.
+        radius: f64,
+        /// Which features these are, for telling a change of contact
+        /// topology from a motion of the same contact.
+        id: FeatureId,
+    },
+    /// Two round features, the normal along the line between them.
+    Round {
+        /// A's feature point (a vertex, or the circle's centre), A's frame.
+        point_a: Vector2<f64>,
+        /// A's radius (m): a circle's, 0 for a vertex.
+        radius_a: f64,
+        /// B's feature point, B's frame.
+        point_b: Vector2<f64>,
+        /// B's radius (m).
+        radius_b: f64,
+        /// Which features these are.
+        id: FeatureId,
+    },
+}
+
+/// Identifies the features of a contact: the reference edge and the
+/// incident points' origins (vertex indices or clip sides), packed. Two
+/// classifications of the same pair with the same id follow the same
+/// features.
+pub(crate) type FeatureId = u64;
+
+impl ContactFeatures {
+    /// The identity of the features.
+    pub(crate) fn id(&self) -> FeatureId {
+        match self {
+            ContactFeatures::Face { id, .. } | ContactFeatures::Round { id, .. } => *id,
+        }
+    }
+
+    /// The number of points (1 or 2), in the manifold's order.
+    pub(crate) fn count(&self) -> usize {
+        match self {
+            ContactFeatures::Face { count, .. } => *count,
+            ContactFeatures::Round { .. } => 1,
+        }
+    }
+
+    /// The features of the points whose `keep` flag is set (in the
+    /// manifold's order), `None` if none is.
+    pub(crate) fn retain(&self, keep: [bool; 2]) -> Option<ContactFeatures> {
+        let count = self.count();
+        let kept: Vec<usize> = (0..count).filter(|&k| keep[k]).collect();
+        if kept.is_empty() {
+            return None;
+        }
+        if kept.len() == count {
+            return Some(*self);
+        }
+        match *self {
+            ContactFeatures::Face {
+                reference_is_a,
+                normal,
+                face_point,
+                points,
+                radius,
+                id,
+                ..
+            } => Some(ContactFeatures::Face {
+                reference_is_a,
+                normal,
+                face_point,
+                points: [points[kept[0]]; 2],
+                count: 1,
+                radius,
+                // Which of the two points is left is part of the identity.
+                id: id ^ (1 << (61 + kept[0])),
+            }),
+            round @ ContactFeatures::Round { .. } => Some(round),
+        }
+    }
+}
+
+fn incident_code(p: IncidentPoint) -> u64 {
+    match p {
+        IncidentPoint::Vertex(i) => 2 + i as u64,
+        IncidentPoint::Clip(side) => side as u64,
+    }
+}
+
+fn polygon_feature_code(f: PolygonFeature) -> u64 {
+    match f {
+        PolygonFeature::Edge(i) => 2 * i as u64,
+        PolygonFeature::Vertex(i) => 2 * i as u64 + 1,
+    }
+}
+
+/// The manifold of shapes `a` at `pose_a` and `b` at `pose_b` within
+/// `margin` (m), as [`super::collide`] gives it, with its features.
+/// `None` when they are apart, or for a compound shape (the exact model,
+/// the only user, refuses compounds).
+pub(crate) fn collide_with_features(
+    a: &Shape,
+    pose_a: &Isometry2<f64>,
+    b: &Shape,
+    pose_b: &Isometry2<f64>,
+    margin: f64,
+) -> Option<(Manifold, ContactFeatures)> {
+    collide_on_face(a, pose_a, b, pose_b, margin, None)
+}
+
+/// The faces along which two polygons are equally deep, to `tolerance` (m),
+/// best first, each with its normal from A to B ([`equally_deep_faces`]);
+/// empty unless both shapes are polygons.
+pub(crate) fn equally_deep(
+    a: &Shape,
+    pose_a: &Isometry2<f64>,
+    b: &Shape,
+    pose_b: &Isometry2<f64>,
+    tolerance: f64,
+) -> Vec<(Face, Vector2<f64>)> {
+    match (a, b) {
+        (Shape::Polygon(pa), Shape::Polygon(pb)) => {
+            equally_deep_faces(pa, pose_a, pb, pose_b, tolerance)
+        }
+        _ => Vec::new(),
+    }
+}
+
+/// [`collide_with_features`] with two polygons clipped on the reference
+/// face `face` instead of the SAT's best (ignored for circles).
+pub(crate) fn collide_on_face(
+    a: &Shape,
+    pose_a: &Isometry2<f64>,
+    b: &Shape,
+    pose_b: &Isometry2<f64>,
+    margin: f64,
+    face: Option<Face>,
+) -> Option<(Manifold, ContactFeatures)> {
+    match (a, b) {
+        (Shape::Polygon(pa), Shape::Polygon(pb)) => {
+            let (m, f) = clip_polygon_polygon_on(pa, pose_a, pb, pose_b, margin, face)?;
+            let (reference, incident_pose) = if f.reference_is_a {
+                (pa, pose_b)
+            } else {
+                (pb, pose_a)
+            };
+            let v = reference.vertices();
+            let (v1, v2) = (v[f.edge], v[(f.edge + 1) % v.len()]);
+            // The points are in A's frame: to the incident frame.
+            let to_incident = |p: Vector2<f64>| {
+                if f.reference_is_a {
+                    let world = pose_a.transform_point(&Point2::from(p));
+                    incident_pose.inverse_transform_point(&world).coords
+                } else {
+                    p
+                }
+            };
+            let id = ((f.reference_is_a as u64) << 63)
+                | ((f.edge as u64) << 40)
+                | (incident_code(f.ids[0]) << 20)
+                | incident_code(f.ids[f.count - 1]);
+            Some((
+                m,
+                ContactFeatures::Face {
+                    reference_is_a: f.reference_is_a,
+                    normal: edge_normal(v1, v2),
+                    face_point: v1,
+                    points: [to_incident(f.points[0]), to_incident(f.points[1])],
+                    count: f.count,
+                    radius: 0.0,
+                    id,
+                },
+            ))
+        }
+        (Shape::Polygon(p), Shape::Circle(c)) => {
+            let (proximity, feature) = closest_polygon_circle(p, pose_a, c, pose_b);
+            // A NaN distance (non-finite input) reports no contact.
+            (proximity.distance <= margin).then_some(())?;
+            Some((
+                proximity.one_point_manifold(),
+                polygon_circle_features(p.vertices(), feature, c.radius, true),
+            ))
+        }
+        (Shape::Circle(c), Shape::Polygon(p)) => {
+            let (proximity, feature) = closest_polygon_circle(p, pose_b, c, pose_a);
+            (proximity.distance <= margin).then_some(())?;
+            Some((
+                proximity.one_point_manifold().flipped(),
+                polygon_circle_features(p.vertices(), feature, c.radius, false),
+            ))
+        }
+        (Shape::Circle(ca), Shape::Circle(cb)) => {
+            let m = super::collide_circle_circle_with_margin(ca, pose_a, cb, pose_b, margin)?;
+            Some((
+                m,
+                ContactFeatures::Round {
+                    point_a: Vector2::zeros(),
+                    radius_a: ca.radius,
+                    point_b: Vector2::zeros(),
+                    radius_b: cb.radius,
+                    id: 0,
+                },
+            ))
+        }
+        (Shape::Compound(_), _) | (_, Shape::Compound(_)) => None,
+    }
+}
+
+/// The features of a polygon touching a circle at `feature`;
+/// `polygon_is_a` says which of the pair the polygon is.
+fn polygon_circle_features(
+    vertices: &[Vector2<f64>],
+    feature: PolygonFeature,
+    radius: f64,
+    polygon_is_a: bool,
+) -> ContactFeatures {
+    let id = polygon_feature_code(feature);
+    match feature {
+        PolygonFeature::Edge(i) => {
+            let (v1, v2) = (vertices[i], vertices[(i + 1) % vertices.len()]);
+            ContactFeatures::Face {
+                reference_is_a: polygon_is_a,
+                normal: edge_normal(v1, v2),
+                face_point: v1,
+                points: [Vector2::zeros(); 2],
+                count: 1,
+                radius,
+                id,
+            }
+        }
+        PolygonFeature::Vertex(i) => {
+            let (vertex, centre) = ((vertices[i], 0.0), (Vector2::zeros(), radius));
+            let ((point_a, radius_a), (point_b, radius_b)) = if polygon_is_a {
+                (vertex, centre)
+            } else {
+                (centre, vertex)
+            };
+            ContactFeatures::Round {
+                point_a,
+                radius_a,
+                point_b,
+                radius_b,
+                id,
+            }
+        }
+    }
+}
