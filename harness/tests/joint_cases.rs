@@ -58,3 +58,38 @@ fn boxes_pivoted_at_a_corner_over_ten_periods_keep_their_rows() {
         rows_of("physical_pendulum", &report)
     );
 }
+
+#[test]
+fn a_double_pendulum_follows_its_reference_up_to_the_horizon() {
+    let report =
+        harness::cases::double_pendulum::run_sized(harness::cases::double_pendulum::Size::REDUCED)
+            .expect("double_pendulum runs");
+    insta::assert_snapshot!(
+        "double_pendulum_reduced",
+        rows_of("double_pendulum", &report)
+    );
+}
+
+#[test]
+fn a_chain_rests_on_its_elastic_equilibrium() {
+    let report = harness::cases::chain::run_sized(false).expect("chain runs");
+    assert_eq!(report.rows.len(), 2);
+    insta::assert_snapshot!("chain_reduced", rows_of("chain", &report));
+}
+
+#[test]
+fn a_sprung_slider_oscillates_and_rests_where_it_must() {
+    let report = harness::cases::slider::run_sized(false).expect("slider runs");
+    assert_eq!(report.rows.len(), 5);
+    insta::assert_snapshot!("slider_reduced", rows_of("slider", &report));
+}
+
+#[test]
+fn motors_and_a_limit_do_what_their_rows_say() {
+    let report = harness::cases::joint_motor_limit::run_sized(false).expect("case runs");
+    assert_eq!(report.rows.len(), 7);
+    insta::assert_snapshot!(
+        "joint_motor_limit_reduced",
+        rows_of("joint_motor_limit", &report)
+    );
+}

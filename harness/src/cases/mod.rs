@@ -71,6 +71,10 @@ registry! {
     container,
     pendulum,
     physical_pendulum,
+    double_pendulum,
+    chain,
+    slider,
+    joint_motor_limit,
 }
 
 /// The case with this id.
