@@ -29,7 +29,8 @@
 //! complete elliptic integral and Jacobi's functions (AGM and Landen),
 //! the double pendulum of two rigid bodies by DOP853 with its error
 //! estimate and chaos horizon, the catenary and the exact equilibrium of
-//! a chain of rigid links (on rigid or on elastic pins), the inclined spring slider in closed form.
+//! a chain of rigid links (on rigid or on elastic pins), the inclined
+//! spring slider in closed form.
 //!
 //! Other engines, run on the same scenes for comparison: rapier2d-f64
 //! ([`rapier_world`] single bodies, [`rapier_contacts`] collision scenes),
