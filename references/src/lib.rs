@@ -16,7 +16,7 @@
 //! | stiff test, `hoffman`      | §4.3                 | [`hoffman`]             |
 //! | `pendulum`, `physical_pendulum` | (not in the seed) | [`pendulum`]       |
 //! | `double_pendulum`          | (not in the seed)    | [`double_pendulum`]     |
-//! | `chain`                    | (not in the seed)    | [`catenary`]            |
+//! | `chain`                    | (not in the seed)    | [`catenary`], [`elastic_chain`] |
 //! | `slider`                   | (not in the seed)    | [`slider`]              |
 //!
 //! The first five are closed forms. The quadratic-drag projectile has none in
@@ -29,7 +29,8 @@
 //! complete elliptic integral and Jacobi's functions (AGM and Landen),
 //! the double pendulum of two rigid bodies by DOP853 with its error
 //! estimate and chaos horizon, the catenary and the exact equilibrium of
-//! a chain of rigid links, the inclined spring slider in closed form.
+//! a chain of rigid links (on rigid or on elastic pins), the inclined
+//! spring slider in closed form.
 //!
 //! Other engines, run on the same scenes for comparison: rapier2d-f64
 //! ([`rapier_world`] single bodies, [`rapier_contacts`] collision scenes),
@@ -49,6 +50,7 @@ pub mod catenary;
 pub mod double_pendulum;
 pub mod drag_projectile;
 pub mod drag_reference_values;
+pub mod elastic_chain;
 pub mod hoffman;
 pub mod linear_stability;
 pub mod many_body;

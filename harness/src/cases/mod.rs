@@ -24,6 +24,9 @@ mod common;
 
 pub mod collision_common;
 mod collision_plots;
+pub mod joint_common;
+mod pendulum_charts;
+pub mod pendulum_swing;
 pub mod soft_step_common;
 
 pub use case::{
@@ -67,6 +70,12 @@ registry! {
     overlap_recovery,
     mass_ratio,
     container,
+    pendulum,
+    physical_pendulum,
+    double_pendulum,
+    chain,
+    slider,
+    joint_motor_limit,
     fuzz_scenes,
 }
 
