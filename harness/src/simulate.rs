@@ -565,7 +565,7 @@ fn film_of(scene: &Scene, world: &World, recorded: &Recorded, method: Method, dt
         scene,
         world.bodies(),
         name,
-        format!("{}, dt = {dt} s", method.id()),
+        format!("{}, dt = {} s", method.id(), fmt_short(dt)),
     );
     recorded.fill(&mut film);
     film.mark_events(scene, &recorded.events);

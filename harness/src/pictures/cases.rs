@@ -96,8 +96,8 @@ fn draw_case(id: &str) -> Result<Drawn> {
     let subtitle = format!(
         "{}, dt = {} s, {} s",
         method.id(),
-        scene.dt(),
-        scene.duration()
+        crate::simulate::fmt_short(scene.dt()),
+        crate::simulate::fmt_short(scene.duration())
     );
     let title = format!("{id} (scenes/{id}.toml)");
     if let Some(test) = scene.linear_test() {

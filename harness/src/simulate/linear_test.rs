@@ -101,7 +101,7 @@ pub(super) fn run_linear_test(
             "--trace" => csv.clone().into_bytes(),
             "--svg" => pictures::svg::linear_test_curve(
                 scene.origin(),
-                &format!("{}, dt = {dt} s", method.id()),
+                &format!("{}, dt = {} s", method.id(), super::fmt_short(dt)),
                 &run.t,
                 &run.y,
                 |t| test.exact(t),
