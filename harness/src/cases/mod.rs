@@ -66,6 +66,7 @@ registry! {
     overlap_recovery,
     mass_ratio,
     container,
+    falling_hinges,
 }
 
 /// The case with this id.
