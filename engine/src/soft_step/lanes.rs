@@ -18,7 +18,7 @@
 //! packed operations), and the solve pass took more instructions than with
 //! `wide`, whose operations are the SSE2 intrinsics themselves.
 
-use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
+use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 use wide::{CmpEq, CmpGt, f64x4};
 
 /// Number of lanes: constraints solved at once.
@@ -127,6 +127,7 @@ pub(crate) trait Lanes:
     + Add<Output = Self>
     + Sub<Output = Self>
     + Mul<Output = Self>
+    + Div<Output = Self>
     + Neg<Output = Self>
     + AddAssign
     + SubAssign
@@ -241,6 +242,14 @@ impl Mul for F64x4 {
     }
 }
 
+impl Div for F64x4 {
+    type Output = F64x4;
+    #[inline(always)]
+    fn div(self, other: F64x4) -> F64x4 {
+        F64x4(self.0 / other.0)
+    }
+}
+
 impl Neg for F64x4 {
     type Output = F64x4;
     /// Flips the sign bit, as the scalar `-x` (`wide`'s own negation is
@@ -265,6 +274,37 @@ impl SubAssign for F64x4 {
     }
 }
 
+/// Runs `$generic::<lane type>(args)` with AVX lanes when the CPU has AVX,
+/// with SSE2 lanes otherwise; `$avx` is the AVX-compiled instance. (The
+/// wide passes of the contacts, [`super::wide_solver`], and of the
+/// revolute joints, `super::joints::wide_revolute`, are written once,
+/// generic over [`Lanes`], and dispatched by this.)
+macro_rules! dispatch {
+    ($generic:ident, $avx:ident, ($($arg:ident: $ty:ty),*)) => {
+        /// The AVX instance.
+        ///
+        /// # Safety
+        /// The CPU must have AVX. (An `unsafe fn`, not a safe one with a
+        /// target feature, which needs Rust 1.86: the workspace's minimum
+        /// is 1.85.)
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx")]
+        unsafe fn $avx($($arg: $ty),*) {
+            $generic::<$crate::soft_step::lanes_avx::Avx4>($($arg),*)
+        }
+
+        #[cfg(target_arch = "x86_64")]
+        if $crate::soft_step::lanes_avx::detected() {
+            // SAFETY: the CPU has AVX (just checked), which is all `$avx`
+            // requires.
+            unsafe { $avx($($arg),*) };
+            return;
+        }
+        $generic::<$crate::soft_step::lanes::F64x4>($($arg),*);
+    };
+}
+pub(crate) use dispatch;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -278,6 +318,7 @@ mod tests {
             assert_eq!((a + b).lane(i), x + y);
             assert_eq!((a - b).lane(i), x - y);
             assert_eq!((a * b).lane(i), x * y);
+            assert_eq!((a / b).lane(i), x / y);
             assert_eq!((-a).lane(i), -x);
             assert_eq!(a.max(b).lane(i), x.max(y));
             assert_eq!(a.min(b).lane(i), x.min(y));

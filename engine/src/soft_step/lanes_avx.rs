@@ -6,25 +6,26 @@
 //! Why: with SSE2 a four-lane value takes two registers and each operation
 //! two instructions, and the two-operand SSE2 forms need register copies;
 //! AVX does four lanes per instruction in three-operand form. Only plain
-//! IEEE adds, subtractions, multiplications, comparisons, `maxpd`/`minpd`
+//! IEEE adds, subtractions, multiplications, divisions, comparisons, `maxpd`/`minpd`
 //! and blends are used (no fused multiply-add), so the results are the
 //! same bits as the SSE2 path and the scalar solver: which path runs does
 //! not change the simulation.
 //!
 //! Safety: an [`Avx4`] executes AVX instructions in its operations. Values
-//! of it exist only inside the functions of [`super::wide_solver`] marked
-//! `#[target_feature(enable = "avx")]`, which are entered only after
-//! [`detected`] returned true; that is the invariant every `unsafe` block
+//! of it exist only inside the functions of [`super::wide_solver`] and of
+//! the revolute joints' wide passes (`super::joints::wide_revolute`) marked
+//! `#[target_feature(enable = "avx")]` by [`super::lanes::dispatch`], which
+//! are entered only after [`detected`] returned true; that is the invariant every `unsafe` block
 //! here relies on. The type is private to the soft step.
 
 use super::lanes::{F64x4, LANES, Lanes};
 use std::arch::x86_64::{
-    __m256d, _CMP_EQ_OQ, _CMP_GT_OQ, _mm256_add_pd, _mm256_blendv_pd, _mm256_cmp_pd,
+    __m256d, _CMP_EQ_OQ, _CMP_GT_OQ, _mm256_add_pd, _mm256_blendv_pd, _mm256_cmp_pd, _mm256_div_pd,
     _mm256_load_pd, _mm256_loadu_pd, _mm256_max_pd, _mm256_min_pd, _mm256_movemask_pd,
     _mm256_mul_pd, _mm256_or_pd, _mm256_set1_pd, _mm256_store_pd, _mm256_storeu_pd, _mm256_sub_pd,
     _mm256_xor_pd,
 };
-use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
+use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
 /// Whether this CPU has AVX (cached by the standard library after the
 /// first call).
@@ -63,6 +64,7 @@ macro_rules! binary {
 binary!(Add, add, _mm256_add_pd);
 binary!(Sub, sub, _mm256_sub_pd);
 binary!(Mul, mul, _mm256_mul_pd);
+binary!(Div, div, _mm256_div_pd);
 
 impl Neg for Avx4 {
     type Output = Avx4;
@@ -189,6 +191,7 @@ mod tests {
         same(p + q, a + b);
         same(p - q, a - b);
         same(p * q, a * b);
+        same(p / q, a / b);
         same(-p, -a);
         same(p.max(q), Lanes::max(a, b));
         same(p.min(q), Lanes::min(a, b));

@@ -23,9 +23,7 @@
 use super::bodies::SolverBody;
 use super::contact_solver::{ConstraintPoint, ContactConstraint};
 use super::contacts::Contact;
-use super::lanes::{F64x4, LANES, Lanes};
-#[cfg(target_arch = "x86_64")]
-use super::lanes_avx::{self, Avx4};
+use super::lanes::{F64x4, LANES, Lanes, dispatch};
 
 /// One point of four constraints.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -142,10 +140,10 @@ pub(crate) fn set_padding_lane((w, e): (&mut WideConstraint, &mut WideExtra), l:
 
 /// Four bodies' velocities: what the passes change.
 #[derive(Clone, Copy)]
-struct WideBody<L> {
-    vx: L,
-    vy: L,
-    w: L,
+pub(super) struct WideBody<L> {
+    pub(super) vx: L,
+    pub(super) vy: L,
+    pub(super) w: L,
 }
 
 impl<L: Lanes> WideBody<L> {
@@ -160,13 +158,13 @@ impl<L: Lanes> WideBody<L> {
 /// in the generic pass code: a closure is compiled without the AVX
 /// feature of the function it sits in, so it would not be inlined there.)
 #[inline(always)]
-fn field<L: Lanes>(b: &[&SolverBody; LANES], f: fn(&SolverBody) -> f64) -> L {
+pub(super) fn field<L: Lanes>(b: &[&SolverBody; LANES], f: fn(&SolverBody) -> f64) -> L {
     L::from_array([f(b[0]), f(b[1]), f(b[2]), f(b[3])])
 }
 
 /// Reads the velocities of the four lanes' bodies.
 #[inline(always)]
-fn gather<L: Lanes>(bodies: &[SolverBody], index: &[u32; LANES]) -> WideBody<L> {
+pub(super) fn gather<L: Lanes>(bodies: &[SolverBody], index: &[u32; LANES]) -> WideBody<L> {
     let b = [0, 1, 2, 3].map(|l| &bodies[index[l] as usize]);
     WideBody {
         vx: field(&b, |b| b.v.x),
@@ -179,7 +177,7 @@ fn gather<L: Lanes>(bodies: &[SolverBody], index: &[u32; LANES]) -> WideBody<L> 
 /// is static or kinematic, whose velocity no lane changed, so the order of
 /// the writes does not matter.
 #[inline(always)]
-fn scatter<L: Lanes>(bodies: &mut [SolverBody], index: &[u32; LANES], w: &WideBody<L>) {
+pub(super) fn scatter<L: Lanes>(bodies: &mut [SolverBody], index: &[u32; LANES], w: &WideBody<L>) {
     let (vx, vy, omega) = (w.vx.to_array(), w.vy.to_array(), w.w.to_array());
     for (l, &i) in index.iter().enumerate() {
         let b = &mut bodies[i as usize];
@@ -308,33 +306,6 @@ fn apply<L: Lanes>(
     b.vx += m.b * px;
     b.vy += m.b * py;
     b.w += m.ib * (r.rb_x * py - r.rb_y * px);
-}
-
-/// Runs `$generic::<lane type>(args)` with AVX lanes when the CPU has AVX,
-/// with SSE2 lanes otherwise; `$avx` is the AVX-compiled instance.
-macro_rules! dispatch {
-    ($generic:ident, $avx:ident, ($($arg:ident: $ty:ty),*)) => {
-        /// The AVX instance.
-        ///
-        /// # Safety
-        /// The CPU must have AVX. (An `unsafe fn`, not a safe one with a
-        /// target feature, which needs Rust 1.86: the workspace's minimum
-        /// is 1.85.)
-        #[cfg(target_arch = "x86_64")]
-        #[target_feature(enable = "avx")]
-        unsafe fn $avx($($arg: $ty),*) {
-            $generic::<Avx4>($($arg),*)
-        }
-
-        #[cfg(target_arch = "x86_64")]
-        if lanes_avx::detected() {
-            // SAFETY: the CPU has AVX (just checked), which is all `$avx`
-            // requires.
-            unsafe { $avx($($arg),*) };
-            return;
-        }
-        $generic::<F64x4>($($arg),*);
-    };
 }
 
 /// Applies every constraint's accumulated impulses.

@@ -93,8 +93,8 @@ impl Revolute {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct RevoluteRows {
     pub joint: Revolute,
-    spring_softness: Softness,
-    axial_mass: f64,
+    pub(super) spring_softness: Softness,
+    pub(super) axial_mass: f64,
     pub linear: Vector2<f64>,
     pub spring: f64,
     pub motor: f64,

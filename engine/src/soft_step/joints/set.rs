@@ -3,7 +3,17 @@
 //! the solver records (frame, rows and impulses, one enum per joint), the
 //! joints of each body (for the collision filter and for removal), and the
 //! passes over them: prepare once per step, then warm start, solve and
-//! relax in every substep, one joint at a time in the order added.
+//! relax in every substep, and the impulses stored back after the step.
+//!
+//! Prepare colours the active revolute joints (the most common type) by
+//! their dynamic bodies, as the contacts are coloured
+//! ([`crate::soft_step::colouring`], its own instance), and writes each
+//! into its lane of a four-lane record of its colour
+//! ([`super::wide_revolute`]); the other types and the revolute joints
+//! that find no colour stay scalar. Each pass solves the scalar joints one
+//! at a time in the order added, then the records colour after colour:
+//! another valid order of the same Gauss–Seidel iteration, whose lanes
+//! give the scalar solver's bits.
 
 use super::distance::DistanceRows;
 use super::frame::JointFrame;
@@ -11,6 +21,7 @@ use super::prismatic::PrismaticRows;
 use super::revolute::RevoluteRows;
 use super::target::TargetRows;
 use super::weld::WeldRows;
+use super::wide_revolute::{self, WideAxial, WideRevolute};
 use super::{
     Distance, JointDef, JointId, JointKind, JointState, JointType, Target, invalid, world_point,
     wrap_angle,
@@ -19,6 +30,7 @@ use crate::body::{BodyId, BodyKind, BodyState};
 use crate::error::{EngineError, Result};
 use crate::soft_step::Softness;
 use crate::soft_step::bodies::{BodyMass, BodySim, SolverBody, solver_index};
+use crate::soft_step::colouring::{Colouring, Slot};
 use crate::world_core::WorldCore;
 use nalgebra::Vector2;
 use smallvec::SmallVec;
@@ -83,6 +95,18 @@ pub(crate) struct JointSet {
     body_joints: Vec<SmallVec<[JointEdge; 4]>>,
     /// 1/h of the last step's substep (1/s), for the reaction forces.
     inv_h: f64,
+    /// The step's colouring of the active revolute joints, in the order
+    /// added.
+    colouring: Colouring,
+    /// The joints coloured, in the order added (the colouring's order).
+    coloured: Vec<u32>,
+    /// The joints solved one at a time, in the order added: every active
+    /// joint but the revolute joints in a lane.
+    scalar: Vec<u32>,
+    /// The revolute joints of the step's colours, four per record, colour
+    /// after colour, and their angle rows.
+    wide: Vec<WideRevolute>,
+    axial: Vec<WideAxial>,
 }
 
 /// A body's pose and masses as prepare reads them.
@@ -395,12 +419,79 @@ impl JointSet {
                 JointRows::Target(t) => t.prepare(h, warm),
             }
         }
+        self.colour(masses, h);
     }
 
-    /// Applies every active joint's accumulated impulses.
+    /// Colours the active revolute joints and lays them out in lanes; the
+    /// other active joints, and those that found no colour, go to the
+    /// scalar list. Nothing is allocated once the lists have grown to the
+    /// scene's size.
+    fn colour(&mut self, masses: &[BodyMass], h: f64) {
+        let dynamic = |body: Option<BodyId>| body.filter(|&b| masses[b].kind == BodyKind::Dynamic);
+        self.colouring.clear(masses.len());
+        self.coloured.clear();
+        for (id, (sim, info)) in self.sims.iter().zip(&self.infos).enumerate() {
+            if sim.active && matches!(sim.rows, JointRows::Revolute(_)) {
+                self.colouring
+                    .add(dynamic(info.body_a), dynamic(info.body_b));
+                self.coloured.push(id as u32);
+            }
+        }
+        let records = self.colouring.finish();
+        self.wide.resize(records, WideRevolute::default());
+        self.axial.resize(records, WideAxial::default());
+        for w in &mut self.wide {
+            w.axial = false;
+        }
+        self.scalar.clear();
+        let mut coloured = 0;
+        for (id, sim) in self.sims.iter().enumerate() {
+            if !sim.active {
+                continue;
+            }
+            let JointRows::Revolute(rows) = &sim.rows else {
+                self.scalar.push(id as u32);
+                continue;
+            };
+            match self.colouring.slot(coloured) {
+                Slot::Lane { record, lane } => wide_revolute::set_lane(
+                    (&mut self.wide[record], &mut self.axial[record]),
+                    lane,
+                    (&sim.frame, rows),
+                    h,
+                ),
+                Slot::Overflow(_) => self.scalar.push(id as u32),
+            }
+            coloured += 1;
+        }
+        for (record, lane) in self.colouring.padding() {
+            wide_revolute::set_padding_lane(
+                (&mut self.wide[record], &mut self.axial[record]),
+                lane,
+            );
+        }
+    }
+
+    /// The impulses of the joints in lanes back into their records, after
+    /// the step (for the next step's warm start and the joints' states).
+    #[inline(never)]
+    pub(crate) fn store_impulses(&mut self) {
+        for (i, &id) in self.coloured.iter().enumerate() {
+            let Slot::Lane { record, lane } = self.colouring.slot(i) else {
+                continue;
+            };
+            if let JointRows::Revolute(rows) = &mut self.sims[id as usize].rows {
+                wide_revolute::store_lane((&self.wide[record], &self.axial[record]), lane, rows);
+            }
+        }
+    }
+
+    /// Applies every active joint's accumulated impulses: the scalar
+    /// joints, then the records.
     #[inline(never)]
     pub(crate) fn warm_start(&self, bodies: &mut [SolverBody]) {
-        for sim in self.sims.iter().filter(|s| s.active) {
+        for &id in &self.scalar {
+            let sim = &self.sims[id as usize];
             let f = &sim.frame;
             let (mut a, mut b) = (bodies[f.a], bodies[f.b]);
             match &sim.rows {
@@ -412,15 +503,18 @@ impl JointSet {
             }
             store(bodies, f, &a, &b);
         }
+        wide_revolute::warm_start(&self.wide, &self.axial, bodies);
     }
 
-    /// One pass of sequential impulses over the active joints, with the
-    /// rigid rows' soft bias (`use_bias`, the solve pass) or without (the
-    /// relax pass), for substeps of `h` (s).
+    /// One pass of sequential impulses over the active joints (the scalar
+    /// ones, then the records), with the rigid rows' soft bias
+    /// (`use_bias`, the solve pass) or without (the relax pass), for
+    /// substeps of `h` (s).
     #[inline(never)]
     pub(crate) fn solve(&mut self, bodies: &mut [SolverBody], h: f64, use_bias: bool) {
         let inv_h = 1.0 / h;
-        for sim in self.sims.iter_mut().filter(|s| s.active) {
+        for &id in &self.scalar {
+            let sim = &mut self.sims[id as usize];
             let f = &sim.frame;
             let (mut a, mut b) = (bodies[f.a], bodies[f.b]);
             let pair = (&mut a, &mut b);
@@ -432,6 +526,11 @@ impl JointSet {
                 JointRows::Target(t) => t.solve(f, pair, h),
             }
             store(bodies, f, &a, &b);
+        }
+        if use_bias {
+            wide_revolute::solve(&mut self.wide, &mut self.axial, bodies, inv_h);
+        } else {
+            wide_revolute::relax(&mut self.wide, &mut self.axial, bodies, inv_h);
         }
     }
 
