@@ -18,6 +18,7 @@
 //! packed operations), and the solve pass took more instructions than with
 //! `wide`, whose operations are the SSE2 intrinsics themselves.
 
+use super::bodies::SolverBody;
 use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 use wide::{CmpEq, CmpGt, f64x4};
 
@@ -163,6 +164,33 @@ pub(crate) trait Lanes:
     #[inline(always)]
     fn clamp(self, lo: Self, hi: Self) -> Self {
         self.max(lo).min(hi)
+    }
+
+    /// Row `row` of four bodies' records ([`SolverBody::rows`]),
+    /// transposed: `[v.x, v.y, ω, Δp.x]` (row 0) or `[Δp.y, Δθ, cos Δθ,
+    /// sin Δθ]` (row 1) of every lane, lane `l` from `b[l]`. (Pure data
+    /// movement: any implementation gives the same bits.)
+    #[inline(always)]
+    fn gather_row(b: &[&SolverBody; LANES], row: usize) -> [Self; 4] {
+        let r = [0, 1, 2, 3].map(|l| &b[l].rows()[row]);
+        [0, 1, 2, 3].map(|k| Self::from_array([r[0][k], r[1][k], r[2][k], r[3][k]]))
+    }
+
+    /// Writes each lane's `v.x`, `v.y`, `ω` (`head[0..3]`) into body
+    /// `index[l]`, lane after lane; `head[3]` is the lanes' `Δp.x` as
+    /// gathered, which an implementation may write back whole rows with. A
+    /// body met in two lanes is static or kinematic, whose record no lane
+    /// changed, so the order of the writes does not matter.
+    #[inline(always)]
+    fn scatter_head(head: [Self; 4], bodies: &mut [SolverBody], index: &[u32; LANES]) {
+        let [vx, vy, w, _] = head;
+        let (vx, vy, w) = (vx.to_array(), vy.to_array(), w.to_array());
+        for (l, &i) in index.iter().enumerate() {
+            let b = &mut bodies[i as usize];
+            b.v.x = vx[l];
+            b.v.y = vy[l];
+            b.w = w[l];
+        }
     }
 }
 

@@ -27,7 +27,7 @@ use super::revolute::RevoluteRows;
 use super::wrap_angle;
 use crate::soft_step::bodies::SolverBody;
 use crate::soft_step::lanes::{F64x4, LANES, Lanes, dispatch};
-use crate::soft_step::wide_solver::{WideBody, field, gather, scatter};
+use crate::soft_step::wide_solver::{WideBody, gather, gather_motion, scatter};
 
 /// Four revolute joints' point rows: what every pass reads.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -94,8 +94,13 @@ pub(crate) struct WideAxial {
 }
 
 /// Writes joint (`frame`, `rows`), prepared for substeps of `h` (s), into
-/// lane `l` of `(w, x)`, every field of the lane; sets `w.axial` when the
-/// joint has an angle row (the caller clears it first).
+/// lane `l` of `(w, x)`, every field of the lane (the caller clears
+/// `w.axial` before the step's first lane of the record). The angle rows
+/// are written once the record has a joint with one: its first such joint
+/// zeroes the four lanes of `x` (no rows, no impulses: what the plain
+/// joints before it in the record have, since only a row changes its
+/// impulse), so a record of plain joints (a joint grid's) never writes
+/// `x`.
 #[inline]
 pub(crate) fn set_lane(
     (w, x): (&mut WideRevolute, &mut WideAxial),
@@ -123,7 +128,15 @@ pub(crate) fn set_lane(
     w.linear_x.set_lane(l, rows.linear.x);
     w.linear_y.set_lane(l, rows.linear.y);
     let joint = &rows.joint;
-    w.axial |= joint.spring.is_some() || joint.motor.is_some() || joint.limits.is_some();
+    if joint.spring.is_some() || joint.motor.is_some() || joint.limits.is_some() {
+        if !w.axial {
+            *x = WideAxial::default();
+        }
+        w.axial = true;
+    }
+    if !w.axial {
+        return;
+    }
     let turns = !frame.fixed_rotation();
     let flag = |on: bool| if on && turns { 1.0 } else { 0.0 };
     x.angle.set_lane(l, frame.angle);
@@ -173,23 +186,13 @@ pub(crate) fn store_lane((w, x): (&WideRevolute, &WideAxial), l: usize, rows: &m
     }
 }
 
-/// The four lanes' bodies' records, by side.
-type Sides<'a> = ([&'a SolverBody; LANES], [&'a SolverBody; LANES]);
-
-#[inline(always)]
-fn sides<'a>(bodies: &'a [SolverBody], w: &WideRevolute) -> Sides<'a> {
-    (
-        [0, 1, 2, 3].map(|l| &bodies[w.a[l] as usize]),
-        [0, 1, 2, 3].map(|l| &bodies[w.b[l] as usize]),
-    )
-}
-
 /// The anchors now, r turned by each body's rotation since the step began
-/// (as [`SolverBody::rotate`]): (r_Ax, r_Ay, r_Bx, r_By).
+/// (as [`SolverBody::rotate`]; `motion_a`, `motion_b` the bodies' second
+/// rows, `[Δp.y, Δθ, cos Δθ, sin Δθ]`): (r_Ax, r_Ay, r_Bx, r_By).
 #[inline(always)]
-fn anchors<L: Lanes>((a, b): &Sides<'_>, w: &WideRevolute) -> [L; 4] {
-    let (ca, sa) = (field::<L>(a, |s| s.dq.0), field::<L>(a, |s| s.dq.1));
-    let (cb, sb) = (field::<L>(b, |s| s.dq.0), field::<L>(b, |s| s.dq.1));
+fn anchors<L: Lanes>(w: &WideRevolute, (motion_a, motion_b): (&[L; 4], &[L; 4])) -> [L; 4] {
+    let (ca, sa) = (motion_a[2], motion_a[3]);
+    let (cb, sb) = (motion_b[2], motion_b[3]);
     let (rax, ray) = (L::load(&w.ra_x), L::load(&w.ra_y));
     let (rbx, rby) = (L::load(&w.rb_x), L::load(&w.rb_y));
     [
@@ -255,8 +258,9 @@ fn warm_start_with<L: Lanes>(
     bodies: &mut [SolverBody],
 ) {
     for (w, x) in records.iter().zip(axial) {
-        let r = anchors::<L>(&sides(bodies, w), w);
         let (mut a, mut b) = (gather::<L>(bodies, &w.a), gather::<L>(bodies, &w.b));
+        let motion = (gather_motion(bodies, &w.a), gather_motion(bodies, &w.b));
+        let r = anchors::<L>(w, (&motion.0, &motion.1));
         // The scalar joint's spring + motor + lower − upper, all 0 without
         // angle rows.
         let l = if w.axial {
@@ -334,22 +338,23 @@ fn pass<L: Lanes, const BIAS: bool>(
     let inv_h = L::splat(inv_h);
     let (zero, one) = (L::splat(0.0), L::splat(1.0));
     for (w, x) in records.iter_mut().zip(axial.iter_mut()) {
-        let (side_a, side_b) = sides(bodies, w);
-        let r = anchors::<L>(&(side_a, side_b), w);
+        let (mut a, mut b) = (gather::<L>(bodies, &w.a), gather::<L>(bodies, &w.b));
+        let (motion_a, motion_b) = (
+            gather_motion::<L>(bodies, &w.a),
+            gather_motion(bodies, &w.b),
+        );
+        let r = anchors::<L>(w, (&motion_a, &motion_b));
+        // Δp_B − Δp_A and Δθ_B − Δθ_A since the step began.
         let delta = if BIAS {
-            (
-                field::<L>(&side_b, |s| s.dp.x) - field(&side_a, |s| s.dp.x),
-                field::<L>(&side_b, |s| s.dp.y) - field(&side_a, |s| s.dp.y),
-            )
+            (b.dpx - a.dpx, motion_b[0] - motion_a[0])
         } else {
             (zero, zero)
         };
         let turned = if w.axial {
-            field::<L>(&side_b, |s| s.dtheta) - field(&side_a, |s| s.dtheta)
+            motion_b[1] - motion_a[1]
         } else {
             zero
         };
-        let (mut a, mut b) = (gather::<L>(bodies, &w.a), gather::<L>(bodies, &w.b));
         let m = masses::<L>(w);
         let row = if BIAS {
             Row {
@@ -534,7 +539,7 @@ mod tests {
                 w: 2.0 * n.next(),
                 dp: Vector2::new(0.01 * n.next(), 0.01 * n.next()),
                 dtheta,
-                dq: (dtheta.cos(), dtheta.sin()),
+                dq: [dtheta.cos(), dtheta.sin()],
             });
         }
         let h = 1.0 / 240.0;
@@ -566,16 +571,22 @@ mod tests {
                 spring_target: if k == 6 { -3.1 } else { 0.1 * n.next() },
             };
             let mut rows = RevoluteRows::new(joint);
-            rows.prepare(&frame, h, true);
+            let spring = joint.spring.map_or(Softness::RIGID, |s| {
+                Softness::new(s.hertz, s.damping_ratio, h)
+            });
+            rows.prepare(&frame, spring, true);
+            // Last step's impulses, of the rows the joint has (the others
+            // stay 0: only their rows change them).
             rows.linear = Vector2::new(0.01 * n.next(), 0.01 * n.next());
-            rows.spring = 0.001 * n.next();
-            rows.motor = 0.001 * n.next();
-            rows.lower = 0.001 * n.next().abs();
-            rows.upper = 0.001 * n.next().abs();
+            let some = |on: bool, x: f64| if on { x } else { 0.0 };
+            rows.spring = some(joint.spring.is_some(), 0.001 * n.next());
+            rows.motor = some(joint.motor.is_some(), 0.001 * n.next());
+            rows.lower = some(joint.limits.is_some(), 0.001 * n.next().abs());
+            rows.upper = some(joint.limits.is_some(), 0.001 * n.next().abs());
             if k % 6 == 5 || k >= 19 {
                 // A free joint (the last four: a record of them).
                 rows = RevoluteRows::new(Revolute::default());
-                rows.prepare(&frame, h, true);
+                rows.prepare(&frame, Softness::RIGID, true);
             }
             joints.push((frame, rows));
         }

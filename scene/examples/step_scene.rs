@@ -3,16 +3,21 @@
 //! steps inside [`measured`], the function to collect.
 //!
 //! ```text
-//! cargo build --release -p harness --example step_scene
+//! cargo build --release -p scene --example step_scene
 //! valgrind --tool=callgrind --toggle-collect='*step_scene::measured*' \
 //!     target/release/examples/step_scene scenes/bench/joint_grid.toml 100
 //! callgrind_annotate --inclusive=yes callgrind.out.<pid>
 //! ```
 //! Without valgrind it prints the wall time per step (one run: noisy;
-//! `harness bench` is the measurement).
+//! `harness bench` is the measurement). It lives in the scene crate so
+//! that a build with line tables for `callgrind_annotate --auto=yes`
+//! (`CARGO_PROFILE_RELEASE_DEBUG=line-tables-only`, another target
+//! folder) compiles the engine and the scene crate only.
 
-use anyhow::{Context, Result};
+use std::error::Error;
 use std::time::Instant;
+
+type Result<T> = std::result::Result<T, Box<dyn Error>>;
 
 /// The timed (or collected) steps.
 #[inline(never)]
@@ -27,7 +32,7 @@ fn main() -> Result<()> {
     let mut args = std::env::args().skip(1);
     let file = args
         .next()
-        .context("usage: step_scene SCENE.toml [STEPS, default 100]")?;
+        .ok_or("usage: step_scene SCENE.toml [STEPS, default 100]")?;
     let steps: usize = args.next().map_or(Ok(100), |s| s.parse())?;
     let scene = scene::Scene::load(&file)?;
     let mut world = scene.build_world(None)?;
