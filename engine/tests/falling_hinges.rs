@@ -10,24 +10,15 @@
 //! about a second.
 //!
 //! The hash of every box's final pose bits and the step at which all came
-//! to rest is asserted against constants, so that any change to the soft
-//! step's results (joints or contacts) is seen. The same scene is
-//! `scenes/falling_hinges.toml` (checked to give these constants by the
-//! scene crate's tests).
+//! to rest is asserted against constants (in `falling_hinges/expected.rs`,
+//! shared with the scene crate's test of `scenes/falling_hinges.toml` and
+//! the harness's main run), so that any change to the soft step's results
+//! (joints or contacts) is seen.
 
 use engine::prelude::*;
 use std::f64::consts::PI;
 
-/// The step (0-based count of steps taken) at which every box slept.
-const REST_STEP: usize = 276;
-/// FNV-1a of the final poses (x, y, angle bits of every box in order).
-const HINGES_HASH: u64 = 0xd725_f87a_6f54_95c1;
-
-/// Where to update the constants, for the failure messages.
-const UPDATE: &str = "if the soft step's results changed on purpose (a new solve order, a \
-                      new default), update REST_STEP and HINGES_HASH in \
-                      engine/tests/falling_hinges.rs and scene/tests/joints.rs from \
-                      this message, and say why in the commit";
+include!("falling_hinges/expected.rs");
 
 fn falling_hinges() -> World {
     let settings = SoftStepSettings {
@@ -87,40 +78,20 @@ fn falling_hinges() -> World {
     world
 }
 
-/// Steps until every box sleeps (at most 2000 steps); returns the step
-/// count then and the hash of the poses.
-fn run_to_rest() -> (usize, u64) {
+/// Steps until every box sleeps; returns the step count then and the
+/// hash of the poses.
+fn run_to_rest_hashed() -> (usize, u64) {
     let mut world = falling_hinges();
-    let boxes = world.bodies().len();
-    for step in 0..2000 {
-        if (1..boxes).all(|id| world.is_asleep(id)) {
-            return (step, pose_hash(&world));
-        }
-        world.step(1.0 / 60.0).unwrap();
-    }
-    panic!("the falling hinges did not come to rest in 2000 steps");
-}
-
-/// FNV-1a over the bits of every box's pose.
-fn pose_hash(world: &World) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for s in &world.states()[1..] {
-        for x in [s.position.x, s.position.y, s.angle] {
-            for b in x.to_bits().to_le_bytes() {
-                h ^= u64::from(b);
-                h = h.wrapping_mul(0x0100_0000_01b3);
-            }
-        }
-    }
-    h
+    let step = run_to_rest(&mut world).expect("the falling hinges come to rest within 2000 steps");
+    (step, pose_hash(world.states()))
 }
 
 #[test]
 fn the_falling_hinges_come_to_rest_with_the_same_bits() {
-    let first = run_to_rest();
+    let first = run_to_rest_hashed();
     assert_eq!(
         first,
-        run_to_rest(),
+        run_to_rest_hashed(),
         "two runs of the falling hinges differ: the soft step is not deterministic"
     );
     let (step, hash) = first;

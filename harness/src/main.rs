@@ -46,8 +46,12 @@ enum Command {
     /// `benchmarks.md`/`benchmarks.json` and the charts into the report
     /// folder (`reports/` unless `--out` says).
     Bench {
-        /// Full sizes and 500 timed steps (Box2D's many pyramids and smash
-        /// at their size: many minutes).
+        /// Benchmark ids (`pyramid_20`, `joint_grid`, ...) to run alone
+        /// (every scene when none is named); a selection needs `--out`
+        /// (its report is partial) and skips the contact-precision study.
+        scenes: Vec<String>,
+        /// Full sizes and 500 timed steps (Box2D's many pyramids, smash,
+        /// joint grid and ragdoll rain at their size: many minutes).
         #[arg(long)]
         full: bool,
     },
@@ -118,15 +122,22 @@ fn real_main() -> Result<bool> {
             quick,
             reasons,
         }) => run(&cases, quick, reasons, cli.out),
-        Some(Command::Bench { full }) => {
+        Some(Command::Bench { scenes, full }) => {
+            if !scenes.is_empty() && cli.out.is_none() {
+                bail!(
+                    "bench {}: a benchmark of selected scenes writes a partial report; give --out DIR \
+                     (the full benchmark writes reports/)",
+                    scenes.join(" ")
+                );
+            }
             let dir = cli.out.unwrap_or_else(workspace::reports_dir);
             let settings = if full {
                 harness::bench::BenchSettings::FULL
             } else {
                 harness::bench::BenchSettings::DEFAULT
             };
-            let results = harness::bench::run(&dir, settings)?;
-            if workspace::same_dir(&dir, &workspace::reports_dir()) && !full {
+            let results = harness::bench::run_selected(&dir, settings, &scenes)?;
+            if scenes.is_empty() && workspace::same_dir(&dir, &workspace::reports_dir()) && !full {
                 harness::bench::report::update_readme(&workspace::readme(), &results)?;
             }
             println!(

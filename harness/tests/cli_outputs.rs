@@ -180,3 +180,23 @@ fn an_unknown_case_is_refused_before_anything_runs() {
         "a case ran before the refusal"
     );
 }
+
+#[test]
+fn a_benchmark_of_selected_scenes_needs_out_and_known_ids() {
+    let cwd = tempfile::tempdir().expect("temp dir");
+    let before = workspace_state();
+    let done = harness(cwd.path(), &["bench", "joint_grid"]);
+    assert_eq!(done.status.code(), Some(2));
+    let stderr = text(&done.stderr);
+    assert!(stderr.contains("give --out DIR"), "{stderr}");
+    let done = harness(cwd.path(), &["bench", "joint_gird", "--out", "x"]);
+    assert_eq!(done.status.code(), Some(2));
+    let stderr = text(&done.stderr);
+    assert!(
+        stderr.contains("unknown benchmark 'joint_gird'"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("ragdoll_rain"), "{stderr}");
+    assert!(files_under(cwd.path()).is_empty(), "something was written");
+    assert_eq!(before, workspace_state(), "the workspace changed");
+}

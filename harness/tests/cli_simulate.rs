@@ -369,14 +369,62 @@ fn a_soft_step_pile_is_compared_with_rapier_and_box2d() {
 }
 
 #[test]
-fn a_jointed_scene_is_not_compared() {
+fn a_jointed_scene_is_compared_with_rapier_and_box2d() {
+    // The chain example: 20 links on 21 revolute joints between two world
+    // anchors 8 m apart, a ball dropped into it, 5 s.
     let dir = tempfile::tempdir().expect("temp dir");
-    // One body on a joint: rapier would run it free.
-    let scene = "[simulation]\ndt = 0.01\nduration = 0.1\n\n[[bodies]]\nname = \"bob\"\nmass = 1.0\nposition = [1.0, 0.0]\n\n[[joints]]\ntype = \"distance\"\nbody_b = \"bob\"\nanchor_a = [0.0, 0.0]\nanchor_b = [1.0, 0.0]\n";
+    let chain = workspace().join("scenes/examples/chain.toml");
+    let done = harness(
+        dir.path(),
+        &[
+            "simulate",
+            chain.to_str().unwrap(),
+            "--compare",
+            "rapier,box2d",
+        ],
+    );
+    assert_eq!(done.code, Some(0), "{}", done.stderr);
+    for engine in ["rapier2d-f64 0.36.1", "Box2D 3.2 (boxdd 0.6)"] {
+        assert!(
+            done.stdout.contains(&format!(
+                "{engine} against the engine, t in [0, 5] s (300 steps"
+            )),
+            "{}",
+            done.stdout
+        );
+        let rows = comparison_rows(&done.stdout, engine);
+        assert_eq!(rows.len(), 6, "{engine}: {rows:?}");
+        // Every point of a 10 m chain hung from anchors 8 m apart lies in
+        // the ellipse with those foci and major axis 10 m: within
+        // √(5² − 4²) = 3 m of the anchors' height, and the ball rests in
+        // it; so two engines that both hold the joints differ by at most
+        // 6 m in y. A chain whose joints were lost in the conversion would
+        // fall freely, ½ g t² = 123 m in 5 s.
+        assert!(rows[1].1 <= 6.0, "{engine}: {rows:?}");
+    }
+    assert_eq!(
+        done.stdout.matches("21 joints converted").count(),
+        2,
+        "{}",
+        done.stdout
+    );
+}
+
+#[test]
+fn a_target_joint_is_not_compared_and_is_named() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let scene = "[simulation]\ndt = 0.01\nduration = 0.1\n\n[[bodies]]\nname = \"bob\"\nmass = 1.0\nshape = { type = \"circle\", radius = 0.1 }\nposition = [1.0, 0.0]\n\n[[joints]]\ntype = \"target\"\nname = \"hand\"\nbody = \"bob\"\nmax_force = 10.0\ntarget = [2.0, 0.0]\n";
     std::fs::write(dir.path().join("bob.toml"), scene).unwrap();
-    let done = harness(dir.path(), &["simulate", "bob.toml", "--compare", "rapier"]);
-    assert_eq!(done.code, Some(2), "{}", done.stdout);
-    assert!(done.stderr.contains("has joints"), "{}", done.stderr);
+    for engine in ["rapier", "box2d"] {
+        let done = harness(dir.path(), &["simulate", "bob.toml", "--compare", engine]);
+        assert_eq!(done.code, Some(2), "{}", done.stdout);
+        assert!(
+            done.stderr.contains("joint 'hand': a target joint"),
+            "{}",
+            done.stderr
+        );
+        assert!(!done.stderr.contains("panicked"), "{}", done.stderr);
+    }
 }
 
 #[test]

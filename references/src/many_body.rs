@@ -235,6 +235,20 @@ impl ManyBodyScene {
         joints::joint_states(&self.bodies, &self.joints, samples)
     }
 
+    /// The deepest overlap at the poses of `samples` of the pairs that can
+    /// collide: [`deepest_overlap`] without the pairs of two bodies held by
+    /// a joint that keeps them apart (`collide_connected` false).
+    pub fn deepest_overlap(&self, samples: &[BodySample]) -> Option<Overlap> {
+        let apart: std::collections::HashSet<(usize, usize)> = self
+            .joints
+            .iter()
+            .filter(|j| !j.collide_connected)
+            .filter_map(|j| Some((j.body_a?, j.body_b?)))
+            .map(|(a, b)| (a.min(b), a.max(b)))
+            .collect();
+        overlap::deepest_overlap_except(&self.bodies, samples, |i, j| apart.contains(&(i, j)))
+    }
+
     /// Total mass of the dynamic bodies, kg.
     pub fn dynamic_mass(&self) -> f64 {
         self.bodies.iter().map(SceneBody::mass).sum()

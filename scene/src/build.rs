@@ -415,8 +415,7 @@ fn generated(
             ));
         }
         let colour = match spec.colour() {
-            // Generated bodies are dynamic: the cycle goes on after the
-            // listed bodies that move.
+            // The cycle goes on after the listed bodies that move.
             None => Colour::default_for(i + moving),
             Some(text) => Colour::parse_hex(text).ok_or_else(|| {
                 Problem::new(
@@ -429,7 +428,14 @@ fn generated(
         let more = crate::generate::expand(&path, spec, bodies.len())?;
         match more.colours {
             Some(own) if spec.colour().is_none() => colours.extend(own),
-            _ => colours.extend(std::iter::repeat_n(colour, more.bodies.len())),
+            // Static bodies are grey unless the generator names a colour.
+            _ => colours.extend(more.bodies.iter().map(|b| {
+                if b.kind == BodyKind::Static && spec.colour().is_none() {
+                    Colour::STATIC
+                } else {
+                    colour
+                }
+            })),
         }
         bodies.extend(more.bodies);
         joints.extend(

@@ -28,6 +28,8 @@
 //! size = [0.3, 0.8]       # m, its size (side, diameter, span) drawn in this range
 //! velocity = [0.0, -5.0]  # m/s
 //! seed = 1
+//! kind = "dynamic"        # or "static" (no velocity): Box2D's rain tiles are
+//!                         # one row of static boxes, rows = 1, size = [0.5, 0.5]
 //!
 //! [[generate]]
 //! type = "chain"          # box links on revolute joints (see chain.rs)
@@ -44,9 +46,19 @@
 //! scale = 1.0             # 1: about 1.6 m tall
 //! repeat = [5, 2]         # columns, rows of ragdolls; default [1, 1]
 //! repeat_spacing = [1.0, 2.0]   # m between them
+//! collision_groups = 5    # ragdolls share 5 groups; default one each
 //! joint_friction = 0.05   # N·m at scale 1 (motors at speed 0); 0: none
 //! joint_hertz = 5.0       # Hz of the joints' springs; 0: none
 //! joint_damping_ratio = 0.5
+//!
+//! [[generate]]
+//! type = "joint_grid"     # Box2D's joint_grid: circles on revolute joints
+//! columns = 100           # along +x from origin
+//! rows = 100              # along -y from origin
+//! radius = 0.4            # m
+//! spacing = 1.0           # m between neighbouring centres
+//! origin = [0.0, 0.0]     # m, the top-left circle's centre
+//! fixed = 7               # static circles in the middle of the top row
 //! ```
 //!
 //! Every generator also takes `density` (kg/m², default 1), `friction` and
@@ -58,8 +70,12 @@
 //! The top box of a pyramid or stack is the last one built. A chain's
 //! links are `name_0` … from `start`, its joints `name_j0` …; a ragdoll's
 //! bones `name_hip`, `name_torso`, … (`name_3_hip` … for the fourth of a
-//! grid). Chains and ragdolls have joints, so they need the soft-step
-//! contact model (the default when the scene has no `[contact]`).
+//! grid). A joint grid's circles are `name_0` … column after column, top
+//! to bottom (Box2D's order; see joint_grid.rs), its joints `name_j0` ….
+//! Chains, ragdolls and joint grids have joints, so they need the
+//! soft-step contact model (the default when the scene has no
+//! `[contact]`). Static generated bodies (a static grid, a joint grid's
+//! fixed circles) are grey unless the generator has a `colour`.
 //!
 //! Random draws come from SplitMix64 seeded by `seed`, written here rather
 //! than taken from a crate so that a seed gives the same scene forever,
@@ -193,6 +209,10 @@ pub enum GenerateSpec {
         /// false keeps every body upright (Box2D's tumbler).
         #[serde(default = "yes")]
         random_angle: bool,
+        /// `"dynamic"` (the default) or `"static"`: fixed bodies without
+        /// velocity or density, e.g. a row of tiles (Box2D's rain).
+        #[serde(default)]
+        kind: GridKind,
         /// Seed of the random draws. Default 1.
         #[serde(default = "default_seed")]
         seed: i64,
@@ -256,6 +276,13 @@ pub enum GenerateSpec {
         /// Offset between copies along x and y (m). Default `[0, 0]`.
         #[serde(default)]
         repeat_spacing: Xy,
+        /// How many collision groups the ragdolls share, a whole number
+        /// ≥ 1: the ragdoll in column c and row r of `repeat` is in the
+        /// ((c + 2r) mod n)-th, so that with 5 or more no two ragdolls
+        /// side by side, one above the other or diagonal neighbours share
+        /// one (Box2D's rain has 5; rapier takes at most 32 groups in a
+        /// scene). Default: each ragdoll its own group.
+        collision_groups: Option<i64>,
         /// Largest torque of each joint's friction motor at scale 1 (N·m),
         /// ≥ 0, times the bone's share (Box2D's) and the scale; 0: no
         /// motors. Default 0.05 (Box2D's rain).
@@ -284,6 +311,57 @@ pub enum GenerateSpec {
         /// trousers, shirt and skin.
         colour: Option<String>,
     },
+    /// Box2D's `joint_grid` benchmark: `columns` × `rows` circles, each
+    /// joined to the one above it and the one on its left by a free
+    /// revolute joint at the midpoint, hanging from static circles in the
+    /// middle of the top row; the circles never collide with each other
+    /// (see joint_grid.rs).
+    JointGrid {
+        /// Columns, ≥ 1, along +x.
+        columns: i64,
+        /// Rows, ≥ 1, along −y.
+        rows: i64,
+        /// Radius of each circle (m), > 0. Default 0.4 (Box2D's).
+        #[serde(default = "grid_radius")]
+        radius: f64,
+        /// Distance between neighbouring centres (m), > 0. Default 1.
+        #[serde(default = "one")]
+        spacing: f64,
+        /// Centre of the top-left circle (m). Default `[0, 0]`.
+        #[serde(default)]
+        origin: Xy,
+        /// Static circles in the middle of the top row, from 0 to
+        /// `columns`. Default 7 (Box2D's), or every column of a grid
+        /// narrower than that.
+        fixed: Option<i64>,
+        /// Density (kg/m²), > 0. Default 1.
+        #[serde(default = "one")]
+        density: f64,
+        /// Friction of each circle. Default: `[contact] friction`.
+        friction: Option<f64>,
+        /// Restitution of each circle. Default: `[contact] restitution`.
+        restitution: Option<f64>,
+        /// Name prefix. Default `"joint_grid"`.
+        name: Option<String>,
+        /// Colour of the moving circles, `"#rrggbb"` (the static ones
+        /// are grey unless this is given).
+        colour: Option<String>,
+    },
+}
+
+fn grid_radius() -> f64 {
+    0.4
+}
+
+/// Whether a `grid` generator's bodies move.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GridKind {
+    /// Dynamic bodies (the default).
+    #[default]
+    Dynamic,
+    /// Static bodies: no velocity, no density.
+    Static,
 }
 
 fn half() -> f64 {
@@ -332,6 +410,7 @@ impl GenerateSpec {
             GenerateSpec::Grid { .. } => "grid",
             GenerateSpec::Chain { .. } => "chain",
             GenerateSpec::Ragdoll { .. } => "ragdoll",
+            GenerateSpec::JointGrid { .. } => "joint_grid",
         }
     }
 
@@ -342,7 +421,8 @@ impl GenerateSpec {
             | GenerateSpec::Stack { name, .. }
             | GenerateSpec::Grid { name, .. }
             | GenerateSpec::Chain { name, .. }
-            | GenerateSpec::Ragdoll { name, .. } => name,
+            | GenerateSpec::Ragdoll { name, .. }
+            | GenerateSpec::JointGrid { name, .. } => name,
         };
         name.as_deref().unwrap_or(self.kind())
     }
@@ -354,7 +434,8 @@ impl GenerateSpec {
             | GenerateSpec::Stack { colour, .. }
             | GenerateSpec::Grid { colour, .. }
             | GenerateSpec::Chain { colour, .. }
-            | GenerateSpec::Ragdoll { colour, .. } => colour.as_deref(),
+            | GenerateSpec::Ragdoll { colour, .. }
+            | GenerateSpec::JointGrid { colour, .. } => colour.as_deref(),
         }
     }
 
@@ -383,6 +464,12 @@ impl GenerateSpec {
                 friction,
                 restitution,
                 ..
+            }
+            | GenerateSpec::JointGrid {
+                density,
+                friction,
+                restitution,
+                ..
             } => (*density, *friction, *restitution),
             GenerateSpec::Ragdoll {
                 density,
@@ -397,7 +484,9 @@ impl GenerateSpec {
     pub fn has_joints(&self) -> bool {
         matches!(
             self,
-            GenerateSpec::Chain { .. } | GenerateSpec::Ragdoll { .. }
+            GenerateSpec::Chain { .. }
+                | GenerateSpec::Ragdoll { .. }
+                | GenerateSpec::JointGrid { .. }
         )
     }
 }
@@ -459,6 +548,7 @@ pub(crate) fn expand(path: &FieldPath, spec: &GenerateSpec, so_far: usize) -> Ch
     let with_joints = match spec {
         GenerateSpec::Chain { .. } => Some(chain(path, spec, (so_far, density))?),
         GenerateSpec::Ragdoll { .. } => Some(ragdolls(path, spec, (so_far, density))?),
+        GenerateSpec::JointGrid { .. } => Some(joint_grid(path, spec, (so_far, density))?),
         _ => None,
     };
     if let Some(mut out) = with_joints {
@@ -468,6 +558,7 @@ pub(crate) fn expand(path: &FieldPath, spec: &GenerateSpec, so_far: usize) -> Ch
         }
         let field = match spec {
             GenerateSpec::Chain { .. } => "start",
+            GenerateSpec::JointGrid { .. } => "origin",
             _ => "position",
         };
         checked(path, field, &out.bodies)?;
@@ -609,7 +700,9 @@ pub(crate) fn expand(path: &FieldPath, spec: &GenerateSpec, so_far: usize) -> Ch
             }
             out
         }
-        GenerateSpec::Chain { .. } | GenerateSpec::Ragdoll { .. } => {
+        GenerateSpec::Chain { .. }
+        | GenerateSpec::Ragdoll { .. }
+        | GenerateSpec::JointGrid { .. } => {
             unreachable!("generators with joints returned above")
         }
     };
@@ -617,14 +710,32 @@ pub(crate) fn expand(path: &FieldPath, spec: &GenerateSpec, so_far: usize) -> Ch
         GenerateSpec::Grid { velocity, .. } => crate::build::xy(&path.key("velocity"), velocity)?,
         _ => Vector2::zeros(),
     };
+    let fixed = matches!(
+        spec,
+        GenerateSpec::Grid {
+            kind: GridKind::Static,
+            ..
+        }
+    );
+    if fixed && velocity != Vector2::zeros() {
+        return Err(Problem::new(
+            &path.key("velocity"),
+            ErrorKind::InvalidValue,
+            "a static grid's bodies never move: remove `velocity`, or make the grid dynamic",
+        ));
+    }
     let bodies = placed
         .into_iter()
         .enumerate()
         .map(|(k, (shape, position, angle))| BodyDef {
             name: format!("{prefix}_{k}"),
-            kind: BodyKind::Dynamic,
+            kind: if fixed {
+                BodyKind::Static
+            } else {
+                BodyKind::Dynamic
+            },
             mass: None,
-            density: Some(density),
+            density: (!fixed).then_some(density),
             inertia: None,
             shape: Some(shape),
             state: BodyState {
@@ -718,8 +829,49 @@ fn chain(
     })
 }
 
+/// A joint grid's circles and joints.
+fn joint_grid(
+    path: &FieldPath,
+    spec: &GenerateSpec,
+    (so_far, density): (usize, f64),
+) -> Checked<Generated> {
+    let GenerateSpec::JointGrid {
+        columns,
+        rows,
+        radius,
+        spacing,
+        origin,
+        fixed,
+        ..
+    } = spec
+    else {
+        unreachable!("called for joint grids");
+    };
+    let columns = count(&path.key("columns"), *columns, "columns")?;
+    let rows = count(&path.key("rows"), *rows, "rows")?;
+    check_total(path, so_far, columns.saturating_mul(rows))?;
+    let grid = crate::joint_grid::JointGridSpec {
+        columns,
+        rows,
+        radius: *radius,
+        spacing: *spacing,
+        origin,
+        fixed: *fixed,
+    };
+    let (bodies, joints) =
+        crate::joint_grid::expand(path, &grid, (spec.prefix(), so_far), density)?;
+    Ok(Generated {
+        bodies,
+        colours: None,
+        joints,
+    })
+}
+
 /// Ragdolls' bones and joints, each ragdoll its own collision group (the
-/// id of its first bone).
+/// id of its first bone), or, with `collision_groups = n`, the ragdoll in
+/// column c and row r in the group numbered by the id of the generator's
+/// ((c + 2r) mod n)-th body (ids of this generator's bodies: no other
+/// generator numbers a group the same).
 fn ragdolls(
     path: &FieldPath,
     spec: &GenerateSpec,
@@ -734,6 +886,7 @@ fn ragdolls(
         joint_hertz,
         joint_damping_ratio,
         velocity,
+        collision_groups,
         ..
     } = spec
     else {
@@ -742,6 +895,16 @@ fn ragdolls(
     let (columns, rows) = copies(&path.key("repeat"), repeat.as_ref())?;
     let total = columns.saturating_mul(rows);
     check_total(path, so_far, total.saturating_mul(crate::ragdoll::BONES))?;
+    let shared = collision_groups
+        .map(|n| count(&path.key("collision_groups"), n, "collision_groups"))
+        .transpose()?;
+    if let Some(n) = shared.filter(|&n| n > total) {
+        return Err(Problem::new(
+            &path.key("collision_groups"),
+            ErrorKind::InvalidValue,
+            format!("{n} collision groups for {total} ragdolls: give at most one per ragdoll"),
+        ));
+    }
     let origin = crate::build::xy(&path.key("position"), position)?;
     let shift = crate::build::xy(&path.key("repeat_spacing"), repeat_spacing)?;
     let doll = crate::ragdoll::RagdollSpec {
@@ -765,7 +928,11 @@ fn ragdolls(
                 format!("{}_{k}", spec.prefix())
             };
             let first = so_far + out.bodies.len();
-            let group = u32::try_from(first).unwrap_or(u32::MAX);
+            let group = match shared {
+                None => first,
+                Some(n) => so_far + (column + 2 * row) % n,
+            };
+            let group = u32::try_from(group).unwrap_or(u32::MAX);
             let at = origin + Vector2::new(column as f64 * shift.x, row as f64 * shift.y);
             let (bodies, colours, joints) =
                 crate::ragdoll::expand(path, &doll, at, (&name, first, group))?;
@@ -859,6 +1026,7 @@ mod tests {
             size: Some(Xy { x: 0.3, y: 0.8 }),
             velocity: Xy::default(),
             random_angle: true,
+            kind: GridKind::Dynamic,
             seed,
             density: 1.0,
             friction: None,

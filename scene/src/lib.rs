@@ -156,6 +156,7 @@ mod forces;
 mod form_error;
 pub mod format;
 pub mod generate;
+mod joint_grid;
 mod joints;
 mod linear_test;
 mod load;

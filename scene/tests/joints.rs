@@ -87,40 +87,25 @@ fn the_ragdolls_hold_together_as_they_fall() {
     }
 }
 
+// REST_STEP, HINGES_HASH, run_to_rest and pose_hash, shared with the
+// engine's test and the harness.
+include!("../../engine/tests/falling_hinges/expected.rs");
+
 /// `scenes/falling_hinges.toml` is engine/tests/falling_hinges.rs's world:
 /// stepped the same way (one `step` of 1/60 s at a time) it comes to rest
-/// at the same step with the same bits. When those constants change there,
-/// change them here.
+/// at the same step with the same bits.
 #[test]
 fn the_falling_hinges_scene_gives_the_engine_tests_bits() {
-    const REST_STEP: usize = 276;
-    const HINGES_HASH: u64 = 0xd725_f87a_6f54_95c1;
     let scene = Scene::load(scenes().join("falling_hinges.toml")).unwrap();
     let mut world = scene.build_world(None).unwrap();
-    let boxes = world.bodies().len();
-    let mut rest = None;
-    for step in 0..2000 {
-        if (1..boxes).all(|id| world.is_asleep(id)) {
-            rest = Some(step);
-            break;
-        }
-        world.step(1.0 / 60.0).unwrap();
-    }
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for s in &world.states()[1..] {
-        for x in [s.position.x, s.position.y, s.angle] {
-            for b in x.to_bits().to_le_bytes() {
-                h ^= u64::from(b);
-                h = h.wrapping_mul(0x0100_0000_01b3);
-            }
-        }
-    }
+    let rest = run_to_rest(&mut world);
+    let h = pose_hash(world.states());
     assert_eq!(
         (rest, h),
         (Some(REST_STEP), HINGES_HASH),
         "scenes/falling_hinges.toml rested at {rest:?} with hash {h:#018x}; the engine's \
          test (engine/tests/falling_hinges.rs) expects {REST_STEP} and {HINGES_HASH:#018x}: \
-         the file and the test's world differ, or the constants changed there"
+         the file and the test's world differ, or {UPDATE}"
     );
 }
 

@@ -14,8 +14,11 @@ use nalgebra::{UnitComplex, Vector2};
 use std::ops::Range;
 
 /// A body's velocity and its motion since the start of the step: what one
-/// substep reads and writes (64 bytes).
+/// substep reads and writes (64 bytes, one cache line: its eight f64 in
+/// this order, which the wide passes load as two rows of four,
+/// [`SolverBody::rows`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C, align(64))]
 pub(crate) struct SolverBody {
     /// Linear velocity of the centre of mass (m/s).
     pub v: Vector2<f64>,
@@ -26,8 +29,21 @@ pub(crate) struct SolverBody {
     /// Rotation since the step began (rad).
     pub dtheta: f64,
     /// cos and sin of `dtheta`.
-    pub dq: (f64, f64),
+    pub dq: [f64; 2],
 }
+
+// The layout `rows` relies on: eight f64 without padding (a `Vector2<f64>`
+// is nalgebra's `repr(C)` matrix over a `repr(transparent)` `[[f64; 2];
+// 1]`: x then y).
+const _: () = {
+    use std::mem::{offset_of, size_of};
+    assert!(size_of::<SolverBody>() == 64);
+    assert!(offset_of!(SolverBody, v) == 0 && size_of::<Vector2<f64>>() == 16);
+    assert!(offset_of!(SolverBody, w) == 16);
+    assert!(offset_of!(SolverBody, dp) == 24);
+    assert!(offset_of!(SolverBody, dtheta) == 40);
+    assert!(offset_of!(SolverBody, dq) == 48);
+};
 
 impl SolverBody {
     /// A body at rest that has not moved.
@@ -36,14 +52,33 @@ impl SolverBody {
         w: 0.0,
         dp: Vector2::new(0.0, 0.0),
         dtheta: 0.0,
-        dq: (1.0, 0.0),
+        dq: [1.0, 0.0],
     };
 
     /// `r` turned by this body's rotation since the step began.
     #[inline(always)]
     pub fn rotate(&self, r: Vector2<f64>) -> Vector2<f64> {
-        let (c, s) = self.dq;
+        let [c, s] = self.dq;
         Vector2::new(c * r.x - s * r.y, s * r.x + c * r.y)
+    }
+
+    /// The record as two rows of four f64: `[v.x, v.y, ω, Δp.x]` and
+    /// `[Δp.y, Δθ, cos Δθ, sin Δθ]`.
+    #[inline(always)]
+    pub fn rows(&self) -> &[[f64; 4]; 2] {
+        // SAFETY: `SolverBody` is `repr(C)`, eight f64 at offsets 0 to 56
+        // without padding (asserted above), so it is a valid `[[f64; 4];
+        // 2]`, whose alignment (8) is below its own (64).
+        unsafe { &*(self as *const SolverBody).cast::<[[f64; 4]; 2]>() }
+    }
+
+    /// The first row of [`SolverBody::rows`], `[v.x, v.y, ω, Δp.x]`, to
+    /// write.
+    #[inline(always)]
+    pub fn head_mut(&mut self) -> &mut [f64; 4] {
+        // SAFETY: as `rows`; the first 32 bytes are `v`, `w` and `dp.x`,
+        // f64 for which any bits are valid.
+        unsafe { &mut *(self as *mut SolverBody).cast::<[f64; 4]>() }
     }
 }
 
@@ -213,6 +248,21 @@ pub(crate) fn solver_body(s: &BodyState, kind: BodyKind) -> SolverBody {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_solver_body_reads_as_its_fields_in_order() {
+        let mut b = SolverBody {
+            v: Vector2::new(1.0, 2.0),
+            w: 3.0,
+            dp: Vector2::new(4.0, 5.0),
+            dtheta: 6.0,
+            dq: [7.0, 8.0],
+        };
+        assert_eq!(b.rows(), &[[1.0, 2.0, 3.0, 4.0], [5.0, 6.0, 7.0, 8.0]]);
+        *b.head_mut() = [-1.0, -2.0, -3.0, -4.0];
+        assert_eq!((b.v, b.w, b.dp.x), (Vector2::new(-1.0, -2.0), -3.0, -4.0));
+        assert_eq!((b.dp.y, b.dtheta, b.dq), (5.0, 6.0, [7.0, 8.0]));
+    }
 
     #[test]
     fn the_small_angle_sine_and_cosine_agree_with_libm_to_round_off() {

@@ -23,7 +23,10 @@
 //! word, and they fill the colours the dynamic pairs leave sparse. A
 //! constraint that finds no free colour goes to the overflow list, solved
 //! one at a time by the scalar solver ([`super::contact_solver`]) before
-//! the colours.
+//! the colours. The revolute joints have their own colouring, where a joint
+//! to the world takes the first free colour as well
+//! ([`Colouring::add_in_order`]): a chain hanging from the world is then
+//! solved root first, in the order added.
 
 use super::lanes::LANES;
 use crate::body::BodyId;
@@ -70,6 +73,8 @@ pub(crate) struct Colouring {
 
 /// Colours `0..DYNAMIC_COLOURS` as bits.
 const DYNAMIC_MASK: u32 = (1 << DYNAMIC_COLOURS) - 1;
+/// Colours `0..COLOURS` as bits.
+const ALL_MASK: u32 = (1 << COLOURS) - 1;
 /// Colours `1..COLOURS` as bits.
 const STATIC_MASK: u32 = ((1 << COLOURS) - 1) & !1;
 
@@ -86,12 +91,34 @@ impl Colouring {
 
     /// Adds the next constraint, on the dynamic bodies among `a` and `b`
     /// (`None` for a static or kinematic body; at least one is dynamic), to
-    /// the first colour free of both, or to the overflow.
+    /// the first colour free of both, or to the overflow; one with a single
+    /// dynamic body to the last free colour (solved last: the contacts'
+    /// rule, the ground has the last word).
     pub(crate) fn add(&mut self, a: Option<BodyId>, b: Option<BodyId>) {
+        self.add_ordered(a, b, false);
+    }
+
+    /// Adds the next constraint like [`Colouring::add`], except that one
+    /// with a single dynamic body takes the first free colour too, so that
+    /// the colours keep the order added wherever they can: the joints' rule.
+    /// A chain hanging from the world, added root first, is then solved
+    /// root first as the scalar solver would: on the double pendulum
+    /// (`scenes/double_pendulum.toml`, 20 s at 60 Hz) the root solved last
+    /// doubled the energy lost (−0.19 against −0.093 m g × 1 m) and moved
+    /// the rates at 1.5 s off their step-doubling estimate.
+    pub(crate) fn add_in_order(&mut self, a: Option<BodyId>, b: Option<BodyId>) {
+        self.add_ordered(a, b, true);
+    }
+
+    fn add_ordered(&mut self, a: Option<BodyId>, b: Option<BodyId>, in_order: bool) {
         let colour = match (a, b) {
             (Some(a), Some(b)) => {
                 // The lowest colour whose bit is clear in both bodies.
                 let free = !(self.used[a] | self.used[b]) & DYNAMIC_MASK;
+                (free != 0).then(|| free.trailing_zeros() as usize)
+            }
+            (Some(one), None) | (None, Some(one)) if in_order => {
+                let free = !self.used[one] & ALL_MASK;
                 (free != 0).then(|| free.trailing_zeros() as usize)
             }
             (Some(one), None) | (None, Some(one)) => {

@@ -71,7 +71,7 @@ impl SoftStep {
             if r.w != 0.0 {
                 r.dtheta += h * r.w;
                 let (s, c) = bodies::small_sin_cos(r.dtheta);
-                r.dq = (c, s);
+                r.dq = [c, s];
             }
         }
     }

@@ -18,7 +18,8 @@
 //! packed operations), and the solve pass took more instructions than with
 //! `wide`, whose operations are the SSE2 intrinsics themselves.
 
-use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
+use super::bodies::SolverBody;
+use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 use wide::{CmpEq, CmpGt, f64x4};
 
 /// Number of lanes: constraints solved at once.
@@ -127,6 +128,7 @@ pub(crate) trait Lanes:
     + Add<Output = Self>
     + Sub<Output = Self>
     + Mul<Output = Self>
+    + Div<Output = Self>
     + Neg<Output = Self>
     + AddAssign
     + SubAssign
@@ -162,6 +164,33 @@ pub(crate) trait Lanes:
     #[inline(always)]
     fn clamp(self, lo: Self, hi: Self) -> Self {
         self.max(lo).min(hi)
+    }
+
+    /// Row `row` of four bodies' records ([`SolverBody::rows`]),
+    /// transposed: `[v.x, v.y, ω, Δp.x]` (row 0) or `[Δp.y, Δθ, cos Δθ,
+    /// sin Δθ]` (row 1) of every lane, lane `l` from `b[l]`. (Pure data
+    /// movement: any implementation gives the same bits.)
+    #[inline(always)]
+    fn gather_row(b: &[&SolverBody; LANES], row: usize) -> [Self; 4] {
+        let r = [0, 1, 2, 3].map(|l| &b[l].rows()[row]);
+        [0, 1, 2, 3].map(|k| Self::from_array([r[0][k], r[1][k], r[2][k], r[3][k]]))
+    }
+
+    /// Writes each lane's `v.x`, `v.y`, `ω` (`head[0..3]`) into body
+    /// `index[l]`, lane after lane; `head[3]` is the lanes' `Δp.x` as
+    /// gathered, which an implementation may write back whole rows with. A
+    /// body met in two lanes is static or kinematic, whose record no lane
+    /// changed, so the order of the writes does not matter.
+    #[inline(always)]
+    fn scatter_head(head: [Self; 4], bodies: &mut [SolverBody], index: &[u32; LANES]) {
+        let [vx, vy, w, _] = head;
+        let (vx, vy, w) = (vx.to_array(), vy.to_array(), w.to_array());
+        for (l, &i) in index.iter().enumerate() {
+            let b = &mut bodies[i as usize];
+            b.v.x = vx[l];
+            b.v.y = vy[l];
+            b.w = w[l];
+        }
     }
 }
 
@@ -241,6 +270,14 @@ impl Mul for F64x4 {
     }
 }
 
+impl Div for F64x4 {
+    type Output = F64x4;
+    #[inline(always)]
+    fn div(self, other: F64x4) -> F64x4 {
+        F64x4(self.0 / other.0)
+    }
+}
+
 impl Neg for F64x4 {
     type Output = F64x4;
     /// Flips the sign bit, as the scalar `-x` (`wide`'s own negation is
@@ -265,6 +302,37 @@ impl SubAssign for F64x4 {
     }
 }
 
+/// Runs `$generic::<lane type>(args)` with AVX lanes when the CPU has AVX,
+/// with SSE2 lanes otherwise; `$avx` is the AVX-compiled instance. (The
+/// wide passes of the contacts, [`super::wide_solver`], and of the
+/// revolute joints, `super::joints::wide_revolute`, are written once,
+/// generic over [`Lanes`], and dispatched by this.)
+macro_rules! dispatch {
+    ($generic:ident, $avx:ident, ($($arg:ident: $ty:ty),*)) => {
+        /// The AVX instance.
+        ///
+        /// # Safety
+        /// The CPU must have AVX. (An `unsafe fn`, not a safe one with a
+        /// target feature, which needs Rust 1.86: the workspace's minimum
+        /// is 1.85.)
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx")]
+        unsafe fn $avx($($arg: $ty),*) {
+            $generic::<$crate::soft_step::lanes_avx::Avx4>($($arg),*)
+        }
+
+        #[cfg(target_arch = "x86_64")]
+        if $crate::soft_step::lanes_avx::detected() {
+            // SAFETY: the CPU has AVX (just checked), which is all `$avx`
+            // requires.
+            unsafe { $avx($($arg),*) };
+            return;
+        }
+        $generic::<$crate::soft_step::lanes::F64x4>($($arg),*);
+    };
+}
+pub(crate) use dispatch;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -278,6 +346,7 @@ mod tests {
             assert_eq!((a + b).lane(i), x + y);
             assert_eq!((a - b).lane(i), x - y);
             assert_eq!((a * b).lane(i), x * y);
+            assert_eq!((a / b).lane(i), x / y);
             assert_eq!((-a).lane(i), -x);
             assert_eq!(a.max(b).lane(i), x.max(y));
             assert_eq!(a.min(b).lane(i), x.min(y));

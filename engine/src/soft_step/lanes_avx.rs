@@ -6,25 +6,28 @@
 //! Why: with SSE2 a four-lane value takes two registers and each operation
 //! two instructions, and the two-operand SSE2 forms need register copies;
 //! AVX does four lanes per instruction in three-operand form. Only plain
-//! IEEE adds, subtractions, multiplications, comparisons, `maxpd`/`minpd`
+//! IEEE adds, subtractions, multiplications, divisions, comparisons, `maxpd`/`minpd`
 //! and blends are used (no fused multiply-add), so the results are the
 //! same bits as the SSE2 path and the scalar solver: which path runs does
 //! not change the simulation.
 //!
 //! Safety: an [`Avx4`] executes AVX instructions in its operations. Values
-//! of it exist only inside the functions of [`super::wide_solver`] marked
-//! `#[target_feature(enable = "avx")]`, which are entered only after
-//! [`detected`] returned true; that is the invariant every `unsafe` block
-//! here relies on. The type is private to the soft step.
+//! of it exist only inside the functions of [`super::wide_solver`] and of
+//! the revolute joints' wide passes (`super::joints::wide_revolute`) marked
+//! `#[target_feature(enable = "avx")]` by [`super::lanes::dispatch`], which
+//! are entered only after [`detected`] returned true; that is the
+//! invariant every `unsafe` block here relies on. The type is private to
+//! the soft step.
 
+use super::bodies::SolverBody;
 use super::lanes::{F64x4, LANES, Lanes};
 use std::arch::x86_64::{
-    __m256d, _CMP_EQ_OQ, _CMP_GT_OQ, _mm256_add_pd, _mm256_blendv_pd, _mm256_cmp_pd,
+    __m256d, _CMP_EQ_OQ, _CMP_GT_OQ, _mm256_add_pd, _mm256_blendv_pd, _mm256_cmp_pd, _mm256_div_pd,
     _mm256_load_pd, _mm256_loadu_pd, _mm256_max_pd, _mm256_min_pd, _mm256_movemask_pd,
-    _mm256_mul_pd, _mm256_or_pd, _mm256_set1_pd, _mm256_store_pd, _mm256_storeu_pd, _mm256_sub_pd,
-    _mm256_xor_pd,
+    _mm256_mul_pd, _mm256_or_pd, _mm256_permute2f128_pd, _mm256_set1_pd, _mm256_store_pd,
+    _mm256_storeu_pd, _mm256_sub_pd, _mm256_unpackhi_pd, _mm256_unpacklo_pd, _mm256_xor_pd,
 };
-use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
+use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
 /// Whether this CPU has AVX (cached by the standard library after the
 /// first call).
@@ -63,6 +66,7 @@ macro_rules! binary {
 binary!(Add, add, _mm256_add_pd);
 binary!(Sub, sub, _mm256_sub_pd);
 binary!(Mul, mul, _mm256_mul_pd);
+binary!(Div, div, _mm256_div_pd);
 
 impl Neg for Avx4 {
     type Output = Avx4;
@@ -167,6 +171,52 @@ impl Lanes for Avx4 {
         // SAFETY: AVX is available (module invariant).
         unsafe { _mm256_movemask_pd(mask.0) == 0b1111 }
     }
+
+    /// Four aligned 32-byte loads and a 4 × 4 transpose (eight shuffles),
+    /// instead of sixteen scalar loads and inserts.
+    #[inline(always)]
+    fn gather_row(b: &[&SolverBody; LANES], row: usize) -> [Self; 4] {
+        let load = |l: usize| -> __m256d {
+            // SAFETY: AVX is available (module invariant); the row is 32
+            // readable bytes of a `SolverBody`, aligned to 32 (its rows
+            // start at 0 and 32 of a 64-aligned record).
+            unsafe { _mm256_load_pd(b[l].rows()[row].as_ptr()) }
+        };
+        transpose([load(0), load(1), load(2), load(3)]).map(Avx4)
+    }
+
+    /// The 4 × 4 transpose back to rows and four aligned 32-byte stores of
+    /// `[v.x, v.y, ω, Δp.x]` (`Δp.x` as gathered: unchanged).
+    #[inline(always)]
+    fn scatter_head(head: [Self; 4], bodies: &mut [SolverBody], index: &[u32; LANES]) {
+        let rows = transpose(head.map(|x| x.0));
+        for (l, &i) in index.iter().enumerate() {
+            let row = bodies[i as usize].head_mut();
+            // SAFETY: AVX is available (module invariant); `row` is 32
+            // writable bytes aligned to 32 (the start of a 64-aligned
+            // record).
+            unsafe { _mm256_store_pd(row.as_mut_ptr(), rows[l]) };
+        }
+    }
+}
+
+/// The 4 × 4 transpose of `m` (rows to columns).
+#[inline(always)]
+fn transpose(m: [__m256d; 4]) -> [__m256d; 4] {
+    // SAFETY: AVX is available (module invariant); shuffles only.
+    unsafe {
+        // (m0[0], m1[0], m0[2], m1[2]), (m0[1], m1[1], m0[3], m1[3]), ...
+        let t0 = _mm256_unpacklo_pd(m[0], m[1]);
+        let t1 = _mm256_unpackhi_pd(m[0], m[1]);
+        let t2 = _mm256_unpacklo_pd(m[2], m[3]);
+        let t3 = _mm256_unpackhi_pd(m[2], m[3]);
+        [
+            _mm256_permute2f128_pd::<0x20>(t0, t2),
+            _mm256_permute2f128_pd::<0x20>(t1, t3),
+            _mm256_permute2f128_pd::<0x31>(t0, t2),
+            _mm256_permute2f128_pd::<0x31>(t1, t3),
+        ]
+    }
 }
 
 #[cfg(test)]
@@ -189,6 +239,10 @@ mod tests {
         same(p + q, a + b);
         same(p - q, a - b);
         same(p * q, a * b);
+        // Division by a divisor without zeros: 0/0's NaN has no defined
+        // sign bit (the CPU gives -NaN, a constant-folded one +NaN).
+        let z = [0.5, 4.0, 0.1, 2.0];
+        same(p / Avx4::from_array(z), a / F64x4::new(z));
         same(-p, -a);
         same(p.max(q), Lanes::max(a, b));
         same(p.min(q), Lanes::min(a, b));
@@ -203,5 +257,53 @@ mod tests {
         Avx4::load(&a).store(&mut stored);
         assert_eq!(stored, a);
         same(Avx4::splat(3.0), Lanes::splat(3.0));
+        // The transposed gather and scatter of body records.
+        let mut bodies: Vec<SolverBody> = (0..5)
+            .map(|i| {
+                let f = |k: usize| (8 * i + k) as f64 - 0.5;
+                SolverBody {
+                    v: nalgebra::Vector2::new(f(0), f(1)),
+                    w: f(2),
+                    dp: nalgebra::Vector2::new(f(3), f(4)),
+                    dtheta: f(5),
+                    dq: [f(6), f(7)],
+                }
+            })
+            .collect();
+        let index = [3, 0, 4, 0];
+        let refs = index.map(|i| &bodies[i as usize]);
+        for row in 0..2 {
+            let (avx, sse) = (
+                Avx4::gather_row(&refs, row),
+                <F64x4 as Lanes>::gather_row(&refs, row),
+            );
+            for k in 0..4 {
+                same(avx[k], sse[k]);
+            }
+        }
+        // New velocities for bodies 3, 1, 4, 2, with their Δp.x as gathered.
+        let index = [3, 1, 4, 2];
+        let dpx = Avx4::gather_row(&index.map(|i| &bodies[i as usize]), 0)[3];
+        let lanes = |x: f64| [x, -x, 10.0 * x, -10.0 * x];
+        let head = [1.0, 2.0, 3.0].map(|x| Avx4::from_array(lanes(x)));
+        let sse_head = [1.0, 2.0, 3.0].map(|x| F64x4::new(lanes(x)));
+        let mut expected = bodies.clone();
+        <F64x4 as Lanes>::scatter_head(
+            [
+                sse_head[0],
+                sse_head[1],
+                sse_head[2],
+                F64x4::new(dpx.to_array()),
+            ],
+            &mut expected,
+            &index,
+        );
+        Avx4::scatter_head([head[0], head[1], head[2], dpx], &mut bodies, &index);
+        assert_eq!(bodies, expected);
+        // Body 4 is lane 2: v.x, v.y, ω = 10, 20, 30.
+        assert_eq!(
+            (bodies[4].v.x, bodies[4].v.y, bodies[4].w),
+            (10.0, 20.0, 30.0)
+        );
     }
 }

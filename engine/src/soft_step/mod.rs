@@ -456,6 +456,7 @@ impl SoftStep {
             if watch_events {
                 let t_end = if k + 1 == n { t1 } else { t_sub + h };
                 if self.locate_events(core, (t_sub, t_end), found) {
+                    self.joints.store_impulses();
                     return Ok(());
                 }
             }
@@ -477,6 +478,7 @@ impl SoftStep {
 
         let started = core.profiler.start();
         self.store_impulses();
+        self.joints.store_impulses();
         let step = self.stats.steps;
         self.write_states(core, t0, step)?;
         core.profiler.stop(Phase::Store, started);

@@ -23,9 +23,7 @@
 use super::bodies::SolverBody;
 use super::contact_solver::{ConstraintPoint, ContactConstraint};
 use super::contacts::Contact;
-use super::lanes::{F64x4, LANES, Lanes};
-#[cfg(target_arch = "x86_64")]
-use super::lanes_avx::{self, Avx4};
+use super::lanes::{F64x4, LANES, Lanes, dispatch};
 
 /// One point of four constraints.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -140,12 +138,14 @@ pub(crate) fn set_padding_lane((w, e): (&mut WideConstraint, &mut WideExtra), l:
     set_lane((w, e), l, &padding);
 }
 
-/// Four bodies' velocities: what the passes change.
+/// Four bodies' velocities (what the passes change), and their Δp.x as
+/// gathered (written back with them, unchanged).
 #[derive(Clone, Copy)]
-struct WideBody<L> {
-    vx: L,
-    vy: L,
-    w: L,
+pub(super) struct WideBody<L> {
+    pub(super) vx: L,
+    pub(super) vy: L,
+    pub(super) w: L,
+    pub(super) dpx: L,
 }
 
 impl<L: Lanes> WideBody<L> {
@@ -156,54 +156,56 @@ impl<L: Lanes> WideBody<L> {
     }
 }
 
-/// Field `f` of the four lanes' bodies. (Plain functions, not closures,
-/// in the generic pass code: a closure is compiled without the AVX
-/// feature of the function it sits in, so it would not be inlined there.)
+/// The records of the four lanes' bodies.
 #[inline(always)]
-fn field<L: Lanes>(b: &[&SolverBody; LANES], f: fn(&SolverBody) -> f64) -> L {
-    L::from_array([f(b[0]), f(b[1]), f(b[2]), f(b[3])])
+pub(super) fn lanes_of<'a>(
+    bodies: &'a [SolverBody],
+    index: &[u32; LANES],
+) -> [&'a SolverBody; LANES] {
+    [0, 1, 2, 3].map(|l| &bodies[index[l] as usize])
 }
 
-/// Reads the velocities of the four lanes' bodies.
+/// Reads the velocities (and Δp.x) of the four lanes' bodies.
 #[inline(always)]
-fn gather<L: Lanes>(bodies: &[SolverBody], index: &[u32; LANES]) -> WideBody<L> {
-    let b = [0, 1, 2, 3].map(|l| &bodies[index[l] as usize]);
-    WideBody {
-        vx: field(&b, |b| b.v.x),
-        vy: field(&b, |b| b.v.y),
-        w: field(&b, |b| b.w),
-    }
+pub(super) fn gather<L: Lanes>(bodies: &[SolverBody], index: &[u32; LANES]) -> WideBody<L> {
+    let [vx, vy, w, dpx] = L::gather_row(&lanes_of(bodies, index), 0);
+    WideBody { vx, vy, w, dpx }
 }
 
-/// Writes back the velocities of the four lanes. A body met in two lanes
-/// is static or kinematic, whose velocity no lane changed, so the order of
-/// the writes does not matter.
+/// The second row of the four lanes' bodies: `[Δp.y, Δθ, cos Δθ, sin
+/// Δθ]`.
 #[inline(always)]
-fn scatter<L: Lanes>(bodies: &mut [SolverBody], index: &[u32; LANES], w: &WideBody<L>) {
-    let (vx, vy, omega) = (w.vx.to_array(), w.vy.to_array(), w.w.to_array());
-    for (l, &i) in index.iter().enumerate() {
-        let b = &mut bodies[i as usize];
-        b.v.x = vx[l];
-        b.v.y = vy[l];
-        b.w = omega[l];
-    }
+pub(super) fn gather_motion<L: Lanes>(bodies: &[SolverBody], index: &[u32; LANES]) -> [L; 4] {
+    L::gather_row(&lanes_of(bodies, index), 1)
+}
+
+/// Writes back the velocities of the four lanes (see
+/// [`Lanes::scatter_head`]).
+#[inline(always)]
+pub(super) fn scatter<L: Lanes>(bodies: &mut [SolverBody], index: &[u32; LANES], w: &WideBody<L>) {
+    L::scatter_head([w.vx, w.vy, w.w, w.dpx], bodies, index);
 }
 
 /// The current separation of both points of the four lanes, from the
 /// bodies' motion since the step began: s = s0 + n·(Δp_B + R(Δθ_B) r_B −
 /// Δp_A − R(Δθ_A) r_A) (the passes change velocities only, so this is
-/// computed once per pass, before the impulses).
+/// computed once per pass, before the impulses); `(a, b)` the lanes'
+/// bodies as gathered.
 #[inline(always)]
-fn separations<L: Lanes>(bodies: &[SolverBody], c: &WideConstraint) -> [L; 2] {
-    let a = [0, 1, 2, 3].map(|l| &bodies[c.a[l] as usize]);
-    let b = [0, 1, 2, 3].map(|l| &bodies[c.b[l] as usize]);
+fn separations<L: Lanes>(
+    bodies: &[SolverBody],
+    c: &WideConstraint,
+    (a, b): (&WideBody<L>, &WideBody<L>),
+) -> [L; 2] {
+    let [dpy_a, _, ca, sa] = gather_motion::<L>(bodies, &c.a);
+    let [dpy_b, _, cb, sb] = gather_motion::<L>(bodies, &c.b);
     let motion = Motion {
-        dpx: field::<L>(&b, |b| b.dp.x) - field(&a, |b| b.dp.x),
-        dpy: field::<L>(&b, |b| b.dp.y) - field(&a, |b| b.dp.y),
-        ca: field(&a, |b| b.dq.0),
-        sa: field(&a, |b| b.dq.1),
-        cb: field(&b, |b| b.dq.0),
-        sb: field(&b, |b| b.dq.1),
+        dpx: b.dpx - a.dpx,
+        dpy: dpy_b - dpy_a,
+        ca,
+        sa,
+        cb,
+        sb,
         nx: L::load(&c.normal_x),
         ny: L::load(&c.normal_y),
     };
@@ -310,33 +312,6 @@ fn apply<L: Lanes>(
     b.w += m.ib * (r.rb_x * py - r.rb_y * px);
 }
 
-/// Runs `$generic::<lane type>(args)` with AVX lanes when the CPU has AVX,
-/// with SSE2 lanes otherwise; `$avx` is the AVX-compiled instance.
-macro_rules! dispatch {
-    ($generic:ident, $avx:ident, ($($arg:ident: $ty:ty),*)) => {
-        /// The AVX instance.
-        ///
-        /// # Safety
-        /// The CPU must have AVX. (An `unsafe fn`, not a safe one with a
-        /// target feature, which needs Rust 1.86: the workspace's minimum
-        /// is 1.85.)
-        #[cfg(target_arch = "x86_64")]
-        #[target_feature(enable = "avx")]
-        unsafe fn $avx($($arg: $ty),*) {
-            $generic::<Avx4>($($arg),*)
-        }
-
-        #[cfg(target_arch = "x86_64")]
-        if lanes_avx::detected() {
-            // SAFETY: the CPU has AVX (just checked), which is all `$avx`
-            // requires.
-            unsafe { $avx($($arg),*) };
-            return;
-        }
-        $generic::<F64x4>($($arg),*);
-    };
-}
-
 /// Applies every constraint's accumulated impulses.
 #[inline(never)]
 pub(crate) fn warm_start(constraints: &mut [WideConstraint], bodies: &mut [SolverBody]) {
@@ -407,8 +382,8 @@ fn pass<L: Lanes, const BIAS: bool>(
     let min_bias = L::splat(-push_out_speed);
     let (zero, one) = (L::splat(0.0), L::splat(1.0));
     for c in constraints.iter_mut() {
-        let separation = separations::<L>(bodies, c);
         let (mut a, mut b) = (gather::<L>(bodies, &c.a), gather::<L>(bodies, &c.b));
+        let separation = separations::<L>(bodies, c, (&a, &b));
         let m = Masses::of(c);
         let (nx, ny) = (L::load(&c.normal_x), L::load(&c.normal_y));
         let (bias_rate, mass_scale, impulse_scale) = if BIAS {
@@ -561,7 +536,7 @@ mod tests {
                 w: n.next(),
                 dp: Vector2::new(0.01 * n.next(), 0.01 * n.next()),
                 dtheta,
-                dq: (dtheta.cos(), dtheta.sin()),
+                dq: [dtheta.cos(), dtheta.sin()],
             });
         }
         let soft = Softness::new(30.0, 10.0, 1.0 / 240.0);

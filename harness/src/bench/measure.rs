@@ -4,15 +4,19 @@
 //! the minimum (and the median) over the repeats. The quality figures are
 //! read from every engine's last run the same way: the watched top body's
 //! sink and sideways drift, the fastest body at the end, and the deepest
-//! overlap of any pair, computed from the final poses by the same exact
-//! geometry for every engine.
+//! overlap of any pair that can collide, computed from the final poses by
+//! the same exact geometry for every engine; in a scene with joints, the largest joint
+//! separation (how far apart the anchors a joint holds together are) and
+//! the largest excess over a joint's limits, from the final poses through
+//! the scene's joints ([`ManyBodyScene::joint_states`]), also the same for
+//! every engine.
 
 use super::convert::many_body_scene;
 use super::ours::SoftStepEngine;
 use super::scenes::BenchScene;
 use anyhow::{Context, Result};
 use references::box2d_world::Box2dWorld;
-use references::many_body::{BodySample, ManyBodyEngine, ManyBodyScene, deepest_overlap};
+use references::many_body::{BodySample, JointState, ManyBodyEngine, ManyBodyScene};
 use references::rapier_many::RapierManyWorld;
 use scene::Scene;
 use serde::Serialize;
@@ -75,6 +79,15 @@ pub struct BenchRow {
     pub fastest_at_end: f64,
     /// The deepest overlap of any pair at the end (m), from the poses.
     pub deepest_overlap: f64,
+    /// Joints of the scene.
+    pub joints: usize,
+    /// The largest separation of a joint's anchors at the end (m), from
+    /// the poses; `None` without joints.
+    pub joint_separation_max: Option<f64>,
+    /// The largest excess of a joint's coordinate over its limits at the
+    /// end (rad for a revolute joint), from the poses; `None` without
+    /// joints.
+    pub joint_limit_excess_max: Option<f64>,
 }
 
 /// The measurements of one scene.
@@ -185,7 +198,13 @@ pub fn measure(bench: BenchScene, scene: &Scene, settings: BenchSettings) -> Res
             .filter(|(b, _)| b.kind == references::many_body::BodyKind::Dynamic)
             .map(|(_, s)| s.speed())
             .fold(0.0, f64::max);
-        let overlap = deepest_overlap(&neutral.bodies, &run.samples).map_or(0.0, |o| o.depth);
+        let overlap = neutral
+            .deepest_overlap(&run.samples)
+            .map_or(0.0, |o| o.depth);
+        let joints = neutral.joint_states(&run.samples);
+        let largest = |f: fn(&JointState) -> f64| {
+            (!joints.is_empty()).then(|| joints.iter().map(f).fold(0.0, f64::max))
+        };
         rows.push(BenchRow {
             scene: bench.id.to_string(),
             engine: names[e].clone(),
@@ -201,6 +220,9 @@ pub fn measure(bench: BenchScene, scene: &Scene, settings: BenchSettings) -> Res
             top_drift: drift,
             fastest_at_end: fastest,
             deepest_overlap: overlap,
+            joints: neutral.joints.len(),
+            joint_separation_max: largest(|j| j.separation),
+            joint_limit_excess_max: largest(|j| j.limit_violation),
         });
     }
     // A separate profiled run of this engine: where its time goes.

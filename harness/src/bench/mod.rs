@@ -24,8 +24,32 @@ use std::path::Path;
 /// then the contact work-precision study, and writes the report and charts
 /// into `dir`.
 pub fn run(dir: &Path, settings: BenchSettings) -> Result<Vec<SceneResult>> {
+    run_selected(dir, settings, &[])
+}
+
+/// [`run`] of the scenes whose ids are `only` (every scene when empty; an
+/// unknown id is refused before anything runs); a selection skips the
+/// contact work-precision study.
+pub fn run_selected(
+    dir: &Path,
+    settings: BenchSettings,
+    only: &[String],
+) -> Result<Vec<SceneResult>> {
+    if let Some(unknown) = only
+        .iter()
+        .find(|id| !scenes::SCENES.iter().any(|s| s.id == id.as_str()))
+    {
+        let known: Vec<&str> = scenes::SCENES.iter().map(|s| s.id).collect();
+        anyhow::bail!(
+            "unknown benchmark '{unknown}'; the benchmarks are: {}",
+            known.join(", ")
+        );
+    }
+    let selected = scenes::SCENES
+        .iter()
+        .filter(|s| only.is_empty() || only.iter().any(|id| id == s.id));
     let mut results = Vec::new();
-    for bench in scenes::SCENES {
+    for bench in selected {
         let file = match (settings.full, bench.full) {
             (true, Some(full)) => full,
             _ => bench.file,
@@ -46,9 +70,15 @@ pub fn run(dir: &Path, settings: BenchSettings) -> Result<Vec<SceneResult>> {
         );
         results.push(result);
     }
-    let precision = contact_precision::run(settings)?;
+    let precision = if only.is_empty() {
+        contact_precision::run(settings)?
+    } else {
+        Vec::new()
+    };
     let mut charts = crate::plots::bench::draw(dir, &results)?;
-    charts.push(contact_precision::chart(dir, &precision)?);
+    if !precision.is_empty() {
+        charts.push(contact_precision::chart(dir, &precision)?);
+    }
     report::write(dir, &results, settings, &charts, &precision)?;
     Ok(results)
 }

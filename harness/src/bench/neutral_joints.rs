@@ -169,6 +169,25 @@ mod tests {
     /// every separation under 1 cm (the soft joint rows of Box2D sag by
     /// g/ω² ≈ 0.07 mm per link at 60 Hz; a joint lost or misplaced in the
     /// conversion would open by the links' sizes, decimetres).
+    /// The `joint_grid` generator converts to the references' builder of
+    /// Box2D's `CreateJointGrid` (an independent transcription of the same
+    /// layout): the same bodies in the same order and the same joints, to
+    /// the bit (every coordinate is a whole or half metre).
+    #[test]
+    fn the_joint_grid_generator_is_box2ds_layout() {
+        let n = 10;
+        let text = format!(
+            "[simulation]\ndt = 0.016666666666666666\nduration = 1.0\ngravity = [0.0, -10.0]\n\n[contact]\nfriction = 0.6\n\n[[generate]]\ntype = \"joint_grid\"\ncolumns = {n}\nrows = {n}\n"
+        );
+        let scene = scene::Scene::parse_str("grid.toml", &text).unwrap();
+        let ours = many_body_scene(&scene).unwrap();
+        let reference = references::many_body::joint_grid(n);
+        assert_eq!(ours.bodies, reference.bodies);
+        assert_eq!(ours.joints, reference.joints);
+        assert_eq!((ours.dt, ours.substeps), (reference.dt, reference.substeps));
+        assert_eq!(ours.gravity, reference.gravity);
+    }
+
     #[test]
     fn jointed_scenes_convert_and_hold_in_both_engines() {
         for id in ["examples/chain", "examples/ragdoll", "falling_hinges"] {

@@ -106,16 +106,20 @@ pub fn write(
         md,
         "Quality figures after the last timed step, the same for every engine: the watched top \
          body's sink below its starting height and its sideways drift, the fastest dynamic body, \
-         and the deepest overlap of any pair computed from the poses (exact geometry, the same \
-         code for every engine).\n"
+         and the deepest overlap of any pair that can collide, computed from the poses (exact \
+         geometry, the same code for every engine; bodies of one collision group or held by a \
+         joint never collide). In the scenes with joints, also from the poses through the \
+         scene's joints: the largest separation of the two anchors a joint holds together (a \
+         revolute joint's point) and the largest excess of a joint's angle over its limits.\n"
     )?;
     for r in results {
         writeln!(md, "### {}\n", r.scene.id)?;
+        let jointed = r.rows.iter().any(|b| b.joints > 0);
         let rows: Vec<Vec<String>> = r
             .rows
             .iter()
             .map(|b| {
-                vec![
+                let mut cells = vec![
                     b.engine.clone(),
                     b.bodies.to_string(),
                     format!("{:.3}", b.ms_per_step_min),
@@ -127,25 +131,38 @@ pub fn write(
                     opt(b.top_drift),
                     format!("{:.3e}", b.fastest_at_end),
                     format!("{:.3e}", b.deepest_overlap),
-                ]
+                ];
+                if jointed {
+                    cells.extend([
+                        b.joints.to_string(),
+                        opt(b.joint_separation_max),
+                        opt(b.joint_limit_excess_max),
+                    ]);
+                }
+                cells
             })
             .collect();
-        md.push_str(&table(
-            &[
-                "engine",
-                "bodies",
-                "ms/step (min)",
-                "ms/step (median)",
-                "ratio",
-                "touching pairs",
-                "points",
-                "top sink (m)",
-                "top drift (m)",
-                "fastest (m/s)",
-                "deepest overlap (m)",
-            ],
-            &rows,
-        ));
+        let mut headers = vec![
+            "engine",
+            "bodies",
+            "ms/step (min)",
+            "ms/step (median)",
+            "ratio",
+            "touching pairs",
+            "points",
+            "top sink (m)",
+            "top drift (m)",
+            "fastest (m/s)",
+            "deepest overlap (m)",
+        ];
+        if jointed {
+            headers.extend([
+                "joints",
+                "largest joint separation (m)",
+                "largest limit excess (rad)",
+            ]);
+        }
+        md.push_str(&table(&headers, &rows));
         if !r.profile.is_empty() {
             let total: f64 = r.profile.iter().map(|p| p.1).sum();
             let phases: Vec<String> = r

@@ -1,6 +1,8 @@
 //! The benchmark scenes (Box2D's benchmark suite and Solver2D's stack,
 //! `docs/soft_step.md#benchmark-scenes`): their scene files, and which
-//! body the quality figures watch.
+//! body the quality figures watch. The jointed scenes (`joint_grid`,
+//! `ragdoll_rain`) also get the joint figures (`measure`), from the
+//! scene's joints.
 
 /// A benchmark scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -30,7 +32,8 @@ const fn pyramid(id: &'static str, file: &'static str, top: &'static str) -> Ben
 
 /// Every benchmark scene, in report order: the pyramid series (base 10,
 /// 20, 40, 70 and 100 = `large_pyramid`), the stack, then Box2D's other
-/// benchmarks.
+/// benchmarks, a rain of mixed shapes into a container (`shape_rain`),
+/// and the two of joints.
 pub const SCENES: &[BenchScene] = &[
     pyramid("pyramid_10", "bench/pyramid_10", "pyramid_54"),
     pyramid("pyramid_20", "pyramid_20", "pyramid_209"),
@@ -66,9 +69,23 @@ pub const SCENES: &[BenchScene] = &[
         scaling: false,
     },
     BenchScene {
-        id: "rain",
-        file: "bench/rain",
+        id: "shape_rain",
+        file: "bench/shape_rain",
         full: None,
+        top: None,
+        scaling: false,
+    },
+    BenchScene {
+        id: "joint_grid",
+        file: "bench/joint_grid",
+        full: Some("bench/full/joint_grid"),
+        top: None,
+        scaling: false,
+    },
+    BenchScene {
+        id: "ragdoll_rain",
+        file: "bench/ragdoll_rain",
+        full: Some("bench/full/ragdoll_rain"),
         top: None,
         scaling: false,
     },

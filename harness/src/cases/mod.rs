@@ -77,6 +77,7 @@ registry! {
     slider,
     joint_motor_limit,
     fuzz_scenes,
+    falling_hinges,
 }
 
 /// The case with this id.

@@ -188,9 +188,10 @@ pub fn write(
         md.push_str(&wrap(
             "[`benchmarks.md`](benchmarks.md): this engine's soft step, rapier2d-f64 and Box2D v3 \
              on the same many-body scenes (pyramids of 55 to 5050 boxes, a stack, many pyramids, \
-             a tumbler, a smash, a rain of mixed shapes), measured side by side in one run: ms per \
-             step, ratios, quality figures, the targets with their verdicts, and what a contact \
-             model's accuracy costs on the validation contact cases.",
+             a tumbler, a smash, a rain of mixed shapes, a grid of circles on revolute joints, a \
+             rain of ragdolls), measured side by side in one run: ms per step, ratios, quality \
+             figures (joint separations in the jointed scenes), the targets with their verdicts, \
+             and what a contact model's accuracy costs on the validation contact cases.",
             "",
             "",
         ));

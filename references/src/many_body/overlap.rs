@@ -9,8 +9,11 @@
 //! bodies' bounding boxes by their lower x, then test each box against the
 //! following ones until they start beyond its upper x), then parry2d-f64
 //! computes each candidate pair's penetration depth (`query::contact`, the
-//! GJK and EPA of [`crate::parry_queries`]). Pairs of two bodies that are
-//! not dynamic are skipped (walls and ground may overlap each other by
+//! GJK and EPA of [`crate::parry_queries`]). Pairs that never collide are
+//! skipped: two bodies that are not dynamic (walls and ground may overlap
+//! each other by design), two bodies of one collision group, and (through
+//! [`super::ManyBodyScene::deepest_overlap`]) two bodies held by a joint
+//! that keeps them apart (a ragdoll's bones overlap at their joints by
 //! design). Cost: O(n log n) plus the candidate pairs.
 
 use super::{BodyKind, BodySample, SceneBody};
@@ -66,14 +69,24 @@ fn bounds(shape: &Shape, pose: &Isometry2<f64>) -> ([f64; 2], [f64; 2]) {
 }
 
 /// The deepest overlap among the bodies of a scene at the poses of
-/// `samples` (one per body, in scene order), or `None` if no pair with a
-/// dynamic body overlaps. Pairs that merely touch (depth 0) are not
-/// overlaps.
+/// `samples` (one per body, in scene order), or `None` if no pair that can
+/// collide (a dynamic body, not both of one collision group) overlaps.
+/// Pairs that merely touch (depth 0) are not overlaps.
 ///
 /// # Panics
 /// If `samples` and `bodies` differ in length (a programming error of the
 /// caller, not a user input).
 pub fn deepest_overlap(bodies: &[SceneBody], samples: &[BodySample]) -> Option<Overlap> {
+    deepest_overlap_except(bodies, samples, |_, _| false)
+}
+
+/// [`deepest_overlap`] without the pairs `(i, j)` (i < j) for which
+/// `never_collide` holds.
+pub(super) fn deepest_overlap_except(
+    bodies: &[SceneBody],
+    samples: &[BodySample],
+    never_collide: impl Fn(usize, usize) -> bool,
+) -> Option<Overlap> {
     assert_eq!(
         bodies.len(),
         samples.len(),
@@ -106,6 +119,13 @@ pub fn deepest_overlap(bodies: &[SceneBody], samples: &[BodySample]) -> Option<O
             }
             let moving = |b: &SceneBody| b.kind == BodyKind::Dynamic;
             if !(moving(&bodies[i]) || moving(&bodies[j])) {
+                continue;
+            }
+            let group = |b: &SceneBody| b.collision_group;
+            if group(&bodies[i]).is_some() && group(&bodies[i]) == group(&bodies[j]) {
+                continue;
+            }
+            if never_collide(i.min(j), i.max(j)) {
                 continue;
             }
             let contact = query::contact(
@@ -183,5 +203,42 @@ mod tests {
             })
             .collect();
         assert_eq!(deepest_overlap(&bodies, &lifted), None);
+    }
+
+    #[test]
+    fn pairs_that_never_collide_are_skipped() {
+        // Two unit boxes overlapping by 0.1 m.
+        let unit = Shape::rectangle(1.0, 1.0).unwrap();
+        let mut scene = super::super::ManyBodyScene {
+            gravity: [0.0, 0.0],
+            dt: 0.01,
+            substeps: 4,
+            bodies: vec![
+                SceneBody::dynamic(unit.clone(), [0.0, 0.0], 1.0),
+                SceneBody::dynamic(unit, [0.9, 0.0], 1.0),
+            ],
+            joints: Vec::new(),
+        };
+        let samples = [at(0.0, 0.0, 0.0), at(0.9, 0.0, 0.0)];
+        let depth = |s: &super::super::ManyBodyScene| s.deepest_overlap(&samples).map(|o| o.depth);
+        // Box-box penetration from parry's polygon clipping, exact to
+        // round-off of the 1 m sides.
+        assert_close(depth(&scene).unwrap(), 0.1, 1e-12, "free pair");
+        // Jointed (collide_connected false): never collide.
+        scene.joints.push(super::super::SceneJoint::revolute(
+            Some(0),
+            Some(1),
+            [0.45, 0.0],
+            0.0,
+        ));
+        assert_eq!(depth(&scene), None);
+        scene.joints[0].collide_connected = true;
+        assert!(depth(&scene).is_some());
+        // One collision group: never collide either.
+        for b in &mut scene.bodies {
+            b.collision_group = Some(3);
+        }
+        assert_eq!(depth(&scene), None);
+        assert_eq!(deepest_overlap(&scene.bodies, &samples), None);
     }
 }

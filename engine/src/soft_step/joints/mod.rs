@@ -129,6 +129,7 @@ mod revolute;
 mod set;
 mod target;
 mod weld;
+mod wide_revolute;
 
 pub use distance::Distance;
 pub use prismatic::{Prismatic, PrismaticMotor};

@@ -93,8 +93,8 @@ impl Revolute {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct RevoluteRows {
     pub joint: Revolute,
-    spring_softness: Softness,
-    axial_mass: f64,
+    pub(super) spring_softness: Softness,
+    pub(super) axial_mass: f64,
     pub linear: Vector2<f64>,
     pub spring: f64,
     pub motor: f64,
@@ -121,12 +121,12 @@ impl RevoluteRows {
         self.spring + self.motor + self.lower - self.upper
     }
 
-    pub(super) fn prepare(&mut self, frame: &JointFrame, h: f64, warm: bool) {
+    /// The step's values, the spring's softness `spring` (rigid without a
+    /// spring) computed by the caller for the substep; the impulses zeroed
+    /// unless `warm`.
+    pub(super) fn prepare(&mut self, frame: &JointFrame, spring: Softness, warm: bool) {
         self.axial_mass = frame.axial_mass();
-        self.spring_softness = match self.joint.spring {
-            Some(s) => Softness::new(s.hertz, s.damping_ratio, h),
-            None => Softness::RIGID,
-        };
+        self.spring_softness = spring;
         if !warm {
             *self = Self {
                 linear: Vector2::zeros(),

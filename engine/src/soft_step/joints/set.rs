@@ -1,9 +1,19 @@
 //! Every joint of a soft-step world: the definitions as resolved when they
 //! were added (bodies, anchors in the bodies' frames, reference angle),
-//! the solver records (frame, rows and impulses, one enum per joint), the
+//! the solver records (rows and impulses, one enum per joint), the
 //! joints of each body (for the collision filter and for removal), and the
 //! passes over them: prepare once per step, then warm start, solve and
-//! relax in every substep, one joint at a time in the order added.
+//! relax in every substep, and the impulses stored back after the step.
+//!
+//! Prepare colours the active revolute joints (the most common type) by
+//! their dynamic bodies, as the contacts are coloured
+//! ([`crate::soft_step::colouring`], its own instance), and writes each
+//! into its lane of a four-lane record of its colour
+//! ([`super::wide_revolute`]); the other types and the revolute joints
+//! that find no colour stay scalar. Each pass solves the scalar joints one
+//! at a time in the order added, then the records colour after colour:
+//! another valid order of the same Gauss–Seidel iteration, whose lanes
+//! give the scalar solver's bits.
 
 use super::distance::DistanceRows;
 use super::frame::JointFrame;
@@ -11,6 +21,7 @@ use super::prismatic::PrismaticRows;
 use super::revolute::RevoluteRows;
 use super::target::TargetRows;
 use super::weld::WeldRows;
+use super::wide_revolute::{self, WideAxial, WideRevolute};
 use super::{
     Distance, JointDef, JointId, JointKind, JointState, JointType, Target, invalid, world_point,
     wrap_angle,
@@ -19,6 +30,7 @@ use crate::body::{BodyId, BodyKind, BodyState};
 use crate::error::{EngineError, Result};
 use crate::soft_step::Softness;
 use crate::soft_step::bodies::{BodyMass, BodySim, SolverBody, solver_index};
+use crate::soft_step::colouring::{Colouring, Slot};
 use crate::world_core::WorldCore;
 use nalgebra::Vector2;
 use smallvec::SmallVec;
@@ -33,12 +45,12 @@ pub(crate) enum JointRows {
     Target(TargetRows),
 }
 
-/// A joint's solver record.
+/// A joint's solver record (its frame for the step is in the scalar list
+/// or its lane).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct JointSim {
     /// Whether it is solved this step (not removed, an awake body).
     pub active: bool,
-    pub frame: JointFrame,
     pub rows: JointRows,
 }
 
@@ -83,6 +95,19 @@ pub(crate) struct JointSet {
     body_joints: Vec<SmallVec<[JointEdge; 4]>>,
     /// 1/h of the last step's substep (1/s), for the reaction forces.
     inv_h: f64,
+    /// The step's colouring of the active revolute joints, in the order
+    /// added.
+    colouring: Colouring,
+    /// The joints coloured, in the order added (the colouring's order).
+    coloured: Vec<u32>,
+    /// The joints solved one at a time, in the order added, with their
+    /// frames for the step: every active joint but the revolute joints in
+    /// a lane.
+    scalar: Vec<(u32, JointFrame)>,
+    /// The revolute joints of the step's colours, four per record, colour
+    /// after colour, and their angle rows.
+    wide: Vec<WideRevolute>,
+    axial: Vec<WideAxial>,
 }
 
 /// A body's pose and masses as prepare reads them.
@@ -93,7 +118,6 @@ struct Side {
     position: Vector2<f64>,
     angle: f64,
     rotation: (f64, f64),
-    moving: bool,
 }
 
 impl Side {
@@ -104,12 +128,39 @@ impl Side {
         position: Vector2::new(0.0, 0.0),
         angle: 0.0,
         rotation: (1.0, 0.0),
-        moving: false,
     };
 
     fn rotate(&self, r: Vector2<f64>) -> Vector2<f64> {
         let (c, s) = self.rotation;
         Vector2::new(c * r.x - s * r.y, s * r.x + c * r.y)
+    }
+}
+
+/// The softness of the last (frequency, damping ratio) asked for, for
+/// substeps of `h`: joints mostly share theirs, and [`Softness::new`]
+/// divides twice (the same inputs give the same bits either way).
+struct SoftnessCache {
+    h: f64,
+    key: (f64, f64),
+    value: Softness,
+}
+
+impl SoftnessCache {
+    fn new(h: f64) -> Self {
+        Self {
+            h,
+            key: (f64::NAN, f64::NAN),
+            value: Softness::RIGID,
+        }
+    }
+
+    #[inline]
+    fn get(&mut self, hertz: f64, damping_ratio: f64) -> Softness {
+        if self.key != (hertz, damping_ratio) {
+            self.key = (hertz, damping_ratio);
+            self.value = Softness::new(hertz, damping_ratio, self.h);
+        }
+        self.value
     }
 }
 
@@ -251,7 +302,6 @@ impl JointSet {
         });
         self.sims.push(JointSim {
             active: false,
-            frame: JointFrame::EMPTY,
             rows,
         });
         let end = |b: Option<BodyId>| b.map_or(WORLD, |id| id as u32);
@@ -334,8 +384,11 @@ impl JointSet {
         Ok(())
     }
 
-    /// Prepare: each joint of an awake body gets its frame for a step of
-    /// substeps `h` (s).
+    /// Prepare: the joints of an awake body are coloured (the revolute
+    /// ones, [`Self::colour`]), then each gets its frame for a step of
+    /// substeps `h` (s) and its rows: a revolute joint with a colour is
+    /// written into its lane, every other one joins the scalar list with
+    /// its frame.
     #[inline(never)]
     pub(crate) fn prepare(
         &mut self,
@@ -345,6 +398,7 @@ impl JointSet {
         warm: bool,
     ) {
         self.inv_h = 1.0 / h;
+        self.colour(masses);
         let side = |body: Option<BodyId>| -> Side {
             let Some(id) = body else {
                 return Side::WORLD;
@@ -359,19 +413,17 @@ impl JointSet {
                 position: s.position,
                 angle: s.angle,
                 rotation: (q.re, q.im),
-                moving: m.moving,
             }
         };
-        for (sim, info) in self.sims.iter_mut().zip(&self.infos) {
-            if info.removed {
-                sim.active = false;
-                continue;
-            }
-            let (a, b) = (side(info.body_a), side(info.body_b));
-            sim.active = a.moving || b.moving;
+        // Most joints share their softness: computed once per value.
+        let (mut rigid, mut springs) = (SoftnessCache::new(h), SoftnessCache::new(h));
+        self.scalar.clear();
+        let mut coloured = 0;
+        for (id, (sim, info)) in self.sims.iter_mut().zip(&self.infos).enumerate() {
             if !sim.active {
                 continue;
             }
+            let (a, b) = (side(info.body_a), side(info.body_b));
             let hertz = info.constraint_hertz.min(0.25 / h);
             let frame = JointFrame {
                 a: a.index,
@@ -384,24 +436,89 @@ impl JointSet {
                 rb: b.rotate(info.local_b),
                 delta_center: b.position - a.position,
                 angle: wrap_angle(b.angle - a.angle - info.reference_angle),
-                softness: Softness::new(hertz, info.constraint_damping_ratio, h),
+                softness: rigid.get(hertz, info.constraint_damping_ratio),
             };
-            sim.frame = frame;
+            if let JointRows::Revolute(r) = &mut sim.rows {
+                let spring = r
+                    .joint
+                    .spring
+                    .map_or(Softness::RIGID, |s| springs.get(s.hertz, s.damping_ratio));
+                r.prepare(&frame, spring, warm);
+                let slot = self.colouring.slot(coloured);
+                coloured += 1;
+                if let Slot::Lane { record, lane } = slot {
+                    wide_revolute::set_lane(
+                        (&mut self.wide[record], &mut self.axial[record]),
+                        lane,
+                        (&frame, r),
+                        h,
+                    );
+                    continue;
+                }
+            }
             match &mut sim.rows {
-                JointRows::Revolute(r) => r.prepare(&frame, h, warm),
+                // A revolute joint here found no colour: prepared above.
+                JointRows::Revolute(_) => {}
                 JointRows::Prismatic(p) => p.prepare(h, a.rotation, warm),
                 JointRows::Distance(d) => d.prepare(h, warm),
                 JointRows::Weld(w) => w.prepare(&frame, h, warm),
                 JointRows::Target(t) => t.prepare(h, warm),
             }
+            self.scalar.push((id as u32, frame));
+        }
+        for (record, lane) in self.colouring.padding() {
+            wide_revolute::set_padding_lane(
+                (&mut self.wide[record], &mut self.axial[record]),
+                lane,
+            );
         }
     }
 
-    /// Applies every active joint's accumulated impulses.
+    /// Marks the joints solved this step (not removed, an awake body) and
+    /// colours the active revolute joints by their dynamic bodies, in the
+    /// order added; lays out their records. Nothing is allocated once the
+    /// lists have grown to the scene's size.
+    fn colour(&mut self, masses: &[BodyMass]) {
+        let dynamic = |body: Option<BodyId>| body.filter(|&b| masses[b].kind == BodyKind::Dynamic);
+        let moving = |body: Option<BodyId>| body.is_some_and(|b| masses[b].moving);
+        self.colouring.clear(masses.len());
+        self.coloured.clear();
+        for (id, (sim, info)) in self.sims.iter_mut().zip(&self.infos).enumerate() {
+            sim.active = !info.removed && (moving(info.body_a) || moving(info.body_b));
+            if sim.active && matches!(sim.rows, JointRows::Revolute(_)) {
+                self.colouring
+                    .add_in_order(dynamic(info.body_a), dynamic(info.body_b));
+                self.coloured.push(id as u32);
+            }
+        }
+        let records = self.colouring.finish();
+        self.wide.resize(records, WideRevolute::default());
+        self.axial.resize(records, WideAxial::default());
+        for w in &mut self.wide {
+            w.axial = false;
+        }
+    }
+
+    /// The impulses of the joints in lanes back into their records, after
+    /// the step (for the next step's warm start and the joints' states).
+    #[inline(never)]
+    pub(crate) fn store_impulses(&mut self) {
+        for (i, &id) in self.coloured.iter().enumerate() {
+            let Slot::Lane { record, lane } = self.colouring.slot(i) else {
+                continue;
+            };
+            if let JointRows::Revolute(rows) = &mut self.sims[id as usize].rows {
+                wide_revolute::store_lane((&self.wide[record], &self.axial[record]), lane, rows);
+            }
+        }
+    }
+
+    /// Applies every active joint's accumulated impulses: the scalar
+    /// joints, then the records.
     #[inline(never)]
     pub(crate) fn warm_start(&self, bodies: &mut [SolverBody]) {
-        for sim in self.sims.iter().filter(|s| s.active) {
-            let f = &sim.frame;
+        for (id, f) in &self.scalar {
+            let sim = &self.sims[*id as usize];
             let (mut a, mut b) = (bodies[f.a], bodies[f.b]);
             match &sim.rows {
                 JointRows::Revolute(r) => r.warm_start(f, &mut a, &mut b),
@@ -412,16 +529,18 @@ impl JointSet {
             }
             store(bodies, f, &a, &b);
         }
+        wide_revolute::warm_start(&self.wide, &self.axial, bodies);
     }
 
-    /// One pass of sequential impulses over the active joints, with the
-    /// rigid rows' soft bias (`use_bias`, the solve pass) or without (the
-    /// relax pass), for substeps of `h` (s).
+    /// One pass of sequential impulses over the active joints (the scalar
+    /// ones, then the records), with the rigid rows' soft bias
+    /// (`use_bias`, the solve pass) or without (the relax pass), for
+    /// substeps of `h` (s).
     #[inline(never)]
     pub(crate) fn solve(&mut self, bodies: &mut [SolverBody], h: f64, use_bias: bool) {
         let inv_h = 1.0 / h;
-        for sim in self.sims.iter_mut().filter(|s| s.active) {
-            let f = &sim.frame;
+        for (id, f) in &self.scalar {
+            let sim = &mut self.sims[*id as usize];
             let (mut a, mut b) = (bodies[f.a], bodies[f.b]);
             let pair = (&mut a, &mut b);
             match &mut sim.rows {
@@ -432,6 +551,11 @@ impl JointSet {
                 JointRows::Target(t) => t.solve(f, pair, h),
             }
             store(bodies, f, &a, &b);
+        }
+        if use_bias {
+            wide_revolute::solve(&mut self.wide, &mut self.axial, bodies, inv_h);
+        } else {
+            wide_revolute::relax(&mut self.wide, &mut self.axial, bodies, inv_h);
         }
     }
 

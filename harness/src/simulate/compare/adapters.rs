@@ -6,7 +6,7 @@
 //! |---|---|---|
 //! | no `[contact]` | one dynamic body (statics left out: nothing touches them), [`crate::rapier_scene`]: gravity, springs from the centre to an anchor, drag, angular drag, torques; `references::rapier_world`, bent towards ideal rigid-body physics | one body with a shape, gravity only; `references::box2d_world` |
 //! | `model = "exact"` | dynamic and static bodies with shapes, gravity only, the world's e and μ; `references::rapier_contacts` (ideal physics: no speed cap, exact mass) | the same scene at Box2D's defaults, 4 substeps |
-//! | `model = "soft_step"` | any number of bodies, gravity only, each body's materials, the scene's substeps; `references::rapier_many` at rapier's defaults | the same, `references::box2d_world` |
+//! | `model = "soft_step"` | any number of bodies, gravity only, each body's materials, the scene's substeps, its joints but target joints (converted by `crate::bench::neutral_joints`); `references::rapier_many` at rapier's defaults | the same, `references::box2d_world` |
 //!
 //! Both many-body adapters compute mass from density × area and the
 //! inertia from the shape, so a body whose scene gives its own `inertia`
@@ -224,16 +224,44 @@ fn contact_scene(
     })
 }
 
+/// What the many-body adapters leave out of a scene's joints, for the
+/// note: the rigid rows' softness of the joints that set their own (the
+/// neutral description has none: each engine uses its default).
+fn joint_note(scene: &Scene) -> String {
+    let own: Vec<&str> = scene
+        .joints()
+        .filter(|j| {
+            j.constraint_hertz != engine::joints::DEFAULT_CONSTRAINT_HERTZ
+                || j.constraint_damping_ratio != engine::joints::DEFAULT_CONSTRAINT_DAMPING_RATIO
+        })
+        .map(|j| j.name.as_str())
+        .collect();
+    let mut note = format!(
+        "; {} joints converted (anchors in world coordinates at t = 0, reference angles and \
+         lengths explicit)",
+        scene.joint_count()
+    );
+    if let Some(first) = own.first() {
+        let others = match own.len() {
+            1 => String::new(),
+            n => format!(" and {} other joints", n - 1),
+        };
+        note.push_str(&format!(
+            "; joint '{first}'{others} set their own constraint_hertz or \
+             constraint_damping_ratio, which the adapter does not carry: the engine's default \
+             rigid-row softness there"
+        ));
+    }
+    note
+}
+
 /// Sets up `with` for `scene` run in steps of `dt` (s), or says why it
-/// cannot.
+/// cannot. A scene with joints uses the soft step (the scene crate sees to
+/// it), so it goes to the many-body adapters, which take its joints as
+/// [`crate::bench::neutral_joints`] converts them (a target joint, which
+/// they cannot carry, is refused by name).
 pub(super) fn prepare(scene: &Scene, with: CompareWith, dt: f64) -> Result<Prepared> {
     let adapter = adapter_words(with, scene);
-    if scene.joint_count() > 0 {
-        bail!(
-            "{}: the scene has joints, which the {adapter} does not translate (yet): remove the option",
-            scene.origin()
-        );
-    }
     let settings = RapierSettings::new(dt);
     let prepared = match (with, scene.contact()) {
         (CompareWith::Rapier, None) => {
@@ -291,7 +319,7 @@ pub(super) fn prepare(scene: &Scene, with: CompareWith, dt: f64) -> Result<Prepa
                     Box::new(Box2dWorld::new(&many).map_err(|e| many_body_error(scene, e))?)
                 }
             };
-            let note = match model {
+            let mut note = match model {
                 Some(ContactModel::SoftStep(_)) => {
                     "each body's materials, the gravity and the substeps from the scene; contact \
                      stiffness and the other solver settings at the engine's defaults"
@@ -301,13 +329,17 @@ pub(super) fn prepare(scene: &Scene, with: CompareWith, dt: f64) -> Result<Prepa
                      (a soft-step engine: its impacts are not exact)"
                 }
                 None => "one body under gravity",
-            };
+            }
+            .to_string();
+            if scene.joint_count() > 0 {
+                note.push_str(&joint_note(scene));
+            }
             Prepared {
                 name: engine.name(),
                 configuration: engine.configuration(),
                 adapter: Adapter::Many(engine),
                 substeps,
-                note: note.into(),
+                note,
             }
         }
     };
