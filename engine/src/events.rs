@@ -1,5 +1,5 @@
 //! Events located inside a step (landing `y = 0`, apex `vy = 0`), so that
-//! times, ranges and heights are not quantized to the step (CASES.md case
+//! times, ranges and heights are not quantized to the step (docs/cases.md case
 //! II: "Event times are found by root-finding on the step").
 //!
 //! After each accepted step from `(t_a, y_a)` to `(t_b, y_b)`, every event

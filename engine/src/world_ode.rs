@@ -3,7 +3,7 @@
 //! Each dynamic body owns a slot: `x, y` (and `θ` when it rotates) in the
 //! position block, the matching velocities at the same offset in the
 //! velocity block. Particles carry no angle; static bodies are not in the
-//! state at all (DESIGN.md: "model no more than a scene needs").
+//! state at all (docs/design.md: "model no more than a scene needs").
 
 use crate::body::{Body, BodyState};
 use crate::contact::resting::RestingContacts;

@@ -1,5 +1,5 @@
 //! Bad input gets a typed `EngineError` naming what is wrong, never a panic
-//! and never a silent default (DESIGN.md, "Principles").
+//! and never a silent default (docs/design.md, "Principles").
 
 use engine::forces::{Attachment, Gravity, QuadraticDrag, Spring, Torque};
 use engine::{

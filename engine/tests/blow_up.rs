@@ -1,7 +1,7 @@
 //! A blow-up is detected and reported as a typed `EngineError::BlowUp`
 //! naming the time and the step, never returned as silent garbage
-//! (DESIGN.md: "a blow-up is detected and reported (NaN, infinity, energy
-//! growth)").
+//! (docs/design.md, Principles: "a blow-up is detected and reported
+//! (non-finite state, energy growth)").
 
 use engine::forces::{Attachment, Spring};
 use engine::{BodyDef, EngineError, FnSystem, Method, World, integrate_fixed};
@@ -10,7 +10,7 @@ use nalgebra::Vector2;
 /// E0 of the seed spring, ½ k (x0 − l0)² (J).
 const E0: f64 = 62_500.0;
 
-/// The seed spring (CASES.md case I) with `method`.
+/// The seed spring (docs/cases.md case I) with `method`.
 fn spring_world(method: Method) -> World {
     let mut world = World::new(method).unwrap();
     let id = world

@@ -1,4 +1,4 @@
-//! Contact response in a world (CASES.md case III): impacts against the
+//! Contact response in a world (docs/cases.md case III): impacts against the
 //! closed forms, bounces, resting, sliding and holding with friction, and
 //! several contacts in one step.
 
@@ -33,7 +33,7 @@ fn gravity(world: &mut World) {
         .unwrap();
 }
 
-/// CASES.md: m1 = 1 kg at +2 m/s, m2 = 3 kg at rest; e = 1 gives −1, +1 and
+/// docs/cases.md: m1 = 1 kg at +2 m/s, m2 = 3 kg at rest; e = 1 gives −1, +1 and
 /// e = 0.5 gives −0.25, +0.75, momentum kept to 1e-12.
 #[test]
 fn head_on_discs_leave_with_the_closed_form_velocities() {
@@ -171,7 +171,7 @@ fn bouncing_ball(e: f64, h0: f64, method: Method) -> (World, usize) {
     (world, ball)
 }
 
-/// e = 1: the apex does not drift (CASES.md: 1e-9 relative per bounce).
+/// e = 1: the apex does not drift (docs/cases.md: 1e-9 relative per bounce).
 #[test]
 fn elastic_ball_keeps_its_apex() {
     for method in [
@@ -241,7 +241,7 @@ fn box_on_ground(mu: f64, v0: f64) -> (World, usize) {
     (world, b)
 }
 
-/// CASES.md: a box resting 10 s moves less than 1e-9 m.
+/// docs/cases.md: a box resting 10 s moves less than 1e-9 m.
 #[test]
 fn resting_box_neither_sinks_nor_jitters() {
     let (mut world, b) = box_on_ground(0.5, 0.0);
@@ -255,7 +255,7 @@ fn resting_box_neither_sinks_nor_jitters() {
     assert_eq!(events[0].kind, ContactEventKind::Rest);
 }
 
-/// CASES.md: sliding at v0 with friction μ stops after v0²/(2μg) in
+/// docs/cases.md: sliding at v0 with friction μ stops after v0²/(2μg) in
 /// v0/(μg).
 #[test]
 fn sliding_box_stops_at_the_closed_form_distance() {
@@ -427,7 +427,7 @@ fn the_default_search_catches_what_bisection_tunnels_through() {
     }
 }
 
-/// DESIGN.md: a scene without two collidable shapes runs no collision
+/// docs/design.md: a scene without two collidable shapes runs no collision
 /// code, and neither does one that did not ask for contacts.
 #[test]
 fn one_shape_runs_no_collision_code() {
@@ -477,7 +477,7 @@ fn one_shape_runs_no_collision_code() {
     assert!(!still.has_contacts());
 }
 
-/// DESIGN.md: the same scene gives bit-identical traces, contacts included;
+/// docs/design.md: the same scene gives bit-identical traces, contacts included;
 /// the profile counts the work whether or not it is timed.
 #[test]
 fn contact_runs_are_deterministic_and_profiled() {

@@ -1,4 +1,4 @@
-//! The same scene and settings give bit-identical traces (DESIGN.md,
+//! The same scene and settings give bit-identical traces (docs/design.md,
 //! "Principles"). Compared bit for bit (`f64::to_bits`), which `==` is not:
 //! it equates 0.0 with −0.0 and never equates NaN.
 

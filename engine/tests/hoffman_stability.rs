@@ -1,4 +1,4 @@
-//! Hoffman's stiff test (CASES.md "Stiff test", seed §4.3):
+//! Hoffman's stiff test (docs/cases.md "Stiff test", seed §4.3):
 //! y' = −1000(y − (t + 2)) + 1, y(0) = 1, exact y = t + 2 − e^(−1000t),
 //! integrated with `integrate_fixed` over t ∈ [0, 1].
 //!
@@ -115,15 +115,15 @@ fn explicit_euler_is_stable_just_below_h_0_002() {
 
 #[test]
 fn explicit_euler_blows_up_at_h_0_0021() {
-    // R = −1.1, 476 steps: −1.1^476 ≈ −5.05e19 (CASES.md: "about −5e19").
+    // R = −1.1, 476 steps: −1.1^476 ≈ −5.05e19 (docs/cases.md: "about −5e19").
     let e = assert_unstable(Method::ExplicitEuler, 0.0021, r_explicit_euler, 1e19);
-    // CASES.md quotes one significant digit: −5e19 means [−5.5e19, −4.5e19).
+    // docs/cases.md quotes one significant digit: −5e19 means [−5.5e19, −4.5e19).
     assert!((-5.5e19..-4.5e19).contains(&e), "{e:e}");
 }
 
 #[test]
 fn explicit_euler_at_h_0_003_reaches_1e100() {
-    // R = −2, 333 steps: +2^333 ≈ 1.75e100 (CASES.md: "about 1.7e100").
+    // R = −2, 333 steps: +2^333 ≈ 1.75e100 (docs/cases.md: "about 1.7e100").
     let e = assert_unstable(Method::ExplicitEuler, 0.003, r_explicit_euler, 1e100);
     assert!((1.65e100..1.85e100).contains(&e), "{e:e}");
 }
@@ -157,7 +157,7 @@ fn rk4_blows_up_at_h_0_0029() {
 
 #[test]
 fn rk4_limit_is_h_0_0027852936_within_one_percent() {
-    // CASES.md: RK4 stable iff h ≤ 0.0027852936 (hλ ≥ −2.78529356). 1 %
+    // docs/cases.md: RK4 stable iff h ≤ 0.0027852936 (hλ ≥ −2.78529356). 1 %
     // either side: |R| ≈ 0.958 (→ 2e-7 after 362 steps) and ≈ 1.042
     // (→ 3e6 after 355 steps).
     let h_star = 0.0027852936;

@@ -1,4 +1,4 @@
-//! Observed order of convergence of every integrator (CASES.md, "Observed
+//! Observed order of convergence of every integrator (docs/cases.md, "Observed
 //! order of convergence"): halving the step in the asymptotic range divides
 //! the global error by 2^p, with p = `Method::order()` within ±0.1; and the
 //! adaptive Dormand–Prince pair delivers errors that follow its tolerance.
@@ -7,14 +7,14 @@
 //! ratios), on three linear problems with closed-form solutions:
 //! - the scalar decay y' = −y (FnSystem),
 //! - the harmonic oscillator u'' = −ω²u written first order (FnSystem),
-//! - the seed spring (CASES.md case I) run by a `World`, which is also the
+//! - the seed spring (docs/cases.md case I) run by a `World`, which is also the
 //!   only one of the three the symplectic methods accept.
 
 use engine::forces::{Attachment, Spring};
 use engine::{BodyDef, FnSystem, Method, Tolerance, World, integrate_fixed};
 use nalgebra::Vector2;
 
-/// The band around the nominal order (CASES.md: "within ±0.1").
+/// The band around the nominal order (docs/cases.md: "within ±0.1").
 const ORDER_BAND: f64 = 0.1;
 
 /// Methods that accept a plain first-order system.
@@ -202,8 +202,8 @@ fn dormand_prince_on_the_decay_reaches_the_tolerance_order_of_magnitude() {
 }
 
 /// Position error (m) at t = 5 s of the seed box with quadratic drag
-/// (CASES.md `projectile_drag`) in steps of `h`, against the reference state
-/// CASES.md quotes to 10–13 significant digits.
+/// (docs/cases.md `projectile_drag`) in steps of `h`, against the reference state
+/// docs/cases.md quotes to 10–13 significant digits.
 fn drag_projectile_error(method: Method, h: f64) -> f64 {
     use engine::Shape;
     use engine::forces::{Gravity, QuadraticDrag};

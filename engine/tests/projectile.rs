@@ -1,4 +1,4 @@
-//! The seed's projectile (CASES.md case II `projectile` and
+//! The seed's projectile (docs/cases.md case II `projectile` and
 //! `projectile_drag`, seed §6): a 0.1 m × 0.1 m, 0.3 kg box launched from
 //! the origin at 60 m/s, 45°, under g = 9.80655 m/s² (the seed's value;
 //! standard gravity is 9.80665), dt = 0.01 s, with the landing (y = 0,
@@ -70,7 +70,7 @@ fn rk2_rk4_and_verlet_are_exact_on_the_parabola() {
     for method in [Method::Midpoint, Method::Rk4, Method::VelocityVerlet] {
         let (_, trace) = run(method, DT, false);
         // A quadratic in t is integrated exactly by these methods: only
-        // round-off remains (≈ 865 steps × ulp(367 m) ≈ 5e-11 m). CASES.md:
+        // round-off remains (≈ 865 steps × ulp(367 m) ≈ 5e-11 m). docs/cases.md:
         // "< 1e-9 m".
         for s in &trace.samples {
             let err = (s.states[0].position - parabola(s.t)).norm();
@@ -97,7 +97,7 @@ fn rk4_landing_matches_the_cases_md_digits() {
     let (world, trace) = run(Method::Rk4, DT, false);
     let landing = trace.event("landing").unwrap();
     let apex = trace.event("apex").unwrap();
-    // CASES.md quotes 10 significant digits (rounding ≤ 6e-11 relative);
+    // docs/cases.md quotes 10 significant digits (rounding ≤ 6e-11 relative);
     // 1e-9 relative leaves room for that and nothing more than round-off.
     assert!(rel(landing.t, 8.652667222) < 1e-9, "T = {}", landing.t);
     let range = landing.states[0].position.x;
@@ -152,7 +152,7 @@ fn euler_methods_err_by_plus_or_minus_g_h_t_over_2() {
 
 #[test]
 fn dormand_prince_drag_matches_the_high_precision_reference() {
-    // With drag there is no closed form; CASES.md quotes a 40-digit Taylor
+    // With drag there is no closed form; docs/cases.md quotes a 40-digit Taylor
     // solve to 13 significant digits. DP at 1e-12 (output every 0.1 s, its
     // own steps inside) lands within 1e-9 relative: the tolerance allows
     // ~1e-12 per step over a few hundred steps, far inside 1e-9.
@@ -190,6 +190,6 @@ fn rk4_with_drag_at_h_0_2_errs_by_4_5e_4_m_at_5_s() {
     let s = trace.samples.iter().find(|s| s.t == 5.0).unwrap();
     let reference = Vector2::new(104.7938286099, 18.00633836691);
     let err = (s.states[0].position - reference).norm();
-    // CASES.md: "4.5e-4 m", two significant digits: ±0.05e-4.
+    // docs/cases.md: "4.5e-4 m", two significant digits: ±0.05e-4.
     assert!((err - 4.5e-4).abs() < 0.05e-4, "error {err:e} m");
 }

@@ -1,4 +1,4 @@
-//! The seed's mass-spring (CASES.md case I, seed §5): a 20 kg particle at
+//! The seed's mass-spring (docs/cases.md case I, seed §5): a 20 kg particle at
 //! x0 = 100 m on an axial spring k = 50 N/m, l0 = 50 m anchored at the
 //! origin, h = 0.2 s, 286 steps to t = 57.2 s.
 //!
@@ -9,7 +9,7 @@
 //! symplectic methods are not of that form (they update u and v in turn) but
 //! each conserves an exact quadratic invariant, derived below. These
 //! discrete closed forms let the tests check the engine at round-off level,
-//! and the CASES.md numbers are checked to the digits it quotes.
+//! and the docs/cases.md numbers are checked to the digits it quotes.
 
 use engine::forces::{Attachment, Spring};
 use engine::{BodyDef, Method, Trace, World};
@@ -83,7 +83,7 @@ fn rk4_reproduces_the_seed_numbers() {
     let trace = seed_run(Method::Rk4);
     let last = trace.last().unwrap();
     let x = last.states[0].position.x;
-    // CASES.md quotes x(57.2) = 10.95756 m: 5 decimals, ±5e-6 of rounding.
+    // docs/cases.md quotes x(57.2) = 10.95756 m: 5 decimals, ±5e-6 of rounding.
     assert!((x - 10.95756).abs() < 1e-5, "x(57.2) = {x}");
     // The exact value it quotes to 10 decimals (checks our formula).
     assert!((exact_x(T_END) - 10.6555761116).abs() < 1e-9);
@@ -145,7 +145,7 @@ fn explicit_euler_amplitude_grows_as_one_plus_h_omega_squared_to_the_n_over_2() 
             "step {n}: {ratio:e} vs {expected:e}"
         );
     }
-    // CASES.md: "amplitude ×8.3e5 at 57.2 s" (two digits: ±0.05e5).
+    // docs/cases.md: "amplitude ×8.3e5 at 57.2 s" (two digits: ±0.05e5).
     let amplitude = z_of(&trace, STEPS).norm() / (X0 - REST);
     assert!(
         (amplitude - 8.3e5).abs() < 0.05e5,
@@ -175,7 +175,7 @@ fn rk4_energy_decays_monotonically_as_r_to_the_2n() {
 #[test]
 fn midpoint_energy_grows_weakly_and_implicit_euler_damps() {
     // |R(iy)|² = 1 + y⁴/4 for the midpoint rule, 1/(1 + y²) for implicit
-    // Euler (CASES.md: RK2 "weak growth", implicit Euler "damps").
+    // Euler (docs/cases.md: RK2 "weak growth", implicit Euler "damps").
     let y = H * omega();
     let mid = seed_run(Method::Midpoint).last().unwrap().energy / E0;
     let expected = (1.0 + y.powi(4) / 4.0).powi(STEPS as i32);
@@ -217,7 +217,7 @@ fn semi_implicit_euler_energy_stays_in_the_seed_band() {
         assert!((q(s) / q0 - 1.0).abs() < 1e-12, "t = {}: Q drifted", s.t);
     }
     let (lo_bound, hi_bound) = (1.0 / (1.0 + a / 2.0) - 1.0, 1.0 / (1.0 - a / 2.0) - 1.0);
-    // The derived band is CASES.md's [−0.1365, +0.1878] to its 4 decimals.
+    // The derived band is docs/cases.md's [−0.1365, +0.1878] to its 4 decimals.
     assert!((lo_bound + 0.1365).abs() < 5e-5 && (hi_bound - 0.1878).abs() < 5e-5);
     let (lo, hi) = energy_range(&trace);
     // Inside the band up to round-off (1e-12), and the samples, 0.32 rad of
@@ -262,7 +262,7 @@ fn energy_after(method: Method, h_omega: f64, steps: usize) -> f64 {
 
 #[test]
 fn stability_limits_on_the_imaginary_axis() {
-    // CASES.md: semi-implicit Euler and Verlet stable iff hω < 2, RK4 iff
+    // docs/cases.md: semi-implicit Euler and Verlet stable iff hω < 2, RK4 iff
     // hω ≤ 2√2. 1 % either side, 100 steps:
     // - symplectic, hω = 1.98: bounded by the invariant (E/E0 ≤ 1/(1 − hω/2)
     //   = 100 for semi-implicit Euler, ≤ 1 for Verlet); hω = 2.02: an

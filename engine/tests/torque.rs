@@ -1,4 +1,4 @@
-//! The seed's torque cases (CASES.md case II `torque` and `angular_drag`,
+//! The seed's torque cases (docs/cases.md case II `torque` and `angular_drag`,
 //! seed eq. 6.16–6.20): a pure couple τ = R × F = 0.005 N·m on the seed box
 //! (I = 5e-4 kg·m²) during the first 0.7 s, added with a `TimeWindow`; the
 //! world splits its steps at the window's edges, so no stage straddles the
@@ -123,7 +123,7 @@ fn a_window_edge_inside_a_step_is_honoured_exactly() {
     }
 }
 
-/// Closed form of `angular_drag` (CASES.md): ω and θ at time t.
+/// Closed form of `angular_drag` (docs/cases.md): ω and θ at time t.
 fn angular_drag_exact(t: f64) -> (f64, f64) {
     let tau = 0.005;
     let k = (tau * DRAG).sqrt() / INERTIA;
@@ -141,7 +141,7 @@ fn angular_drag_exact(t: f64) -> (f64, f64) {
 
 #[test]
 fn angular_drag_closed_form_reproduces_the_cases_md_digits() {
-    // Guards the formula the other tests compare with; CASES.md quotes 10
+    // Guards the formula the other tests compare with; docs/cases.md quotes 10
     // significant digits, so agreement to half a unit of the last digit.
     let (w07, th07) = angular_drag_exact(0.7);
     let (w87, th87) = angular_drag_exact(T_END);
@@ -156,7 +156,7 @@ fn angular_drag_rk4_at_h_0_01_hits_omega_at_0_7_s() {
     let (_, trace) = run(Method::Rk4, 0.01, 0.7, true);
     let w07 = at(&trace, 0.7).angular_velocity;
     // Observed error 2.4e-9 rad/s (RK4 truncation, k·h = 0.077); 1e-8 is the
-    // CASES.md check, well above the quoted digits' 5e-10.
+    // docs/cases.md check, well above the quoted digits' 5e-10.
     assert!((w07 - 1.290944064).abs() < 1e-8, "ω(0.7) = {w07}");
     let exact = angular_drag_exact(0.7).0;
     assert!((w07 - exact).abs() < 1e-8, "ω(0.7) = {w07} vs {exact}");
@@ -198,7 +198,7 @@ fn angular_drag_rk4_is_the_textbook_rk4_and_converges_at_order_4() {
     }
     // At h = 0.01 RK4's own truncation error in θ(8.7) is 1.3e-7 rad
     // (k·h = 0.077 in the driven phase, rate (D/I)ω1·h = 0.077 after): the
-    // CASES.md value 1.478605506 is only reached to its 1e-9 digits at a
+    // docs/cases.md value 1.478605506 is only reached to its 1e-9 digits at a
     // smaller step. Halving h divides the error by 2^4 (±0.1 in p).
     for pair in errors.windows(2) {
         let p = (pair[0] / pair[1]).log2();

@@ -1,5 +1,5 @@
 //! Observed order of convergence per method per case, from a step sweep
-//! (CASES.md: p = log2(e(h)/e(h/2)) in the asymptotic range, which must
+//! (docs/cases.md: p = log2(e(h)/e(h/2)) in the asymptotic range, which must
 //! match the nominal order within ±0.1).
 //!
 //! The asymptotic range keeps the stable points whose max error over the
@@ -25,7 +25,7 @@ pub const CEILING: f64 = 1e-2;
 /// How many of the finest halvings inside the range set the order.
 pub const FINEST_PAIRS: usize = 3;
 
-/// Tolerance on the observed order (CASES.md).
+/// Tolerance on the observed order (docs/cases.md).
 pub const ORDER_TOLERANCE: f64 = 0.1;
 
 /// The observed order of one method in one sweep.
@@ -103,7 +103,7 @@ pub fn order_rows(sweep: &Sweep) -> Vec<Row> {
                 ORDER_TOLERANCE,
                 crate::row::Comparison::Within,
                 format!(
-                    "median of log2(e(h)/e(h/2)) over the finest {} of {} halvings with max error in [{FLOOR:e}, {CEILING:e}] x {} (asymptotic range); dt = finest step used; CASES.md: +/- 0.1",
+                    "median of log2(e(h)/e(h/2)) over the finest {} of {} halvings with max error in [{FLOOR:e}, {CEILING:e}] x {} (asymptotic range); dt = finest step used; docs/cases.md: +/- 0.1",
                     observed.pairwise.len().min(FINEST_PAIRS),
                     observed.pairwise.len(),
                     sweep.scale

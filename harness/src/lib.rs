@@ -1,4 +1,4 @@
-//! The harness: runs every validation case of CASES.md against its
+//! The harness: runs every validation case of docs/cases.md against its
 //! reference and writes `reports/`. The binary (`cargo run --release -p
 //! harness`) is a thin command line over this library, which the snapshot
 //! tests and the benches use too.

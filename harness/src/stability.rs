@@ -1,5 +1,5 @@
 //! Where each method fails: the largest stable step, found by bisection on
-//! h with the engine's blow-up detection, on the two axes of CASES.md's
+//! h with the engine's blow-up detection, on the two axes of docs/cases.md's
 //! table — the oscillator (imaginary axis, hω) and Hoffman's stiff test
 //! (real axis, hλ).
 //!
@@ -39,7 +39,7 @@ pub const GROWTH_THRESHOLD: f64 = 1e-7;
 pub const HOFFMAN_STEPS: usize = 4000;
 /// Relative width at which the bisection stops.
 const BISECTION_WIDTH: f64 = 1e-6;
-/// CASES.md: measured limits within 1 % of theory.
+/// docs/cases.md: measured limits within 1 % of theory.
 const LIMIT_TOLERANCE: f64 = 0.01;
 
 /// Which test problem.
@@ -189,7 +189,7 @@ pub fn largest_stable_step(
     Ok(Some(lo))
 }
 
-/// Theory's limits (CASES.md), in units of hω (imaginary) or |hλ| (real);
+/// Theory's limits (docs/cases.md), in units of hω (imaginary) or |hλ| (real);
 /// `None` where theory says "none" (unstable for every h) and
 /// `Some(INFINITY)` where it says "any".
 pub fn theory_limit(method: Method, axis: Axis) -> Option<f64> {
@@ -225,12 +225,12 @@ pub struct Limit {
     pub axis: Axis,
     /// Measured limit in hω or |hλ| (NaN: none found).
     pub measured: f64,
-    /// Theory (CASES.md); `None`: unstable at every step; ∞: stable at every step.
+    /// Theory (docs/cases.md); `None`: unstable at every step; ∞: stable at every step.
     pub theory: Option<f64>,
 }
 
 /// Measures every method's limit on each problem's axis and returns rows
-/// comparing them with CASES.md.
+/// comparing them with docs/cases.md.
 pub fn measure_all(problems: &[Problem]) -> Result<(Vec<Limit>, Vec<Row>)> {
     let omega = SpringOscillator::seed().omega();
     let lambda = Hoffman::seed().lambda.abs();
@@ -290,7 +290,7 @@ pub fn measure_all(problems: &[Problem]) -> Result<(Vec<Limit>, Vec<Row>)> {
                         LIMIT_TOLERANCE * limit,
                         Comparison::Within,
                         format!(
-                            "largest stable {unit} by bisection (blow-up detection), CASES.md theory, within 1 %"
+                            "largest stable {unit} by bisection (blow-up detection), docs/cases.md theory, within 1 %"
                         ),
                     );
                     value
@@ -351,7 +351,7 @@ mod tests {
 
     #[test]
     fn rk4_is_stable_just_inside_two_root_two_and_not_just_outside() {
-        // 1 % either side of hw = 2 sqrt 2 (CASES.md).
+        // 1 % either side of hw = 2 sqrt 2 (docs/cases.md).
         let w = SpringOscillator::seed().omega();
         let limit = 2.0 * 2f64.sqrt() / w;
         assert!(is_stable("spring", Method::Rk4, Axis::Imaginary, 0.99 * limit).unwrap());

@@ -3,7 +3,7 @@
 //!
 //! Seed §6.2, eq. 6.21 adds the seed's "angular friction" to the spin-up of
 //! eq. 6.20. The seed writes I·Δω/dt − D|ω|² = τ, which has the drag's sign
-//! backwards; `CASES.md` states the physics: a drag torque −D·ω|ω| with the
+//! backwards; `docs/cases.md` states the physics: a drag torque −D·ω|ω| with the
 //! linear drag's D = 0.003 (seed Table 6.2), on top of the couple τ0 that acts
 //! for t ∈ [0, t1):
 //!
@@ -24,10 +24,10 @@
 //! θ(8.7) = 1.478605506 rad.
 //!
 //! I is tiny, so D/I = 6 s⁻¹·(rad/s)⁻¹ makes this the stiffest term of case II
-//! (`CASES.md`).
+//! (`docs/cases.md`).
 
 /// A couple τ0 applied on [0, t1) to a body at rest, against the quadratic
-/// drag torque −D·ω|ω| (`CASES.md` case II `angular_drag`, seed eq. 6.21).
+/// drag torque −D·ω|ω| (`docs/cases.md` case II `angular_drag`, seed eq. 6.21).
 ///
 /// Requires `inertia > 0`, `drag > 0` and `duration ≥ 0`; otherwise the
 /// results are NaN or infinite (no panic). With no drag use
@@ -58,7 +58,7 @@ fn ln_cosh(x: f64) -> f64 {
 }
 
 impl AngularDrag {
-    /// The seed configuration (`CASES.md` case II): τ0 = 0.005 N·m,
+    /// The seed configuration (`docs/cases.md` case II): τ0 = 0.005 N·m,
     /// I = 5e-4 kg·m², D = 0.003, t1 = 0.7 s.
     pub const fn seed() -> Self {
         Self {

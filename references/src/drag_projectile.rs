@@ -17,7 +17,7 @@
 //! for DOP853, so re-integration replaces it at the same tolerance).
 //!
 //! Events are located by root-finding, never by taking the nearest step
-//! (`CASES.md`): the step interval where the event function changes sign gives
+//! (`docs/cases.md`): the step interval where the event function changes sign gives
 //! a bracket, then a safeguarded Newton iteration (Newton steps that leave the
 //! bracket are replaced by bisection, and the bracket shrinks every iteration)
 //! converges on the root, each evaluation being a DOP853 re-integration from
@@ -27,7 +27,7 @@
 //! - apex: vy(t) = 0 with vy descending (derivative vy' = −g − (D/m)|v|vy).
 //!
 //! Gravity is the seed's 9.80655 m/s² ([`crate::SEED_GRAVITY`]), as
-//! `CASES.md` requires for case II. The 40-digit values this solve is tested
+//! `docs/cases.md` requires for case II. The 40-digit values this solve is tested
 //! against are in [`crate::drag_reference_values`].
 
 use ode_solvers::dop_shared::IntegrationError;
@@ -52,7 +52,7 @@ pub struct DragParams {
 }
 
 impl DragParams {
-    /// The seed configuration (seed Table 6.2, `CASES.md` case II
+    /// The seed configuration (seed Table 6.2, `docs/cases.md` case II
     /// `projectile_drag`): m = 0.3 kg, D = 0.003 kg/m, g = 9.80655 m/s²
     /// (the seed's value), v0 = 60 m/s, α = 45°.
     pub const fn seed() -> Self {
@@ -112,7 +112,7 @@ pub struct SolverSettings {
 
 impl Default for SolverSettings {
     /// rtol = atol = 1e-14 and horizon 8.7 s (the case-II run window of
-    /// `CASES.md`).
+    /// `docs/cases.md`).
     ///
     /// 1e-14 is the tightest round tolerance Hairer's original DOP853 accepts
     /// (it rejects rtol ≤ 10·uround ≈ 2.2e-15); `ode_solvers` does not check.
@@ -298,7 +298,7 @@ fn advance(
 }
 
 /// The high-precision reference solution of the quadratic-drag projectile
-/// (`CASES.md` case II `projectile_drag`).
+/// (`docs/cases.md` case II `projectile_drag`).
 #[derive(Debug, Clone)]
 pub struct DragReference {
     params: DragParams,
@@ -421,17 +421,17 @@ impl DragReference {
     }
 
     /// Landing time T, s: the first t > 0 with y = 0 (descending).
-    /// `CASES.md`: 5.854653263330 s.
+    /// `docs/cases.md`: 5.854653263330 s.
     pub fn landing_time(&self) -> f64 {
         self.landing_time
     }
 
-    /// Range R = x(T), m. `CASES.md`: 113.8638433141 m.
+    /// Range R = x(T), m. `docs/cases.md`: 113.8638433141 m.
     pub fn range(&self) -> f64 {
         self.landing_state[0]
     }
 
-    /// Impact velocity (vx, vy) at T, m/s. `CASES.md`:
+    /// Impact velocity (vx, vy) at T, m/s. `docs/cases.md`:
     /// (9.559095582234, −23.01932191094) m/s.
     pub fn impact_velocity(&self) -> [f64; 2] {
         [self.landing_state[2], self.landing_state[3]]
@@ -442,17 +442,17 @@ impl DragReference {
         self.landing_state
     }
 
-    /// Apex time, s: where vy = 0. `CASES.md`: 2.570518887719 s.
+    /// Apex time, s: where vy = 0. `docs/cases.md`: 2.570518887719 s.
     pub fn apex_time(&self) -> f64 {
         self.apex_time
     }
 
-    /// Apex height H = y at the apex, m. `CASES.md`: 43.00523490712 m.
+    /// Apex height H = y at the apex, m. `docs/cases.md`: 43.00523490712 m.
     pub fn apex_height(&self) -> f64 {
         self.apex_state[1]
     }
 
-    /// Apex abscissa, x at the apex, m. `CASES.md`: 68.34176280439 m.
+    /// Apex abscissa, x at the apex, m. `docs/cases.md`: 68.34176280439 m.
     pub fn apex_x(&self) -> f64 {
         self.apex_state[0]
     }
@@ -475,7 +475,7 @@ impl DragReference {
 
     /// The state (x, y, vx, vy) at time t (s), in m and m/s, for t in the
     /// solved window [0, horizon]: DOP853 from the last step point at or
-    /// before t. `CASES.md` at t = 5 s: (104.7938286099, 18.00633836691,
+    /// before t. `docs/cases.md` at t = 5 s: (104.7938286099, 18.00633836691,
     /// 11.69691072171, −18.89837502420).
     pub fn state_at(&self, t: f64) -> Result<[f64; 4], DragError> {
         if !(t >= 0.0 && t <= self.settings.horizon) {
@@ -524,7 +524,7 @@ mod tests {
     /// their shortest round-trip f64), from an
     /// independent re-check made while writing this crate: mpmath `odefun`
     /// (Taylor series) at mp.dps = 30 and `findroot` for the events. They
-    /// agree with every digit `CASES.md` prints, and measure the DOP853 error
+    /// agree with every digit `docs/cases.md` prints, and measure the DOP853 error
     /// without the 13-digit rounding of the printed values.
     const MPMATH_30_DIGITS: [(&str, f64); 11] = [
         ("landing_time", 5.854_653_263_330_023), // 5.85465326333002230339730190877
@@ -557,7 +557,7 @@ mod tests {
             worst_cases = worst_cases.max(err / reference.value.abs());
             worst_mp = worst_mp.max(err_mp / mp.abs());
             eprintln!(
-                "{name:>15}: dop853 {value:.15e} {unit:<3} | vs CASES.md {err:.2e} (rel {:.1e}, printed half unit {:.0e}) | vs 30 digits {err_mp:.2e} (rel {:.1e})",
+                "{name:>15}: dop853 {value:.15e} {unit:<3} | vs docs/cases.md {err:.2e} (rel {:.1e}, printed half unit {:.0e}) | vs 30 digits {err_mp:.2e} (rel {:.1e})",
                 err / reference.value.abs(),
                 reference.half_unit,
                 err_mp / mp.abs(),
@@ -568,7 +568,7 @@ mod tests {
             // mildly contracting drag flow the global error is measured at
             // ≈ 1·tol for every tol from 1e-10 to 1e-14 (worst 1.1e-14 at
             // 1e-14, see `SolverSettings::default`), so 10·rtol leaves a
-            // factor ~9 of margin. Against CASES.md, add the printed value's
+            // factor ~9 of margin. Against docs/cases.md, add the printed value's
             // own rounding (half a unit of its last digit).
             let solve_tol = 10.0 * rtol * mp.abs();
             assert!(
@@ -582,7 +582,7 @@ mod tests {
             );
         }
         eprintln!(
-            "worst relative difference: {worst_cases:.2e} vs CASES.md, {worst_mp:.2e} vs 30 digits, over {} DOP853 steps",
+            "worst relative difference: {worst_cases:.2e} vs docs/cases.md, {worst_mp:.2e} vs 30 digits, over {} DOP853 steps",
             r.step_count()
         );
     }
@@ -638,7 +638,7 @@ mod tests {
 
     #[test]
     fn rk4_at_h_0_2_errs_by_4_5e_4_m_at_5_s() {
-        // CASES.md: classical RK4 with h = 0.2 s errs by 4.5e-4 m at t = 5 s
+        // docs/cases.md: classical RK4 with h = 0.2 s errs by 4.5e-4 m at t = 5 s
         // (25 steps); the error is the Euclidean norm of (Δx, Δy). 2
         // significant digits: half a unit of the last digit is 5e-6 m.
         let p = DragParams::seed();

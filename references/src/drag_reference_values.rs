@@ -1,12 +1,12 @@
 //! Case II (`projectile_drag`): the high-precision reference values of
-//! `CASES.md`, as constants.
+//! `docs/cases.md`, as constants.
 //!
 //! The problem (seed §6.2, eq. 6.4–6.15, Table 6.2): a point of mass
 //! m = 0.3 kg under gravity g = 9.80655 m/s² (the seed's value, not standard
 //! gravity) and quadratic air drag F = −D|v|v with D = ρCA/2 = 0.003 kg/m,
 //! launched from the origin at 60 m/s and 45°. It has no closed form in 2D.
 //!
-//! The values below are those `CASES.md` quotes, from a 40-digit
+//! The values below are those `docs/cases.md` quotes, from a 40-digit
 //! Taylor-series solve (mpmath), confirmed there by DOP853 and Radau at 1e-13.
 //! They were re-checked while writing this crate with mpmath's Taylor-series
 //! `odefun` at 30 digits and `findroot` for the events: every printed digit
@@ -45,7 +45,7 @@ pub const STATE_VX: f64 = 11.69691072171;
 pub const STATE_VY: f64 = -18.89837502420;
 
 /// Euclidean position error |(Δx, Δy)| (m) at t = 5 s of classical RK4 with
-/// h = 0.2 s (25 steps) against the reference state: `CASES.md` gives
+/// h = 0.2 s (25 steps) against the reference state: `docs/cases.md` gives
 /// 4.5e-4 m (2 significant digits; the unrounded value is 4.511e-4 m).
 pub const RK4_H02_POSITION_ERROR_AT_5_S: f64 = 4.5e-4;
 
@@ -54,7 +54,7 @@ pub const RK4_H02_POSITION_ERROR_AT_5_S: f64 = 4.5e-4;
 pub struct ReferenceValue {
     /// Short identifier, e.g. `"landing_time"`.
     pub name: &'static str,
-    /// The value as printed in `CASES.md`.
+    /// The value as printed in `docs/cases.md`.
     pub value: f64,
     /// SI unit of the value.
     pub unit: &'static str,
@@ -63,7 +63,7 @@ pub struct ReferenceValue {
     pub half_unit: f64,
 }
 
-/// Every high-precision value of `CASES.md` case II `projectile_drag` (not
+/// Every high-precision value of `docs/cases.md` case II `projectile_drag` (not
 /// the RK4 error, which is a property of a method, not of the solution).
 pub const ALL: [ReferenceValue; 11] = [
     ReferenceValue {

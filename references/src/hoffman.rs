@@ -5,7 +5,7 @@
 //! y' = λ·(y − (t + 2)) + 1,   y(0) = y0,   λ = −1000 s⁻¹, y0 = 1,
 //!
 //! whose solution is y(t) = t + 2 + (y0 − 2)·e^(λt); with the seed's y0 = 1,
-//! y(t) = t + 2 − e^(−1000t) (`CASES.md`, stiff test). The transient dies in
+//! y(t) = t + 2 − e^(−1000t) (`docs/cases.md`, stiff test). The transient dies in
 //! ~5 ms, after which the solution is the smooth line t + 2, but an explicit
 //! method still has to keep h·λ inside its stability region: explicit Euler is
 //! stable iff h ≤ 2/|λ| = 0.002 s, RK4 iff h ≤ 2.785293563/|λ| s.
@@ -13,7 +13,7 @@
 /// Real-axis stability boundary of classical RK4: the negative real root of
 /// R(z) = 1 + z + z²/2 + z³/6 + z⁴/24 = 1, i.e. of z³ + 4z² + 12z + 24 = 0
 /// (dimensionless h·λ). Value from a 30-digit polynomial root
-/// (−2.78529356340528162352975918976881), rounded to f64. `CASES.md` quotes
+/// (−2.78529356340528162352975918976881), rounded to f64. `docs/cases.md` quotes
 /// −2.78529356.
 pub const RK4_REAL_STABILITY_BOUNDARY: f64 = -2.785_293_563_405_282;
 
@@ -22,7 +22,7 @@ pub const RK4_REAL_STABILITY_BOUNDARY: f64 = -2.785_293_563_405_282;
 pub const EULER_REAL_STABILITY_BOUNDARY: f64 = -2.0;
 
 /// Hoffman's linear stiff test problem y' = λ·(y − (t + 2)) + 1 (seed §4.3,
-/// `CASES.md` stiff test). Time in s, y dimensionless.
+/// `docs/cases.md` stiff test). Time in s, y dimensionless.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hoffman {
     /// Stiffness eigenvalue λ, s⁻¹ (seed: −1000).
@@ -88,9 +88,9 @@ mod tests {
     #[test]
     fn stability_limits_match_cases_md() {
         let h = Hoffman::seed();
-        // CASES.md: explicit Euler stable iff h ≤ 0.002 (exact).
+        // docs/cases.md: explicit Euler stable iff h ≤ 0.002 (exact).
         assert_close(h.euler_max_stable_step(), 0.002, 1e-18, "Euler h_max");
-        // CASES.md: RK4 stable iff h ≤ 0.0027852936 (10 decimals: half a
+        // docs/cases.md: RK4 stable iff h ≤ 0.0027852936 (10 decimals: half a
         // unit of the last digit is 5e-11).
         assert_close(h.rk4_max_stable_step(), 0.0027852936, 5e-11, "RK4 h_max");
         // The boundary is a root of z³ + 4z² + 12z + 24 (|R(z)| = 1).

@@ -1,12 +1,12 @@
 //! What the engine is judged against.
 //!
 //! This crate holds the reference solutions of the validation cases listed in
-//! `CASES.md` (the authoritative list, at the root of the shared project
+//! `docs/cases.md` (the authoritative list, at the root of the shared project
 //! notes). Every item here is a pure function of its parameters: nothing in
 //! this crate calls the engine, so an engine bug cannot leak into the
 //! reference it is compared with.
 //!
-//! | case (`CASES.md`)          | seed report          | module                  |
+//! | case (`docs/cases.md`)          | seed report          | module                  |
 //! |----------------------------|----------------------|-------------------------|
 //! | I, `spring`                | §5, eq. 5.2–5.4      | [`spring`]              |
 //! | II, `projectile`           | §6, eq. 6.1–6.3, Table 6.1 | [`projectile`]    |
@@ -22,7 +22,7 @@
 //! The first five are closed forms. The quadratic-drag projectile has none in
 //! 2D: [`drag_projectile`] solves it with DOP853 (crate `ode_solvers`) at a
 //! tolerance of 1e-14 and locates its events by root-finding, and
-//! [`drag_reference_values`] holds the 40-digit values `CASES.md` quotes, which
+//! [`drag_reference_values`] holds the 40-digit values `docs/cases.md` quotes, which
 //! the DOP853 solve is tested against.
 //!
 //! The joint cases' references: the pendulum's period and motion by the
@@ -41,7 +41,7 @@
 //!
 //! Units are SI throughout (m, s, kg, N, rad) and every quantity is `f64`.
 //! "Seed" means the 2006 report `seed/000_03ad6f8b5a3a5bfa.txt`; its numbers
-//! are used as `CASES.md` corrects them.
+//! are used as `docs/cases.md` corrects them.
 #![warn(missing_docs)]
 
 pub mod angular_drag;

@@ -1,5 +1,5 @@
 //! The same shape queries in parry2d-f64 0.31, to judge the engine's
-//! collision detection against (CASES.md case III, seed §7.2).
+//! collision detection against (docs/cases.md case III, seed §7.2).
 //!
 //! Engine shapes and poses are converted to parry's: a
 //! [`ConvexPolygon`](engine::ConvexPolygon) becomes a parry
@@ -164,7 +164,7 @@ pub struct ParryImpact {
     /// Unit normal from A to B at impact (world frame: parry's `normal1`,
     /// in A's frame, turned by A's rotation at the time of impact). When
     /// the nonlinear cast ends with status `Failed` it may be the normal of
-    /// an earlier iterate: in the spinning-box case of CASES.md the time is
+    /// an earlier iterate: in the spinning-box case of docs/cases.md the time is
     /// right to 1e-15 s but the status is `Failed` (its last closest-point
     /// query finds the shapes closer than `f64::EPSILON`) and `normal1` is
     /// the one computed at t = 0.

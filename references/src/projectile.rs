@@ -9,16 +9,16 @@
 //! t = T/2 with height H = (v0·sin α)²/(2g).
 //!
 //! Gravity is the seed's g = 9.80655 m/s² ([`SEED_GRAVITY`]), not standard
-//! gravity 9.80665 m/s²: `CASES.md` keeps the seed's value for case II.
+//! gravity 9.80665 m/s²: `docs/cases.md` keeps the seed's value for case II.
 
 /// The seed's gravitational acceleration, m/s² (seed Table 6.1 and 6.2).
 ///
-/// Standard gravity is 9.80665 m/s²; the seed prints 9.80655 and `CASES.md`
+/// Standard gravity is 9.80665 m/s²; the seed prints 9.80655 and `docs/cases.md`
 /// keeps it for every case-II reference (`projectile`, `projectile_drag`), so
 /// that the numbers quoted there are reproducible.
 pub const SEED_GRAVITY: f64 = 9.80655;
 
-/// A point projectile in vacuum, launched from the origin (`CASES.md` case II
+/// A point projectile in vacuum, launched from the origin (`docs/cases.md` case II
 /// `projectile`, seed §6).
 ///
 /// Requires `gravity > 0` and `0 < angle < π` for the landing and apex
@@ -34,7 +34,7 @@ pub struct Projectile {
 }
 
 impl Projectile {
-    /// The seed configuration (seed Table 6.1, `CASES.md` case II):
+    /// The seed configuration (seed Table 6.1, `docs/cases.md` case II):
     /// v0 = 60 m/s, α = 45° (π/4 rad), g = [`SEED_GRAVITY`] = 9.80655 m/s².
     pub const fn seed() -> Self {
         Self {

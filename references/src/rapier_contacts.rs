@@ -1,4 +1,4 @@
-//! rapier2d-f64 (0.36.1) running the collision scenes of `CASES.md` case III
+//! rapier2d-f64 (0.36.1) running the collision scenes of `docs/cases.md` case III
 //! (head-on and off-centre impacts, bounces, sliding, inclines, resting),
 //! configured as close to ideal rigid-body physics as rapier allows, so the
 //! harness can set rapier's numbers beside the engine's and the closed

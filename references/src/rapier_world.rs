@@ -1,5 +1,5 @@
 //! rapier2d-f64 (0.36) running the single-body ballistic and spring scenes of
-//! `CASES.md` (case I `spring`, case II `projectile`, `torque`,
+//! `docs/cases.md` (case I `spring`, case II `projectile`, `torque`,
 //! `projectile_drag`, `angular_drag`), configured as close to ideal
 //! rigid-body physics as rapier allows, so the harness can set a widely used
 //! engine beside ours and report what differs.
@@ -17,7 +17,7 @@
 //!   "disabled" value, tested in `worker.rs` before the clamp);
 //! - `contact_recycling` = `false` (default `true`). It has no effect here
 //!   (no collider), it is set so every rapier run of the project uses the
-//!   same parameters (`CASES.md`);
+//!   same parameters (`docs/cases.md`);
 //! - gravity = the sum of the scene's [`RapierForce::Gravity`] terms, zero if
 //!   none ([`PhysicsWorld`]'s default is (0, −9.81) m/s²).
 //!
@@ -156,7 +156,7 @@ pub enum RapierForce {
         coefficient: f64,
     },
     /// Angular drag torque −D·ω·|ω|, `coefficient` D in kg·m² (≥ 0)
-    /// (`CASES.md` `angular_drag`).
+    /// (`docs/cases.md` `angular_drag`).
     AngularDrag {
         /// D, kg·m².
         coefficient: f64,

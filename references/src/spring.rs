@@ -9,11 +9,11 @@
 //! x(t) = l0 + (x0 − l0)·cos ωt + (v0/ω)·sin ωt,
 //! v(t) = −(x0 − l0)·ω·sin ωt + v0·cos ωt,   ω = √(k/m).
 //!
-//! With the seed's v0 = 0 this is `CASES.md`'s x = l0 + (x0 − l0)·cos ωt. The
+//! With the seed's v0 = 0 this is `docs/cases.md`'s x = l0 + (x0 − l0)·cos ωt. The
 //! seed's eq. 5.4, x = 50·cos(ωt + π), is the negative of the displacement
-//! x − l0, not the position (`CASES.md`, case I).
+//! x − l0, not the position (`docs/cases.md`, case I).
 
-/// An undamped one-dimensional mass-spring oscillator (`CASES.md` case I,
+/// An undamped one-dimensional mass-spring oscillator (`docs/cases.md` case I,
 /// seed §5).
 ///
 /// The anchor sits at x = 0; the spring force on the mass is
@@ -34,7 +34,7 @@ pub struct SpringOscillator {
 }
 
 impl SpringOscillator {
-    /// The seed configuration (seed §5.3, `CASES.md` case I): m = 20 kg,
+    /// The seed configuration (seed §5.3, `docs/cases.md` case I): m = 20 kg,
     /// k = 50 N/m, l0 = 50 m, x0 = 100 m, v0 = 0.
     pub const fn seed() -> Self {
         Self {
@@ -102,7 +102,7 @@ mod tests {
     #[test]
     fn omega_is_sqrt10_over_2() {
         let s = SpringOscillator::seed();
-        // CASES.md prints 1.5811388300841898 (16 decimals): half a unit of the
+        // docs/cases.md prints 1.5811388300841898 (16 decimals): half a unit of the
         // last printed digit is 5e-17, below one ulp of ω (2.2e-16), so this
         // asks for the correctly rounded value: allow one ulp.
         assert_close(s.omega(), 1.5811388300841898, f64::EPSILON, "omega");
@@ -123,7 +123,7 @@ mod tests {
     #[test]
     fn energy_is_62500_joules() {
         // 62 500 J is exact (½·50·50² with v0 = 0); printed as an integer, so
-        // the CASES.md rule allows 0.5 J, but the arithmetic is exact in f64.
+        // the docs/cases.md rule allows 0.5 J, but the arithmetic is exact in f64.
         let s = SpringOscillator::seed();
         assert_eq!(s.energy(), 62_500.0);
         assert_close(s.amplitude(), 50.0, 1e-12, "amplitude");
@@ -131,7 +131,7 @@ mod tests {
 
     #[test]
     fn exact_position_at_57_2_s() {
-        // 286 steps of h = 0.2 s (CASES.md: integer step count).
+        // 286 steps of h = 0.2 s (docs/cases.md: integer step count).
         let t = 286.0 * 0.2;
         // 10.6555761116 has 10 decimals: half a unit of the last digit is 5e-11.
         assert_close(

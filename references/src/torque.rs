@@ -2,7 +2,7 @@
 //!
 //! Seed §6.2–6.3, eq. 6.16–6.20: a torque τ = R × F (eq. 6.16) changes the
 //! angular momentum L = Iω (eq. 6.17–6.18), with the box's moment of inertia
-//! I = m(b² + h²)/12 (eq. 6.19). `CASES.md` fixes the seed's garbled numbers:
+//! I = m(b² + h²)/12 (eq. 6.19). `docs/cases.md` fixes the seed's garbled numbers:
 //! R = (0.05, 0.05) m and F = (0.3, 0.4) N give τ0 = 0.005 N·m (the seed
 //! prints 0.0005 and degrees), and m = 0.3 kg, b = h = 0.1 m give
 //! I = 5e-4 kg·m².
@@ -18,10 +18,10 @@
 //! θ(8.7) = 58.45 rad.
 
 /// Lever arm R from the centroid to the point of application of the seed's
-/// spin-up force, m (seed §6.3, `CASES.md` case II `torque`).
+/// spin-up force, m (seed §6.3, `docs/cases.md` case II `torque`).
 pub const SEED_LEVER_ARM: [f64; 2] = [0.05, 0.05];
 
-/// The seed's spin-up force F, N (seed §6.3, `CASES.md` case II `torque`).
+/// The seed's spin-up force F, N (seed §6.3, `docs/cases.md` case II `torque`).
 /// R × F = 0.05·0.4 − 0.05·0.3 = 0.005 N·m.
 pub const SEED_FORCE: [f64; 2] = [0.3, 0.4];
 
@@ -39,7 +39,7 @@ pub fn cross(r: [f64; 2], f: [f64; 2]) -> f64 {
 }
 
 /// A constant couple applied for a finite time to a body at rest, no drag
-/// (`CASES.md` case II `torque`, seed eq. 6.16–6.20).
+/// (`docs/cases.md` case II `torque`, seed eq. 6.16–6.20).
 ///
 /// Requires `inertia > 0` and `duration ≥ 0`; otherwise the results are NaN
 /// or infinite (no panic).
@@ -54,7 +54,7 @@ pub struct TorquePulse {
 }
 
 impl TorquePulse {
-    /// The seed configuration (`CASES.md` case II): τ0 = 0.005 N·m,
+    /// The seed configuration (`docs/cases.md` case II): τ0 = 0.005 N·m,
     /// I = 5e-4 kg·m², t1 = 0.7 s.
     pub const fn seed() -> Self {
         Self {
@@ -116,7 +116,7 @@ mod tests {
     #[test]
     fn omega_and_theta_match_cases_md() {
         let p = TorquePulse::seed();
-        // ω(0.7) = 7 printed with no decimals: the CASES.md rule would allow
+        // ω(0.7) = 7 printed with no decimals: the docs/cases.md rule would allow
         // 0.5; it is exact up to round-off, so 1e-13 is asked instead.
         assert_close(p.omega(0.7), 7.0, 1e-13, "omega(0.7)");
         // 2.45 has 2 decimals (half unit 5e-3); exact up to round-off.

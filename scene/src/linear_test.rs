@@ -1,5 +1,5 @@
 //! The scalar stiff test of a `[linear_test]` scene (seed §4.3, after
-//! Hoffman; CASES.md "Stiff test"), as an [`engine::OdeSystem`].
+//! Hoffman; docs/cases.md "Stiff test"), as an [`engine::OdeSystem`].
 //!
 //! Representation: a small `Copy` struct rather than an
 //! [`engine::FnSystem`] closure, so that it can be stored in a

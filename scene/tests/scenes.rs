@@ -1,4 +1,4 @@
-//! The scene files of `scenes/` load, build, and reproduce CASES.md.
+//! The scene files of `scenes/` load, build, and reproduce docs/cases.md.
 
 use engine::{Method, Tolerance};
 use scene::{Colour, Scene};
@@ -50,7 +50,7 @@ fn every_scene_file_loads_and_builds() {
 
 #[test]
 fn spring_rk4_reproduces_the_seed_run() {
-    // CASES.md case I: RK4, h = 0.2 s, 286 steps: x(57.2) = 10.95756 m.
+    // docs/cases.md case I: RK4, h = 0.2 s, 286 steps: x(57.2) = 10.95756 m.
     let scene = load("spring.toml");
     assert_eq!(scene.method(), Method::Rk4);
     assert_eq!(scene.steps(), 286);
@@ -99,7 +99,7 @@ fn projectile_lands_and_peaks_where_cases_md_says() {
 
 #[test]
 fn torque_spins_the_box_in_place() {
-    // CASES.md: theta(0.7) = 2.45 rad, theta(8.7) = 58.45 rad, omega 7 rad/s.
+    // docs/cases.md: theta(0.7) = 2.45 rad, theta(8.7) = 58.45 rad, omega 7 rad/s.
     let scene = load("torque.toml");
     let mut world = scene.build_world(None).unwrap();
     let trace = world.run(scene.duration(), scene.dt()).unwrap();
@@ -156,7 +156,7 @@ fn hoffman_is_the_seed_stiff_test() {
     assert_eq!(*s.t.last().unwrap(), 1.0);
     let y = s.y.last().unwrap()[0];
     assert!((y - test.exact(1.0)).abs() < 1e-2, "{y}");
-    // Just outside, at 0.0021 s, it grows without bound (CASES.md: ~-5e19).
+    // Just outside, at 0.0021 s, it grows without bound (docs/cases.md: ~-5e19).
     let s = test
         .solve(Method::ExplicitEuler, 0.0021, scene.duration())
         .unwrap();

@@ -1,4 +1,4 @@
-//! Collision detection (seed §7.2, case III of `CASES.md`): which pairs of
+//! Collision detection (seed §7.2, case III of `docs/cases.md`): which pairs of
 //! shapes touch, where, how deep, and when in a step they first meet.
 //!
 //! Everything here is a pure function of shapes and poses. A pose is an

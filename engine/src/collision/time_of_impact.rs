@@ -341,7 +341,7 @@ mod tests {
         ("conservative advancement", toi_conservative_advancement),
     ];
 
-    /// CASES.md case III: a 1 m box at x = −3 moving at +1 m/s toward a
+    /// docs/cases.md case III: a 1 m box at x = −3 moving at +1 m/s toward a
     /// fixed 1 m box at the origin touches at t = 2.0 s.
     #[test]
     fn sliding_box_touches_at_two_seconds() {
@@ -387,7 +387,7 @@ mod tests {
         lo
     }
 
-    /// CASES.md case III: the same with ω = 1 rad/s on the moving box
+    /// docs/cases.md case III: the same with ω = 1 rad/s on the moving box
     /// touches at 1.8736370117 s (parry2d's nonlinear cast).
     #[test]
     fn sliding_and_spinning_box_touches_at_1_8736370117() {

@@ -1,4 +1,4 @@
-//! The collision impulse of seed eq. 7.1–7.16, as CASES.md corrects it,
+//! The collision impulse of seed eq. 7.1–7.16, as docs/cases.md corrects it,
 //! for one contact point — the closed form the harness checks the solver
 //! against.
 //!
@@ -109,7 +109,7 @@ mod tests {
         }
     }
 
-    /// CASES.md case III: m1 = 1 kg at +2 m/s hits m2 = 3 kg at rest.
+    /// docs/cases.md case III: m1 = 1 kg at +2 m/s hits m2 = 3 kg at rest.
     #[test]
     fn head_on_gives_the_cases_md_velocities() {
         // A = the 1 kg body on the left, B on its right: N points from B

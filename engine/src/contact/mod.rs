@@ -1,4 +1,4 @@
-//! Contact response (seed §7.1–7.2, eq. 7.1–7.16; CASES.md case III): what
+//! Contact response (seed §7.1–7.2, eq. 7.1–7.16; docs/cases.md case III): what
 //! happens once detection ([`crate::collision`]) says two shapes touch.
 //!
 //! Three regimes, as the seed lays them out after Baraff and Mirtich:
@@ -7,7 +7,7 @@
 //!   at the first contact inside the step (located by the seed's bisection,
 //!   Fig. 7.7–7.8, or by conservative advancement where a pair could have
 //!   passed through another within the step), the velocities jump by
-//!   the impulse of eq. 7.15 with restitution e (corrected as CASES.md
+//!   the impulse of eq. 7.15 with restitution e (corrected as docs/cases.md
 //!   states, see [`impact_eq_7_15`]), and the integrator restarts with the
 //!   rest of the step, its cached derivative dropped. Several points, pairs
 //!   or bodies touching at once are solved together, with Coulomb friction

@@ -166,7 +166,7 @@ struct Found {
 }
 
 /// The contact machinery of a world that has at least two collidable
-/// shapes (DESIGN.md: a scene without them runs none of it).
+/// shapes (docs/design.md: a scene without them runs none of it).
 #[derive(Debug)]
 pub(crate) struct ContactPipeline {
     pub settings: ContactSettings,

@@ -7,7 +7,7 @@
 //! `err = sqrt(mean((e_i / (atol + rtol max(|y_i|, |y1_i|)))²))` decides
 //! acceptance (`err ≤ 1`) and the next step through [`super::step_controller`].
 //! Stability limits of the fifth-order solution: `hλ ≥ −3.30656789` on the
-//! real axis, `hω ≤ 0.99718901` on the imaginary axis (CASES.md; the
+//! real axis, `hω ≤ 0.99718901` on the imaginary axis (docs/cases.md; the
 //! harness measures both by bisection).
 
 use super::{Tolerance, Workspace};

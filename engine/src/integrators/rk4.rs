@@ -4,7 +4,7 @@
 //! `y1 = y + h/6 (k1 + 2k2 + 2k3 + k4)`. Stability polynomial
 //! `1 + z + z²/2 + z³/6 + z⁴/24`: stable on the real axis for
 //! `hλ ≥ −2.78529356` and on the imaginary axis for `hω ≤ 2√2`. On the seed
-//! spring at h = 0.2 it gives x(57.2) = 10.95756 m (CASES.md case I).
+//! spring at h = 0.2 it gives x(57.2) = 10.95756 m (docs/cases.md case I).
 
 use super::Workspace;
 use crate::ode::OdeSystem;

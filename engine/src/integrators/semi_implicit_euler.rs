@@ -2,7 +2,7 @@
 //!
 //! On a mechanical state `[q, v]`: `v1 = v0 + h a(t0, q0, v0)`, then
 //! `q1 = q0 + h v1`. Symplectic: on the spring its energy error stays
-//! bounded (CASES.md: ΔE/E0 in [−0.1365, +0.1878] at h = 0.2) and it is
+//! bounded (docs/cases.md: ΔE/E0 in [−0.1365, +0.1878] at h = 0.2) and it is
 //! stable iff `hω < 2`. On a parabola its position errs by `−g h t / 2`.
 
 use super::Workspace;

@@ -1,4 +1,4 @@
-//! Case II, `angular_drag` (CASES.md): the 0.7 s torque pulse against an
+//! Case II, `angular_drag` (docs/cases.md): the 0.7 s torque pulse against an
 //! angular drag −D ω|ω|, D = 0.003; closed form tanh / ln cosh while driven,
 //! hyperbolic decay after. The stiffest term of case II (I is tiny:
 //! k = √(τ0 D)/I = 7.75 s⁻¹, so kh = 0.077 at h = 0.01).
@@ -59,7 +59,7 @@ pub fn run() -> Result<CaseReport> {
         s.angle,
         exact.theta(8.7),
         1e-8,
-        "CASES.md / issue: RK4 within 1e-8 rad; met at h = 0.005 (at h = 0.01 the textbook RK4 error is 1.3e-7)",
+        "docs/cases.md / issue: RK4 within 1e-8 rad; met at h = 0.005 (at h = 0.01 the textbook RK4 error is 1.3e-7)",
     );
     Ok(report)
 }

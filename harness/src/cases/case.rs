@@ -19,7 +19,7 @@ use std::path::Path;
 /// A validation case.
 #[derive(Debug, Clone, Copy)]
 pub struct Case {
-    /// Stable id (CASES.md), also the name of its file in `cases/`.
+    /// Stable id (docs/cases.md), also the name of its file in `cases/`.
     pub id: &'static str,
     /// One-line description.
     pub title: &'static str,

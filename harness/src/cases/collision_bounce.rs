@@ -1,4 +1,4 @@
-//! Case III bounces (CASES.md; seed §7.2 eq. 7.10 and 7.16): a ball dropped
+//! Case III bounces (docs/cases.md; seed §7.2 eq. 7.10 and 7.16): a ball dropped
 //! on fixed ground, `collision_bounce` (e = 1, 100 bounces: the apex must not
 //! drift) and `collision_bounce_08` (e = 0.8: apex n is 0.64^n h0), in the
 //! engine and in rapier2d-f64, with a chart of the apex per bounce.
@@ -31,11 +31,11 @@ pub const CASE: Case = Case {
     )
 };
 
-/// CASES.md: with e = 1 the apex may drift by at most 1e-9 relative per
+/// docs/cases.md: with e = 1 the apex may drift by at most 1e-9 relative per
 /// bounce.
 const DRIFT_PER_BOUNCE: f64 = 1e-9;
 
-/// CASES.md: with e = 0.8 each apex within 1e-6 relative of 0.64^n h0.
+/// docs/cases.md: with e = 0.8 each apex within 1e-6 relative of 0.64^n h0.
 const APEX_RELATIVE: f64 = 1e-6;
 
 /// Apexes of the e = 0.8 run compared one by one: h_15 = 1.2 mm, where a
@@ -171,7 +171,7 @@ fn elastic(report: &mut CaseReport) -> Result<[Series; 3]> {
         drift,
         0.0,
         DRIFT_PER_BOUNCE,
-        "max over n <= 100 of |h_n/h0 - 1|/n; CASES.md: 1e-9 relative per bounce. RK4 is exact \
+        "max over n <= 100 of |h_n/h0 - 1|/n; docs/cases.md: 1e-9 relative per bounce. RK4 is exact \
          on the parabola of free flight and the e = 1 impulse reflects v_n exactly, so energy, \
          hence the apex, is kept whatever the residual gap (< ε) at the impact",
     );
@@ -180,7 +180,7 @@ fn elastic(report: &mut CaseReport) -> Result<[Series; 3]> {
         apexes[99],
         geo.h0,
         100.0 * DRIFT_PER_BOUNCE * geo.h0,
-        "apex 100 against h0 = 1 m, within 100 x 1e-9 relative (CASES.md's per-bounce bound)",
+        "apex 100 against h0 = 1 m, within 100 x 1e-9 relative (docs/cases.md's per-bounce bound)",
     );
     let e0 = run.trace.samples[0].energy;
     let e_end = run.trace.last().context("samples")?.energy;
@@ -218,7 +218,7 @@ fn elastic(report: &mut CaseReport) -> Result<[Series; 3]> {
         model_bound,
         format!(
             "1 - (h_10/h0)^(1/10), rapier2d's mean apex loss per bounce over 10 bounces, against \
-             CASES.md's 'about 0.4 %'. rapier's model bounds it: the step in which the contact is \
+             docs/cases.md's 'about 0.4 %'. rapier's model bounds it: the step in which the contact is \
              found stops the fall at the surface (a speculative contact) and reflects the velocity \
              the ball had at the start of that step, losing up to the gap v dt of height, and \
              symplectic Euler's flight tops out h v/2 lower (h = dt/4): a loss of at most \
@@ -244,7 +244,7 @@ fn elastic(report: &mut CaseReport) -> Result<[Series; 3]> {
     report.notes.push(format!(
         "`{id}`: engine apex drift per bounce {drift:.2e} (apex 100: h0 {:+.2e} m); rapier2d \
          apex 1 = {:.6} m ({:.3} % lost), apex 10 = {:.6} m, {:.3} % lost per bounce over 10, \
-         {} apexes before it comes to rest (last {:.3e} m); CASES.md quotes about 0.4 % per \
+         {} apexes before it comes to rest (last {:.3e} m); docs/cases.md quotes about 0.4 % per \
          bounce.",
         apexes[99] - geo.h0,
         rap[0],
@@ -304,7 +304,7 @@ fn restitution_08(report: &mut CaseReport) -> Result<[Series; 3]> {
             want,
             APEX_RELATIVE * want,
             format!(
-                "h_n = e^(2n) h0 = 0.64^{n} m; CASES.md: 1e-6 relative. The engine's own error: \
+                "h_n = e^(2n) h0 = 0.64^{n} m; docs/cases.md: 1e-6 relative. The engine's own error: \
                  an impact located with a residual gap |d| <= ε = {eps:e} m changes the next \
                  apex by (1 - e²) d, under 1e-7 relative for n <= {APEXES_CHECKED}"
             ),

@@ -1,4 +1,4 @@
-//! What the collision cases (CASES.md case III, ids `collision_*`) share:
+//! What the collision cases (docs/cases.md case III, ids `collision_*`) share:
 //! running a collision scene in the engine (with its contact events and
 //! per-phase profile) and in rapier2d-f64, and the text form of contact
 //! events for snapshots.
@@ -285,14 +285,14 @@ pub fn rapier_row(
 
 /// Relative size of the round-off of the few operations that compute an
 /// impulse and the velocities after it from O(1) numbers (a dozen roundings
-/// of 1.1e-16): 1e-12 is CASES.md's bound and sits four orders above.
+/// of 1.1e-16): 1e-12 is docs/cases.md's bound and sits four orders above.
 pub const IMPULSE_ROUND_OFF: f64 = 1e-12;
 
-/// CASES.md: the stopping distance and the incline's acceleration within
+/// docs/cases.md: the stopping distance and the incline's acceleration within
 /// 1e-6 relative of their closed forms.
 pub const CLOSED_FORM_RELATIVE: f64 = 1e-6;
 
-/// CASES.md: a box that must not move moves less than 1e-9 m in 10 s.
+/// docs/cases.md: a box that must not move moves less than 1e-9 m in 10 s.
 pub const STILL: f64 = 1e-9;
 
 /// The magnitude of the scene's gravity (m/s²).

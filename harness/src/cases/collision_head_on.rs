@@ -1,4 +1,4 @@
-//! Case III, `collision_head_on` (CASES.md; seed §7.2 eq. 7.11–7.15): a
+//! Case III, `collision_head_on` (docs/cases.md; seed §7.2 eq. 7.11–7.15): a
 //! disc of 1 kg at +2 m/s hits one of 3 kg at rest, e = 1 and e = 0.5, in
 //! the engine against eq. 7.15 and the conservation laws, and in
 //! rapier2d-f64.
@@ -63,7 +63,7 @@ fn head_on(report: &mut CaseReport, id: &str, e: f64, v1: f64, v2: f64) -> Resul
     let why = format!(
         "eq. 7.15 and 7.11-7.12; no force after the impact, so the velocities are the \
          solver's impulse applied once: round-off of O(1) numbers, {IMPULSE_ROUND_OFF:e} \
-         (CASES.md)"
+         (docs/cases.md)"
     );
     sink.within(
         &format!("v1_after_{tag}"),
@@ -84,7 +84,7 @@ fn head_on(report: &mut CaseReport, id: &str, e: f64, v1: f64, v2: f64) -> Resul
         m1 * s[a].velocity.x + m2 * s[b].velocity.x,
         m1 * 2.0,
         IMPULSE_ROUND_OFF,
-        "momentum m1 v1 + m2 v2 = 2 kg·m/s is kept by equal and opposite impulses; round-off, 1e-12 (CASES.md)",
+        "momentum m1 v1 + m2 v2 = 2 kg·m/s is kept by equal and opposite impulses; round-off, 1e-12 (docs/cases.md)",
     );
     sink.within(
         &format!("kinetic_energy_{tag}"),

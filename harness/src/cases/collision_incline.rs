@@ -1,4 +1,4 @@
-//! Case III, `collision_incline` (CASES.md; seed §7.1 after Baraff): a box
+//! Case III, `collision_incline` (docs/cases.md; seed §7.1 after Baraff): a box
 //! released on a fixed plane inclined on both sides of tan θ = μ: it slides
 //! with a = g (sin θ − μ cos θ) above, static friction holds it below; in
 //! the engine against the closed form and in rapier2d-f64.
@@ -66,7 +66,7 @@ fn incline(report: &mut CaseReport, id: &str, slides: bool) -> Result<()> {
             a,
             CLOSED_FORM_RELATIVE * a,
             format!(
-                "2 s/t² over {t_end} s against g (sin θ - mu cos θ) at θ = 30°; CASES.md: 1e-6 \
+                "2 s/t² over {t_end} s against g (sin θ - mu cos θ) at θ = 30°; docs/cases.md: 1e-6 \
                  relative. The engine's own error is round-off: the contact forces give the \
                  constant closed-form acceleration, which RK4 integrates exactly"
             ),
@@ -77,7 +77,7 @@ fn incline(report: &mut CaseReport, id: &str, slides: bool) -> Result<()> {
             moved.norm(),
             0.0,
             STILL,
-            "static friction holds the box (mu > tan 25°): CASES.md, less than 1e-9 m in 10 s",
+            "static friction holds the box (mu > tan 25°): docs/cases.md, less than 1e-9 m in 10 s",
         );
     }
     sink.at_most(
@@ -175,7 +175,7 @@ fn soft_step(report: &mut CaseReport, id: &str, slides: bool, a: f64) -> Result<
             CLOSED_FORM_RELATIVE * a,
             "velocity gained along the plane from 1 s to the end over the time: once the soft \
              contact has settled each substep adds exactly (g sin θ − mu g cos θ) h, so the \
-             closed form holds to round-off; CASES.md's 1e-6 relative",
+             closed form holds to round-off; docs/cases.md's 1e-6 relative",
         );
     } else {
         let moved = (end.position - early.position).norm();
@@ -185,7 +185,7 @@ fn soft_step(report: &mut CaseReport, id: &str, slides: bool, a: f64) -> Result<
             0.0,
             STILL,
             "distance moved from 1 s (the contact settled) to 10 s: the relax pass's friction \
-             holds the box within the cone (mu > tan 25°); CASES.md's 1e-9 m",
+             holds the box within the cone (mu > tan 25°); docs/cases.md's 1e-9 m",
         );
     }
     report.notes.push(format!(

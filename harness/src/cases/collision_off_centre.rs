@@ -1,4 +1,4 @@
-//! Case III, `collision_off_centre` (CASES.md; seed §7.2 eq. 7.1–7.16): a
+//! Case III, `collision_off_centre` (docs/cases.md; seed §7.2 eq. 7.1–7.16): a
 //! turned box's corner hits a box's face off the line of centres, e = 1 and
 //! e = 0.5, in the engine against eq. 7.15 at the exact contact point and
 //! the conservation laws, and in rapier2d-f64.

@@ -1,4 +1,4 @@
-//! Case III detection against parry2d-f64 (CASES.md "Reference checks"):
+//! Case III detection against parry2d-f64 (docs/cases.md "Reference checks"):
 //! the engine's verdict, penetration depth and normal (separating axes,
 //! seed §7.2 Fig. 7.2–7.4) on 100 000 random convex polygon pairs (3 to 12
 //! vertices, random poses, overlapping and apart), and on 20 000 pairs moved
@@ -39,7 +39,7 @@ pub const CASE: Case = Case {
     )
 };
 
-/// CASES.md: verdicts compared outside 1e-9 of touching; depth and normal
+/// docs/cases.md: verdicts compared outside 1e-9 of touching; depth and normal
 /// within 1e-9.
 const BAND: f64 = 1e-9;
 
@@ -266,7 +266,7 @@ pub fn report(random: &Agreement, near: &Agreement) -> CaseReport {
             s.near_touching as f64,
             format!(
                 "{} random convex pairs (3 to 12 vertices, random poses), {} of them within \
-                 1e-9 m of touching, where CASES.md does not compare verdicts",
+                 1e-9 m of touching, where docs/cases.md does not compare verdicts",
                 s.pairs, s.near_touching
             ),
         );
@@ -278,7 +278,7 @@ pub fn report(random: &Agreement, near: &Agreement) -> CaseReport {
             parry_wrong as f64 / compared.max(1) as f64,
             format!(
                 "share of the pairs outside 1e-9 m of touching on which the engine (SAT) and \
-                 parry (GJK intersection test) agree; CASES.md: everywhere, except where the \
+                 parry (GJK intersection test) agree; docs/cases.md: everywhere, except where the \
                  exact check shows parry wrong ({parry_wrong} pairs, listed in the notes: a \
                  separating axis with a positive gap of ~1e-8 m, no vertex inside the other \
                  polygon, yet parry's intersection test says they touch)"
@@ -291,7 +291,7 @@ pub fn report(random: &Agreement, near: &Agreement) -> CaseReport {
             BAND,
             format!(
                 "largest |engine depth - parry depth| over the {} overlapping pairs (m); \
-                 CASES.md: 1e-9 (pairs beyond it are checked exactly, see the next rows)",
+                 docs/cases.md: 1e-9 (pairs beyond it are checked exactly, see the next rows)",
                 s.overlapping
             ),
         );
@@ -300,7 +300,7 @@ pub fn report(random: &Agreement, near: &Agreement) -> CaseReport {
             s.max_normal_diff,
             0.0,
             BAND,
-            "largest |engine normal - parry normal| over the overlapping pairs; CASES.md: 1e-9",
+            "largest |engine normal - parry normal| over the overlapping pairs; docs/cases.md: 1e-9",
         );
         sink.at_most(
             &format!("max_distance_difference{tag}"),

@@ -1,4 +1,4 @@
-//! Case III, `collision_rest` (CASES.md; seed §7.1 after Baraff): a box
+//! Case III, `collision_rest` (docs/cases.md; seed §7.1 after Baraff): a box
 //! resting on the ground for 10 s must not move, in the engine (exact
 //! contact forces) and in rapier2d-f64 (soft contacts).
 
@@ -48,7 +48,7 @@ pub fn run() -> Result<CaseReport> {
         motion,
         0.0,
         STILL,
-        "largest distance from the start over 10 s; CASES.md: less than 1e-9 m (the contact \
+        "largest distance from the start over 10 s; docs/cases.md: less than 1e-9 m (the contact \
          force equals the weight at every evaluation: nothing sinks, nothing is corrected)",
     );
     sink.at_most(
@@ -81,7 +81,7 @@ pub fn run() -> Result<CaseReport> {
         .map(|k| (rapier_position(&rapier, k, b) - start.position).norm())
         .fold(0.0, f64::max);
     let sink_depth = start.position.y - rapier_position(&rapier, rapier.samples.len() - 1, b).y;
-    // CASES.md: a resting body sinks about 3.1/f² m at contact frequency f;
+    // docs/cases.md: a resting body sinks about 3.1/f² m at contact frequency f;
     // against a fixed body rapier's contacts are 60 Hz.
     let f = 60.0;
     let soft = 3.1 / (f * f);
@@ -97,7 +97,7 @@ pub fn run() -> Result<CaseReport> {
         0.0,
         soft,
         format!(
-            "rapier's contacts are soft: CASES.md's estimate of the sink of a resting body, \
+            "rapier's contacts are soft: docs/cases.md's estimate of the sink of a resting body, \
              3.1/f² m with f = 60 Hz against a fixed body = {soft:.2e} m, bounds its motion"
         ),
     );
@@ -145,7 +145,7 @@ fn soft_step(report: &mut CaseReport, id: &str) -> Result<()> {
         settled,
         0.0,
         STILL,
-        "distance moved from 1 s to 10 s, once the contact has settled; CASES.md's 1e-9 m",
+        "distance moved from 1 s to 10 s, once the contact has settled; docs/cases.md's 1e-9 m",
     );
     sink.at_most(
         "drift_x",

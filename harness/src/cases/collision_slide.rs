@@ -1,4 +1,4 @@
-//! Case III, `collision_slide` (CASES.md; seed §7.1 after Baraff): a box
+//! Case III, `collision_slide` (docs/cases.md; seed §7.1 after Baraff): a box
 //! sliding to a stop on the ground with Coulomb friction, against the
 //! closed forms v0²/(2 μ g) and v0/(μ g), in the engine and in rapier2d-f64,
 //! with a chart of the distance travelled.
@@ -49,7 +49,7 @@ pub fn run() -> Result<CaseReport> {
         end.position.x - start.position.x,
         distance,
         CLOSED_FORM_RELATIVE * distance,
-        "v0²/(2 mu g); CASES.md: 1e-6 relative. The engine's own error is round-off: kinetic \
+        "v0²/(2 mu g); docs/cases.md: 1e-6 relative. The engine's own error is round-off: kinetic \
          friction mu m g is a constant force while sliding, so the motion is a parabola that \
          RK4 integrates exactly, and the stop is located by root finding",
     );
@@ -75,7 +75,7 @@ pub fn run() -> Result<CaseReport> {
         engine_motion_after(&run, b, stop.ceil()),
         0.0,
         STILL,
-        "distance moved from t = 1 s (after the stop) to the end; CASES.md's 1e-9 m for a box \
+        "distance moved from t = 1 s (after the stop) to the end; docs/cases.md's 1e-9 m for a box \
          that must not move",
     );
     sink.at_most(

@@ -1,4 +1,4 @@
-//! Case III time of impact (CASES.md; seed §7.2 Fig. 7.7–7.8): a 1 m box at
+//! Case III time of impact (docs/cases.md; seed §7.2 Fig. 7.7–7.8): a 1 m box at
 //! x = −3 moving at +1 m/s toward a fixed 1 m box touches at exactly 2.0 s,
 //! and, spinning at 1 rad/s, at 1.8736370117 s. Measured in a world (the
 //! seed's bisection of the step on the integrator's own solution, and
@@ -28,10 +28,10 @@ pub const CASE: Case = Case {
     )
 };
 
-/// CASES.md's value with rotation, to its 10 decimals.
+/// docs/cases.md's value with rotation, to its 10 decimals.
 const ROTATING_TOI: f64 = 1.8736370117;
 
-/// CASES.md: with rotation, within 1e-6 of 1.8736370117 s.
+/// docs/cases.md: with rotation, within 1e-6 of 1.8736370117 s.
 const ROTATING_TOLERANCE: f64 = 1e-6;
 
 /// The exact first contact time with rotation: the first root of
@@ -96,7 +96,7 @@ pub fn run() -> Result<CaseReport> {
         ROTATING_TOI,
         5e-11,
         "the first root of t + (|cos t| + |sin t|)/2 = 2.5, bisected to the last bit, against \
-         CASES.md's 1.8736370117 s: half a unit of its 10th decimal",
+         docs/cases.md's 1.8736370117 s: half a unit of its 10th decimal",
     );
     for (id, omega, exact) in [
         ("collision_toi", 0.0, 2.0),
@@ -138,7 +138,7 @@ pub fn run() -> Result<CaseReport> {
                     hit.t,
                     ROTATING_TOI,
                     ROTATING_TOLERANCE,
-                    "CASES.md: within 1e-6 of 1.8736370117 s",
+                    "docs/cases.md: within 1e-6 of 1.8736370117 s",
                 );
             }
             world_times.push((name, hit.t));

@@ -1,6 +1,6 @@
 //! The stiff test (seed §4.3, after Hoffman): y' = −1000(y − (t + 2)) + 1,
 //! y(0) = 1, exact y = t + 2 − e^(−1000t), over t ∈ [0, 1] at the steps of
-//! CASES.md, over the scene's duration (the last whole step at or before it). The error e = y − (t + 2) obeys e_{n+1} = R(hλ) e_n exactly
+//! docs/cases.md, over the scene's duration (the last whole step at or before it). The error e = y − (t + 2) obeys e_{n+1} = R(hλ) e_n exactly
 //! for every Runge–Kutta method (the forcing is linear in t), so the
 //! engine's error must equal −R(hλ)^n: stable where |R| ≤ 1, blown up
 //! where theory says so.
@@ -45,12 +45,12 @@ pub const CASE: Case = Case {
     )
 };
 
-/// The steps of CASES.md (s): explicit Euler stable at 0.0019 and blown up at
+/// The steps of docs/cases.md (s): explicit Euler stable at 0.0019 and blown up at
 /// 0.0021 and 0.003; RK4 stable at 0.0027 and unstable at 0.0029; implicit
 /// Euler stable at 0.01 and 0.1. Every method runs at every step.
 pub const STEPS: [f64; 7] = [0.0019, 0.0021, 0.003, 0.0027, 0.0029, 0.01, 0.1];
 
-/// A blow-up, as CASES.md counts one: |error| past 1e19 near t = 1.
+/// A blow-up, as docs/cases.md counts one: |error| past 1e19 near t = 1.
 const BLOW_UP: f64 = 1e19;
 
 /// Runs the case.
@@ -110,7 +110,7 @@ pub fn run() -> Result<CaseReport> {
                             error.abs(),
                             BLOW_UP,
                             0.0,
-                            "CASES.md: a blow-up is |error| > 1e19 near t = 1",
+                            "docs/cases.md: a blow-up is |error| > 1e19 near t = 1",
                         );
                     }
                 }

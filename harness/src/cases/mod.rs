@@ -43,7 +43,7 @@ macro_rules! registry {
     ($($id:ident),* $(,)?) => {
         $(pub mod $id;)*
 
-        /// Every case, in report order (that of CASES.md).
+        /// Every case, in report order (that of docs/cases.md).
         pub const CASES: &[Case] = &[$($id::CASE),*];
     };
 }

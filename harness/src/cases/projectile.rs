@@ -1,4 +1,4 @@
-//! Case II, `projectile` (seed §6, CASES.md): the box in vacuum at
+//! Case II, `projectile` (seed §6, docs/cases.md): the box in vacuum at
 //! h = 0.01 s. Landing, range and apex come from event location inside the
 //! step, so they are not quantized to h.
 
@@ -91,7 +91,7 @@ pub fn run() -> Result<CaseReport> {
             Method::ExplicitEuler | Method::SemiImplicitEuler | Method::ImplicitEuler => {
                 // Explicit Euler lags the velocity by one step: y errs by
                 // +g h t/2; semi-implicit and implicit Euler use the new
-                // velocity: -g h t/2 (CASES.md).
+                // velocity: -g h t/2 (docs/cases.md).
                 let s = sample_at(&trace, T_CHECK)?;
                 let sign = if method == Method::ExplicitEuler {
                     1.0

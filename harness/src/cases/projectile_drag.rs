@@ -1,6 +1,6 @@
-//! Case II, `projectile_drag` (seed Table 6.2, CASES.md): the projectile with
+//! Case II, `projectile_drag` (seed Table 6.2, docs/cases.md): the projectile with
 //! quadratic drag D = 0.003 kg/m. No closed form: the expected values are
-//! CASES.md's 40-digit reference, and the trajectory reference is an
+//! docs/cases.md's 40-digit reference, and the trajectory reference is an
 //! independent DOP853 solve (`references::DragReference`).
 
 use super::projectile::{EVENT_CHECKS, ballistic_trace, events};
@@ -20,7 +20,7 @@ use references::drag_reference_values as cases_md;
 use references::{DragReference, Projectile};
 use std::path::Path;
 
-/// The drag projectile: its rows against CASES.md's reference, the sweep
+/// The drag projectile: its rows against docs/cases.md's reference, the sweep
 /// against the DOP853 reference (with the speed comparison against
 /// rapier2d-f64), seed figures 6.2 and 6.4, and the bench.
 pub const CASE: Case = Case {
@@ -48,7 +48,7 @@ pub const CASE: Case = Case {
 /// rapier2d-f64 (m of max position error over 0–5 s).
 pub const TARGET_ERROR: f64 = 1e-6;
 
-/// End of the swept run (s), where CASES.md gives the state.
+/// End of the swept run (s), where docs/cases.md gives the state.
 const SWEEP_UNTIL: f64 = 5.0;
 
 /// Runs the case.
@@ -62,7 +62,7 @@ pub fn run() -> Result<CaseReport> {
         cases_md::APEX_HEIGHT,
         cases_md::APEX_TIME,
     ];
-    // CASES.md prints 12, 10, 11 and 12 decimals.
+    // docs/cases.md prints 12, 10, 11 and 12 decimals.
     let quoted = [half_unit(12), half_unit(10), half_unit(11), half_unit(12)];
     let state_expected = [
         cases_md::STATE_X,
@@ -102,7 +102,7 @@ pub fn run() -> Result<CaseReport> {
                     want,
                     bound,
                     format!(
-                        "{}; + half a unit of CASES.md's last digit",
+                        "{}; + half a unit of docs/cases.md's last digit",
                         dp_reason(trace.stats.steps)
                     ),
                 );
@@ -123,7 +123,7 @@ pub fn run() -> Result<CaseReport> {
                     want,
                     tol,
                     format!(
-                        "{}, i.e. half a unit of CASES.md's last digit",
+                        "{}, i.e. half a unit of docs/cases.md's last digit",
                         from_order_reason(method.order(), q)
                     ),
                 );
@@ -144,7 +144,7 @@ pub fn run() -> Result<CaseReport> {
                 error,
                 cases_md::RK4_H02_POSITION_ERROR_AT_5_S,
                 half_unit(5),
-                "CASES.md: RK4 at h = 0.2 errs by 4.5e-4 m at t = 5 s (two digits: +/- 5e-6)",
+                "docs/cases.md: RK4 at h = 0.2 errs by 4.5e-4 m at t = 5 s (two digits: +/- 5e-6)",
             );
         }
         report.traces.push(ballistic_trace(method, dt, &trace, |t| {

@@ -254,7 +254,7 @@ fn disc(report: &mut CaseReport, id: &str, rolls: bool) -> Result<()> {
         STILL,
         "motion across the plane: the disc neither sinks nor lifts (the contact row holds the \
          centre's normal acceleration at 0, a circle's separation having no centripetal term); \
-         CASES.md's 1e-9 m",
+         docs/cases.md's 1e-9 m",
     );
     report.notes.push(format!(
         "`{id}`: engine moved {along:.9} m down the plane and turned {turned:.9} rad in {t} s \
@@ -296,7 +296,7 @@ fn soft_step(report: &mut CaseReport, id: &str, geo: &Incline, rolls: bool) -> R
          next step's manifold pushes it out; it was up to {depth:.2e} m deep. The contact point \
          is then midway into the overlap, on an arm r - δ/2, and the normal force changes as \
          the disc sinks: effects first order in δ/r, bound δ/r ({relative:.1e} relative), or \
-         CASES.md's 1e-6 if larger"
+         docs/cases.md's 1e-6 if larger"
     );
     sink.within(
         &format!("acceleration_{tag}"),

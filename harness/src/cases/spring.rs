@@ -1,4 +1,4 @@
-//! Case I, `spring` (seed §5, CASES.md): every method at the seed's h = 0.2 s
+//! Case I, `spring` (seed §5, docs/cases.md): every method at the seed's h = 0.2 s
 //! over 57.2 s = 286 steps, against the exact solution and against linear
 //! stability theory (each method's step matrix raised to the 286th power).
 
@@ -131,20 +131,20 @@ pub fn run() -> Result<CaseReport> {
             }
         }
         if method == Method::Rk4 {
-            // CASES.md quotes these to 5 decimals and asks for 1e-4 m.
+            // docs/cases.md quotes these to 5 decimals and asks for 1e-4 m.
             sink.within(
                 "x_end_seed",
                 x_end,
                 10.95756,
                 1e-4,
-                "CASES.md: a textbook RK4 gives 10.95756 m; required to 1e-4 m",
+                "docs/cases.md: a textbook RK4 gives 10.95756 m; required to 1e-4 m",
             );
             sink.within(
                 "max_error",
                 max_error,
                 0.37346,
                 1e-4,
-                "CASES.md: max |error| over the run 0.37346 m; required to 1e-4 m",
+                "docs/cases.md: max |error| over the run 0.37346 m; required to 1e-4 m",
             );
             let increases = energies.windows(2).filter(|w| w[1] > w[0]).count();
             sink.within(
@@ -165,12 +165,12 @@ pub fn run() -> Result<CaseReport> {
                 measured,
                 predicted,
                 ROUND_OFF_RELATIVE * predicted,
-                "explicit Euler grows by (1 + (hw)^2)^(n/2) (CASES.md: x8.3e5 at 57.2 s); 1e-9 relative round-off",
+                "explicit Euler grows by (1 + (hw)^2)^(n/2) (docs/cases.md: x8.3e5 at 57.2 s); 1e-9 relative round-off",
             );
         }
         let band = |lo: f64, hi: f64, decimals: i32| {
             format!(
-                "CASES.md energy band [{lo}, {hi}] (quoted to {decimals} decimals: +/- half a unit)"
+                "docs/cases.md energy band [{lo}, {hi}] (quoted to {decimals} decimals: +/- half a unit)"
             )
         };
         match method {
@@ -197,7 +197,7 @@ pub fn run() -> Result<CaseReport> {
                     e_max,
                     0.0,
                     ROUND_OFF_RELATIVE,
-                    "CASES.md: Verlet's energy never exceeds E0 on the spring at h = 0.2; 1e-9 round-off",
+                    "docs/cases.md: Verlet's energy never exceeds E0 on the spring at h = 0.2; 1e-9 round-off",
                 );
             }
             _ => {}

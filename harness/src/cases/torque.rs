@@ -1,4 +1,4 @@
-//! Case II, `torque` (seed eq. 6.16–6.20 with CASES.md's corrections): a
+//! Case II, `torque` (seed eq. 6.16–6.20 with docs/cases.md's corrections): a
 //! couple τ = R × F = 0.005 N·m on the box for 0.7 s, then free rotation.
 //! The world splits the step at the switch-off, so methods exact on a
 //! quadratic (RK2, RK4, Verlet) stay exact.
@@ -35,7 +35,7 @@ pub const CASE: Case = Case {
 /// Times (s) at which ω and θ are checked: the end of the pulse and of the run.
 pub(crate) const CHECK_TIMES: [f64; 2] = [0.7, 8.7];
 
-/// Absolute floor of the rotation checks (rad, rad/s): CASES.md asks for
+/// Absolute floor of the rotation checks (rad, rad/s): docs/cases.md asks for
 /// 1e-9; the round-off of ~870 steps on θ ≤ 60 rad is ~1e-11.
 const FLOOR: f64 = 1e-9;
 

@@ -1,6 +1,6 @@
 //! Energy over a long run: ΔE/E0 of the seed spring at h = 0.2 s over
 //! 5720 s (100 × the seed's run) for semi-implicit Euler, velocity Verlet
-//! and RK4 — bounded against drifting — with rows for CASES.md's bands.
+//! and RK4 — bounded against drifting — with rows for docs/cases.md's bands.
 
 use super::{Chart, Series, method_style, save_svg};
 use crate::cases::FigureOutput;
@@ -63,7 +63,7 @@ pub fn write(dir: &Path, id: &str) -> Result<FigureOutput> {
             });
         let band = |decimals: i32| {
             format!(
-                "CASES.md band, quoted to {decimals} decimals: +/- half a unit; over 5720 s = 28600 steps"
+                "docs/cases.md band, quoted to {decimals} decimals: +/- half a unit; over 5720 s = 28600 steps"
             )
         };
         match method {
@@ -104,7 +104,7 @@ pub fn write(dir: &Path, id: &str) -> Result<FigureOutput> {
                     0.0,
                     ROUND_OFF_RELATIVE,
                     Comparison::AtMost,
-                    "CASES.md: Verlet's energy never exceeds E0 on the spring at h = 0.2; 1e-9 round-off, over 5720 s = 28600 steps",
+                    "docs/cases.md: Verlet's energy never exceeds E0 on the spring at h = 0.2; 1e-9 round-off, over 5720 s = 28600 steps",
                 );
             }
             _ => {
@@ -119,7 +119,7 @@ pub fn write(dir: &Path, id: &str) -> Result<FigureOutput> {
                     predicted,
                     ROUND_OFF_RELATIVE * predicted,
                     Comparison::Within,
-                    "RK4 decays as |R(i h w)|^(2n) (CASES.md), n = 28600; 1e-9 relative round-off",
+                    "RK4 decays as |R(i h w)|^(2n) (docs/cases.md), n = 28600; 1e-9 relative round-off",
                 );
             }
         }

@@ -192,7 +192,7 @@ fn convergence(study: &StudyResults) -> StudyPage<'_> {
         "Convergence",
         "Observed order p = log2(e(h)/e(h/2)) from the asymptotic range only (stable points with \
          max error between 1e-10 and 1e-2 of the solution's size; the median of the finest three \
-         halvings), against the nominal order, within +/- 0.1 (CASES.md). The step shown is the \
+         halvings), against the nominal order, within +/- 0.1 (docs/cases.md). The step shown is the \
          finest used. The dashed guides of the figures have slopes 1, 2 and 4.",
     );
     md.push_str("## Observed orders\n\n");
@@ -231,7 +231,7 @@ fn stability(study: &StudyResults) -> StudyPage<'_> {
          blow-up detection (a typed `BlowUp` error: non-finite state or energy past a bound) and, \
          for weak growth, the rise of the energy from one half of a long run to the next. \
          Imaginary axis: the spring, in units of h w; real axis: Hoffman's test, in units of \
-         -h lambda. Within 1 % of CASES.md.",
+         -h lambda. Within 1 % of docs/cases.md.",
     );
     md.push_str("## Limits\n\n| method | axis | measured | theory |\n|---|---|---|---|\n");
     for l in &study.limits {
@@ -284,7 +284,7 @@ fn energy(study: &StudyResults) -> StudyPage<'_> {
     let mut md = head(
         "Energy",
         "The seed spring at h = 0.2 s over 5720 s: the symplectic methods' energy error stays in a \
-         band, RK4's decays as |R(i h w)|^(2n). Rows against CASES.md's bands.",
+         band, RK4's decays as |R(i h w)|^(2n). Rows against docs/cases.md's bands.",
     );
     md.push_str("## Rows\n\n");
     md.push_str(&table::markdown(&rows, true));
@@ -293,7 +293,7 @@ fn energy(study: &StudyResults) -> StudyPage<'_> {
     StudyPage {
         file: "energy.md",
         title: "Energy",
-        summary: "energy of the spring over 5720 s against CASES.md's bands",
+        summary: "energy of the spring over 5720 s against docs/cases.md's bands",
         rows,
         markdown: md,
     }

@@ -1,5 +1,5 @@
 //! Exact checks that decide which side is right when the engine and parry
-//! disagree (CASES.md case III, "Reference checks"), and the deterministic
+//! disagree (docs/cases.md case III, "Reference checks"), and the deterministic
 //! random convex polygons both are compared on.
 //!
 //! The checks use only the polygons' world vertices, with no iteration and

@@ -1,4 +1,4 @@
-//! The engine's collision detection against parry2d (CASES.md case III,
+//! The engine's collision detection against parry2d (docs/cases.md case III,
 //! "Reference checks"): verdicts, penetration depths and normals on random
 //! convex pairs, and the two time-of-impact values.
 //!
@@ -250,7 +250,7 @@ fn unit_box() -> Shape {
     Shape::rectangle(1.0, 1.0).unwrap()
 }
 
-/// CASES.md case III: a 1 m box at x = −3 moving at +1 m/s toward a fixed
+/// docs/cases.md case III: a 1 m box at x = −3 moving at +1 m/s toward a fixed
 /// 1 m box at the origin touches at t = 2.0 s; with ω = 1 rad/s on the
 /// moving box, 1.8736370117 s. parry's casts against the engine's two
 /// methods.

@@ -136,7 +136,7 @@ fn rapier_rejects_bad_input() {
     ));
 }
 
-/// Vacuum projectile (`CASES.md` case II `projectile`), dt = 0.01 s, 4
+/// Vacuum projectile (`docs/cases.md` case II `projectile`), dt = 0.01 s, 4
 /// substeps. Symplectic Euler with substep h = dt/s on a constant
 /// acceleration g: v_k = v0 + k·g·h, x_N = x0 + h·Σ_{k=1..N} v_k
 /// = x0 + v0·t + g·h²·N(N+1)/2 = x0 + v0·t + g·t²/2 + g·h·t/2 (t = N·h).
@@ -210,12 +210,12 @@ fn spring_scene(osc: &SpringOscillator) -> (RapierBody, [RapierForce; 1]) {
     )
 }
 
-/// Mass-spring (`CASES.md` case I) at dt = 0.2 s to t = 57.2 s (286
+/// Mass-spring (`docs/cases.md` case I) at dt = 0.2 s to t = 57.2 s (286
 /// steps). The spring force is evaluated once per step and rapier holds it
 /// over the substeps, so the step map is the recurrence above; its
 /// determinant 1 + (s−1)/(2s)·(ωdt)² is 1.0375 for s = 4 and (ωdt)² = 0.1:
 /// the amplitude grows by ≈ 1.0375^(286/2) ≈ 193. With s = 1 it is
-/// semi-implicit Euler, bounded, with the energy band of `CASES.md`.
+/// semi-implicit Euler, bounded, with the energy band of `docs/cases.md`.
 #[test]
 fn rapier_spring_grows_with_substeps_and_matches_held_force_recurrence() {
     let osc = SpringOscillator::seed();
@@ -268,7 +268,7 @@ fn rapier_spring_grows_with_substeps_and_matches_held_force_recurrence() {
             amp / osc.amplitude(),
         );
         if substeps == 1 {
-            // Semi-implicit Euler: CASES.md band [−0.1365, +0.1878].
+            // Semi-implicit Euler: docs/cases.md band [−0.1365, +0.1878].
             assert!((emin + 0.1365).abs() < 2e-3 && (emax - 0.1878).abs() < 2e-3);
             assert!((amp / osc.amplitude() - 1.0).abs() < 0.2);
         } else {
@@ -305,7 +305,7 @@ fn held_force_particle(
     (x, v)
 }
 
-/// Quadratic-drag projectile (`CASES.md` `projectile_drag`) at dt = 0.01 s
+/// Quadratic-drag projectile (`docs/cases.md` `projectile_drag`) at dt = 0.01 s
 /// against the DOP853 reference at t = 5 s. The drag is evaluated at the
 /// start of each step and held (explicit Euler in the drag, O(dt)), on top
 /// of the symplectic-Euler O(dt/s) of gravity: the error is first order,
@@ -372,7 +372,7 @@ fn rapier_drag_projectile_is_first_order() {
     assert!((ratio - 2.0).abs() < 0.1, "{ratio}");
 }
 
-/// Torque pulse (`CASES.md` `torque`): τ = 0.005 N·m on I = 5e-4 kg·m²
+/// Torque pulse (`docs/cases.md` `torque`): τ = 0.005 N·m on I = 5e-4 kg·m²
 /// for 0.7 s = 70 steps of 0.01 s. ω(0.7) = Σ τ/I·h over 280 substeps =
 /// 7 rad/s to round-off. The angle: each substep rotates by atan(ω·h)
 /// (rapier's linearised rotation), with ω already updated (symplectic
@@ -435,7 +435,7 @@ fn rapier_torque_pulse_rotation_is_linearised() {
     assert!(last.position == [0.0, 0.0] && last.velocity == [0.0, 0.0]);
 }
 
-/// Angular drag with the 0.7 s torque (`CASES.md` `angular_drag`): the
+/// Angular drag with the 0.7 s torque (`docs/cases.md` `angular_drag`): the
 /// stiff term of case II (D/I = 6 s⁻¹·(rad/s)⁻¹), run in rapier at dt =
 /// 0.01 s and reported against the closed form.
 #[test]
