@@ -2,8 +2,8 @@
 //! closed forms, bounces, resting, sliding and holding with friction, and
 //! several contacts in one step.
 
-use engine::contact::{ImpactBody, Velocities, impact_eq_7_15};
 use engine::forces::Gravity;
+use engine::validation::contact::{ImpactBody, Velocities, impact_eq_7_15};
 use engine::{
     BodyDef, Circle, ContactEventKind, ContactSettings, EventSpec, Method, Shape, ToiMethod, World,
 };

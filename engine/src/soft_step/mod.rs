@@ -8,42 +8,42 @@
 //! timed into the [`crate::StepProfile`] under its name when profiling is
 //! on):
 //!
-//! 1. **pairs**: the broad phase ([`broad_phase`]) queries the bodies whose
+//! 1. **pairs**: the broad phase (`broad_phase.rs`) queries the bodies whose
 //!    bounding box left its enlarged box; each new overlapping pair becomes
-//!    a persistent contact ([`contacts`]);
+//!    a persistent contact (`contacts.rs`);
 //! 2. **collide**: every contact of an awake body gets its manifold at the
-//!    current poses ([`manifold`]: up to two points with feature ids,
+//!    current poses (`manifold.rs`: up to two points with feature ids,
 //!    speculative points within [`SoftStepSettings::speculative_distance`]),
 //!    each point keeping the impulses of last step's point with the same id;
 //!    pairs whose enlarged boxes parted are destroyed;
-//! 3. **prepare** ([`prepare`]): the touching contacts of awake bodies are
-//!    coloured ([`colouring`]: no two constraints of a colour share a
-//!    dynamic body) and each becomes a constraint ([`contact_solver`]:
+//! 3. **prepare** (`prepare.rs`): the touching contacts of awake bodies are
+//!    coloured (`colouring.rs`: no two constraints of a colour share a
+//!    dynamic body) and each becomes a constraint (`contact_solver.rs`:
 //!    anchors, effective masses, inherited impulses, approach speed),
 //!    written into its lane of a four-lane record of its colour
-//!    ([`wide_solver`]); the few that find no colour (the overflow) stay
+//!    (`wide_solver.rs`); the few that find no colour (the overflow) stay
 //!    scalar; each joint of an awake body gets its frame for the step
 //!    ([`joints`]);
 //! 4. n times: **integrate velocities** (gravity and every force generator
 //!    active in the step, evaluated at the substep's start state),
 //!    **warm start**, **solve** with the soft bias
-//!    ([`softness`]), **integrate positions** (symplectic Euler:
+//!    (`softness.rs`), **integrate positions** (symplectic Euler:
 //!    x += h v, θ += h ω), **relax** (solve again without bias, with
 //!    friction); each solver pass runs the joints one at a time
 //!    ([`joints`]), the contact overflow one constraint at a time
-//!    ([`contact_solver`]), then the records, colour after colour, four
-//!    constraints at a time ([`wide_solver`]);
+//!    (`contact_solver.rs`), then the records, colour after colour, four
+//!    constraints at a time (`wide_solver.rs`);
 //! 5. **restitution**: points that approached faster than the threshold
 //!    bounce with their restitution (overflow, then records);
 //! 6. **store**: impulses back into the contacts, states into the world;
 //! 7. **continuous**: bounding boxes into the broad phase, fast bodies
-//!    swept against static ones ([`continuous`]);
-//! 8. **sleep** (when on): islands at rest fall asleep ([`islands`];
+//!    swept against static ones (`continuous.rs`);
+//! 8. **sleep** (when on): islands at rest fall asleep (`islands.rs`;
 //!    jointed bodies share an island).
 //!
 //! Events (landing, apex) are located inside each substep by linear
 //! interpolation, exact for positions (they move linearly in a substep;
-//! [`events`]).
+//! `events.rs`).
 //!
 //! Nothing is allocated per step once the contact and constraint arrays
 //! have grown to the scene's size.
@@ -53,7 +53,7 @@
 //! The solver passes dominate: on a pyramid of boxes each pass visits
 //! every contact, 12 times a step (4 substeps of warm start, solve,
 //! relax). Visited one at a time (projected Gauss–Seidel, the scalar
-//! [`contact_solver`]) each constraint is a long chain of dependent
+//! `contact_solver.rs`) each constraint is a long chain of dependent
 //! floating-point operations through its two bodies' velocities, so the
 //! CPU mostly waits. What was done, each kept because it paid when
 //! measured (instruction counts from callgrind, repeatable on a shared
@@ -62,7 +62,7 @@
 //! - **Graph colouring and lanes** (Box2D v3's `constraint_graph.c` and the
 //!   SIMD path of `contact_solver.c`): constraints of one colour share no
 //!   dynamic body, so four of them are solved at once, one per lane of
-//!   [`lanes::F64x4`], in records laid out structure-of-arrays: four
+//!   `F64x4` (`lanes.rs`), in records laid out structure-of-arrays: four
 //!   independent chains instead of one, and packed instructions. Within a
 //!   record the lanes are independent, so the result is exactly that of
 //!   the scalar solver visiting the constraints colour after colour, and
@@ -73,15 +73,15 @@
 //!   contacts begin or end touching).
 //! - **AVX when the CPU has it**: the build targets the x86-64 baseline
 //!   (SSE2, two f64 per instruction and two-operand forms); the passes are
-//!   generic over the lane arithmetic ([`lanes::Lanes`]) and compiled a
-//!   second time for AVX registers ([`lanes_avx`], four f64 per
+//!   generic over the lane arithmetic (`Lanes` (`lanes.rs`)) and compiled a
+//!   second time for AVX registers (`lanes_avx.rs`, four f64 per
 //!   instruction), chosen at run time. No fused multiply-add, so both give
 //!   the same bits: which one runs does not change the simulation. Two
 //!   lanes (f64x2) were measured too: 7% fewer instructions than four on
 //!   SSE2 but 8–10% slower.
 //! - **Trigonometry**: the rotation since the step began, (cos, sin) of
 //!   Δθ, from Taylor polynomials for |Δθ| ≤ 1/4 (within 0.6 ulp, see
-//!   [`bodies`]) instead of `sin_cos` per body per substep; the angle
+//!   `bodies.rs`) instead of `sin_cos` per body per substep; the angle
 //!   itself is still accumulated exactly.
 //! - **Memory**: constraints prepared and stored in contact (memory)
 //!   order, each written in place into its lane (no per-step zeroing or
@@ -124,7 +124,7 @@
 //!   split: a third of the binned surface-area heuristic's work for queries
 //!   4 % slower). New pairs are reported grouped by moved body, each
 //!   group in the trees' order (this changed the results: the contact
-//!   order is the solve order; see [`broad_phase`] for why the pairs are
+//!   order is the solve order; see `broad_phase.rs` for why the pairs are
 //!   not sorted by id).
 //! - **Margin at most 1/8 of a shape's extent** (the setting is the cap):
 //!   with 0.1 m every 0.25 m box of the tumbler, 0.4 m apart, overlapped

@@ -11,7 +11,7 @@ use super::collision_common::{
 use super::collision_plots::{Series, apex_chart, figure};
 use crate::row::RowSink;
 use anyhow::{Context, Result, ensure};
-use engine::collision::Aabb;
+use engine::validation::collision::Aabb;
 use engine::{Body, ContactEventKind, Shape};
 use nalgebra::Isometry2;
 use references::rapier_contacts::RapierContactRun;
@@ -547,5 +547,5 @@ fn soft_step_08(report: &mut CaseReport) -> Result<()> {
 }
 
 /// The contact slop (m): 4 ε at the default ε = 1e-10 m
-/// ([`engine::contact::PROJECTION_SLOP`]).
-const PROJECTION_SLOP_M: f64 = engine::contact::PROJECTION_SLOP * 1e-10;
+/// ([`engine::validation::contact::PROJECTION_SLOP`]).
+const PROJECTION_SLOP_M: f64 = engine::validation::contact::PROJECTION_SLOP * 1e-10;

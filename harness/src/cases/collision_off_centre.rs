@@ -11,7 +11,7 @@ use super::{Case, CaseReport, Headline, Snapshots};
 use crate::row::RowSink;
 use crate::scenes;
 use anyhow::{Context, Result, ensure};
-use engine::contact::{ImpactBody, ImpactOutcome, Velocities, impact_eq_7_15};
+use engine::validation::contact::{ImpactBody, ImpactOutcome, Velocities, impact_eq_7_15};
 use engine::{Body, ContactEventKind, Shape};
 use nalgebra::Vector2;
 

@@ -17,7 +17,7 @@
 use super::{Case, CaseReport, Headline, Snapshots};
 use crate::row::RowSink;
 use anyhow::Result;
-use engine::collision::{collide, distance_polygon_polygon, separation_polygon_polygon};
+use engine::validation::collision::{collide, distance_polygon_polygon, separation_polygon_polygon};
 use engine::{ConvexPolygon, Shape};
 use nalgebra::Isometry2;
 use references::parry_queries::exact::{

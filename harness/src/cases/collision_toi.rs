@@ -11,7 +11,7 @@ use super::collision_common::{RAPIER, rapier_settings, run_rapier};
 use crate::row::RowSink;
 use crate::scenes;
 use anyhow::{Context, Result};
-use engine::collision::{Motion, ToiOptions, toi_bisection, toi_conservative_advancement};
+use engine::validation::collision::{Motion, ToiOptions, toi_bisection, toi_conservative_advancement};
 use engine::{ContactEvent, ContactEventKind, ContactSettings, Shape, ToiMethod};
 use nalgebra::{Isometry2, Vector2};
 use references::parry_queries::{ParryMotion, parry_time_of_impact};
@@ -170,7 +170,7 @@ pub fn run() -> Result<CaseReport> {
                 exact,
                 2.0 * options.tolerance,
                 format!(
-                    "engine::collision::toi_{name} over one step of 3 s with ε = {:e} m ({} \
+                    "engine::validation::collision::toi_{name} over one step of 3 s with ε = {:e} m ({} \
                      distance evaluations); the corner's approach speed is >= 1 m/s, so within \
                      ε/(1 m/s), doubled for the rotating corner's slower start",
                     options.tolerance, hit.iterations

@@ -103,7 +103,7 @@ impl Interior {
             }
             let shape = body.shape.as_ref().context("a wall without a shape")?;
             let s = &world.states()[id];
-            let aabb = engine::collision::Aabb::of_shape(
+            let aabb = engine::validation::collision::Aabb::of_shape(
                 shape,
                 &nalgebra::Isometry2::new(s.position, s.angle),
             );

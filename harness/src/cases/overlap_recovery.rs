@@ -8,7 +8,7 @@
 use super::soft_step_common::{SoftRun, inverse_point_mass, point_compression};
 use super::{Case, CaseReport, Headline};
 use anyhow::Result;
-use engine::collision::proximity;
+use engine::validation::collision::proximity;
 use nalgebra::Isometry2;
 
 /// The overlapped pyramid.
@@ -23,7 +23,7 @@ pub const CASE: Case = Case {
 };
 
 /// The deepest overlap (m) of any pair of shaped bodies in `states`, by the
-/// exact narrow phase (`engine::collision::proximity`, validated against
+/// exact narrow phase (`engine::validation::collision::proximity`, validated against
 /// parry2d by `collision_parry`).
 fn deepest_overlap(run: &SoftRun, states: &[engine::BodyState]) -> f64 {
     let bodies = run.world.bodies();

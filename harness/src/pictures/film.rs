@@ -33,7 +33,7 @@ impl BodyLook {
             Some(Shape::Circle(c)) => c.radius,
             Some(Shape::Polygon(p)) => p.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max),
             Some(shape @ Shape::Compound(_)) => {
-                engine::collision::narrow_phase::rotation_radius(shape)
+                engine::validation::collision::narrow_phase::rotation_radius(shape)
             }
         }
     }

@@ -409,7 +409,7 @@ fn radius(shape: &Shape) -> f64 {
     match shape {
         Shape::Circle(c) => c.radius,
         Shape::Polygon(p) => p.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max),
-        Shape::Compound(_) => engine::collision::narrow_phase::rotation_radius(shape),
+        Shape::Compound(_) => engine::validation::collision::narrow_phase::rotation_radius(shape),
     }
 }
 

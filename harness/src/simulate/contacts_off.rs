@@ -7,7 +7,7 @@
 
 use super::Recorded;
 use engine::World;
-use engine::collision::{Aabb, SweepAndPrune, proximity};
+use engine::validation::collision::{Aabb, SweepAndPrune, proximity};
 use nalgebra::Isometry2;
 
 /// Most samples searched (spread evenly over the run): enough to catch a

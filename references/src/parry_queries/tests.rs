@@ -6,7 +6,7 @@
 
 use super::exact::{Hull, Rng, overlap_along, signed_distance_to_polygon, world_vertices};
 use super::*;
-use engine::collision::{
+use engine::validation::collision::{
     Motion, ToiOptions, collide, distance_polygon_polygon, proximity, separation_polygon_polygon,
     toi_bisection, toi_conservative_advancement,
 };
