@@ -234,7 +234,7 @@ fn pose_hash(world: &World) -> u64 {
 /// new default), run this test, read the new hash from its failure message,
 /// check the change's effect on the benchmark's quality figures, and update
 /// this constant in the same commit, saying why.
-const PILE_HASH: u64 = 0xeff5_993d_fc05_c0d5;
+const PILE_HASH: u64 = 0x5ab2_ff22_048e_f2de;
 
 #[test]
 fn a_thousand_body_pile_gives_the_same_bits_every_time() {
@@ -332,4 +332,66 @@ fn three_hundred_bodies_dropped_into_a_container_stay_inside() {
             b.name
         );
     }
+}
+
+/// Forty boxes of 1 m created at one place on the ground (issue 11's
+/// coincident boxes, under the default model). Each pair's push-out speed
+/// bounds only that pair, so the boxes used to fan out at many times it
+/// (56 m/s here, 70 m/s and one box through the ground in the scene-file
+/// run; Box2D and rapier2d do the same with 100). With the push-out speed
+/// shared among a body's deep contacts (`soft_step/prepare.rs`) the push
+/// adds no more than that speed to what gravity gives: no box is ever
+/// faster than a fall from the highest point any box has reached, plus the
+/// push-out speed (3 m/s); no box's centre goes below the ground's top
+/// face (it would be on its way through); every state stays finite; and
+/// the boxes come to rest on the ground within 20 s.
+#[test]
+fn coincident_boxes_separate_above_the_ground_and_come_to_rest() {
+    let g = 9.81;
+    let mut world = soft_world();
+    world.set_gravity(Vector2::new(0.0, -g)).unwrap();
+    world
+        .add_body(BodyDef::fixed(
+            "ground",
+            Vector2::new(0.0, -0.5),
+            Some(Shape::rectangle(100.0, 1.0).unwrap()),
+        ))
+        .unwrap();
+    for i in 0..40 {
+        world
+            .add_body(
+                BodyDef::rigid(&format!("b{i}"), 1.0, Shape::rectangle(1.0, 1.0).unwrap())
+                    .with_position(Vector2::new(0.0, 0.5)),
+            )
+            .unwrap();
+    }
+    let push_out = SoftStepSettings::default().push_out_speed;
+    let mut highest: f64 = 0.5;
+    for step in 0..1200 {
+        world.step(1.0 / 60.0).unwrap();
+        for (id, s) in world.states().iter().enumerate().skip(1) {
+            assert!(
+                s.position.y > 0.0 && s.velocity.iter().all(|v| v.is_finite()),
+                "step {step}: box {id} at y = {} m, v = {:?}",
+                s.position.y,
+                s.velocity
+            );
+            highest = highest.max(s.position.y);
+        }
+        let bound = (2.0 * g * (highest - 0.5)).sqrt() + push_out;
+        for (id, s) in world.states().iter().enumerate().skip(1) {
+            let speed = s.velocity.norm();
+            assert!(
+                speed <= bound,
+                "step {step}: box {id} at {speed} m/s, faster than a fall from the highest \
+                 point reached ({highest} m) plus the push-out speed: {bound} m/s"
+            );
+        }
+    }
+    let fastest = world.states()[1..]
+        .iter()
+        .map(|s| s.velocity.norm())
+        .fold(0.0, f64::max);
+    // At rest: 1e-6 m/s is far below any motion (the run settles to 1e-9).
+    assert!(fastest < 1e-6, "still moving at {fastest} m/s after 20 s");
 }

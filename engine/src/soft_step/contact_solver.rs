@@ -76,6 +76,11 @@ pub(crate) struct ContactConstraint {
     pub inv_mass_b: f64,
     pub inv_inertia_b: f64,
     pub softness: Softness,
+    /// The largest speed (m/s) at which the bias pushes this contact's
+    /// overlapping points apart: the settings' push-out speed, shared
+    /// among the deep contacts of a body that has several
+    /// ([`super::prepare`]).
+    pub push_out: f64,
     pub count: usize,
     pub points: [ConstraintPoint; 2],
 }
@@ -104,12 +109,13 @@ pub(crate) struct PairMass {
 }
 
 /// Builds the constraint of `contact` (with its points) for a step, with
-/// warm-starting impulses scaled by `warm` (1 on, 0 off).
+/// warm-starting impulses scaled by `warm` (1 on, 0 off) and the soft bias
+/// bounded by `push_out` (m/s).
 pub(crate) fn prepare(
     contact: &Contact,
     index: usize,
     mass: PairMass,
-    softness: Softness,
+    (softness, push_out): (Softness, f64),
     bodies: &[SolverBody],
     warm: f64,
 ) -> ContactConstraint {
@@ -159,6 +165,7 @@ pub(crate) fn prepare(
         inv_mass_b: mb,
         inv_inertia_b: ib,
         softness,
+        push_out,
         count: contact.count,
         points,
     }
@@ -200,7 +207,7 @@ pub(crate) fn warm_start(constraints: &mut [ContactConstraint], bodies: &mut [So
 }
 
 /// One pass of sequential impulses. With `use_bias` the soft bias pushes
-/// overlapping points apart (at most `push_out_speed`, m/s); without it
+/// overlapping points apart (at most each constraint's `push_out`, m/s); without it
 /// (relax) the pass removes the bias velocity and solves friction.
 /// Speculative points (s > 0) may close their gap in one substep of
 /// length 1/`inv_h` and no more.
@@ -209,7 +216,6 @@ pub(crate) fn solve(
     constraints: &mut [ContactConstraint],
     bodies: &mut [SolverBody],
     inv_h: f64,
-    push_out_speed: f64,
     use_bias: bool,
 ) {
     for c in constraints.iter_mut() {
@@ -230,11 +236,7 @@ pub(crate) fn solve(
             let (bias, point_mass_scale, point_impulse_scale) = if s > 0.0 {
                 (s * inv_h, 1.0, 0.0)
             } else {
-                (
-                    (bias_rate * s).max(-push_out_speed),
-                    mass_scale,
-                    impulse_scale,
-                )
+                ((bias_rate * s).max(-c.push_out), mass_scale, impulse_scale)
             };
             let vra = a.v + cross_sv(a.w, cp.ra);
             let vrb = b.v + cross_sv(b.w, cp.rb);
@@ -362,11 +364,11 @@ mod tests {
             &contact_with(0.0),
             0,
             pair(0.5),
-            Softness::RIGID,
+            (Softness::RIGID, 3.0),
             &bodies,
             1.0,
         )];
-        solve(&mut c, &mut bodies, 240.0, 3.0, false);
+        solve(&mut c, &mut bodies, 240.0, false);
         assert!(bodies[1].v.y.abs() < 1e-15);
         assert!((c[0].points[0].normal_impulse - 4.0).abs() < 1e-15);
         assert_eq!(bodies[0], SolverBody::AT_REST);
@@ -382,11 +384,11 @@ mod tests {
             &contact_with(0.01),
             0,
             pair(1.0),
-            Softness::RIGID,
+            (Softness::RIGID, 3.0),
             &bodies,
             1.0,
         )];
-        solve(&mut c, &mut bodies, 240.0, 3.0, true);
+        solve(&mut c, &mut bodies, 240.0, true);
         assert!((bodies[1].v.y + 2.4).abs() < 1e-12, "{}", bodies[1].v.y);
     }
 
@@ -401,11 +403,11 @@ mod tests {
             &contact_with(-0.1),
             0,
             pair(1.0),
-            soft,
+            (soft, 3.0),
             &bodies,
             1.0,
         )];
-        solve(&mut c, &mut bodies, 240.0, 3.0, true);
+        solve(&mut c, &mut bodies, 240.0, true);
         assert!((bodies[1].v.y - 3.0).abs() < 1e-12, "{}", bodies[1].v.y);
     }
 
@@ -419,11 +421,11 @@ mod tests {
             &contact,
             0,
             pair(1.0),
-            Softness::RIGID,
+            (Softness::RIGID, 3.0),
             &bodies,
             1.0,
         )];
-        solve(&mut c, &mut bodies, 240.0, 3.0, true);
+        solve(&mut c, &mut bodies, 240.0, true);
         restitution(&mut c, &mut bodies, 1.0);
         assert!((bodies[1].v.y - 4.0).abs() < 1e-12, "{}", bodies[1].v.y);
         // Below the threshold nothing bounces.
@@ -432,11 +434,11 @@ mod tests {
             &contact,
             0,
             pair(1.0),
-            Softness::RIGID,
+            (Softness::RIGID, 3.0),
             &bodies,
             1.0,
         )];
-        solve(&mut c, &mut bodies, 240.0, 3.0, true);
+        solve(&mut c, &mut bodies, 240.0, true);
         restitution(&mut c, &mut bodies, 1.0);
         assert!(bodies[1].v.y.abs() < 1e-15);
     }
@@ -454,11 +456,11 @@ mod tests {
                 &contact,
                 0,
                 pair(1.0),
-                Softness::RIGID,
+                (Softness::RIGID, 3.0),
                 &bodies,
                 1.0,
             )];
-            solve(&mut c, &mut bodies, 240.0, 3.0, false);
+            solve(&mut c, &mut bodies, 240.0, false);
             assert!(
                 (bodies[1].v.x - expected).abs() < 1e-15,
                 "mu {mu} vx {vx}: {}",

@@ -229,6 +229,10 @@ pub struct SoftStep {
     /// The contact of each constraint, in contact order (the colouring's
     /// order).
     constrained: Vec<usize>,
+    /// Per world body, the push-out speed (m/s) its contacts with other
+    /// dynamic bodies ask for this step (prepare's sum, for sharing the
+    /// push-out speed among them).
+    push_demand: Vec<f64>,
     islands: islands::Islands,
     joints: joints::JointSet,
     stats: Stats,
@@ -256,6 +260,7 @@ impl SoftStep {
             constraints: Vec::new(),
             colouring: Colouring::default(),
             constrained: Vec::new(),
+            push_demand: Vec::new(),
             islands: islands::Islands::default(),
             joints: joints::JointSet::default(),
             stats: Stats::default(),
@@ -421,19 +426,8 @@ impl SoftStep {
 
             let started = core.profiler.start();
             self.joints.solve(&mut self.bodies, h, true);
-            contact_solver::solve(
-                &mut self.constraints,
-                &mut self.bodies,
-                inv_h,
-                settings.push_out_speed,
-                true,
-            );
-            wide_solver::solve(
-                &mut self.wide,
-                &mut self.bodies,
-                inv_h,
-                settings.push_out_speed,
-            );
+            contact_solver::solve(&mut self.constraints, &mut self.bodies, inv_h, true);
+            wide_solver::solve(&mut self.wide, &mut self.bodies, inv_h);
             core.profiler.stop(Phase::Solve, started);
 
             let started = core.profiler.start();
@@ -442,13 +436,7 @@ impl SoftStep {
 
             let started = core.profiler.start();
             self.joints.solve(&mut self.bodies, h, false);
-            contact_solver::solve(
-                &mut self.constraints,
-                &mut self.bodies,
-                inv_h,
-                settings.push_out_speed,
-                false,
-            );
+            contact_solver::solve(&mut self.constraints, &mut self.bodies, inv_h, false);
             wide_solver::relax(&mut self.wide, &mut self.bodies, inv_h);
             core.profiler.stop(Phase::Relax, started);
             self.stats.evaluations += 1;

@@ -12,10 +12,27 @@
 //! records of the last step are overwritten field by field, so nothing is
 //! zeroed or allocated per step. Store walks the same list in the same
 //! order.
+//!
+//! **Shared push-out.** The push-out speed bounds the bias of each
+//! contact, so a body overlapping k others deeply could be pushed at k
+//! times that speed, and n bodies created in one place, each pushed away
+//! from every other, fan out at up to (n − 1) times it: 100 coincident
+//! boxes reached 90 m/s, flew 450 m high and fell through the ground
+//! (Box2D and rapier2d do the same). The first loop therefore sums, per
+//! dynamic body, the bias speeds its contacts with other dynamic bodies
+//! ask for (each min(bias rate × depth, push-out speed), its *push
+//! demand*); where a body's sum exceeds the push-out speed, each of those
+//! contacts' bias is scaled by push-out speed / sum (the larger sum of its
+//! two bodies), so that together they push at the push-out speed. Contacts
+//! with static or kinematic bodies keep theirs: the ground has the last
+//! word. In an ordinary scene no sum comes near the push-out speed (in the
+//! 5050-box pyramid the largest is under 1 m/s), so nothing changes there,
+//! bit for bit.
 
 use super::bodies::{BodyMass, SolverBody, solver_body, solver_index};
 use super::colouring::Slot;
 use super::contact_solver::{self, PairMass};
+use super::contacts::Contact;
 use super::wide_solver::{self, WideConstraint, WideExtra};
 use super::{SoftStep, Softness};
 use crate::body::{BodyId, BodyKind};
@@ -50,8 +67,21 @@ impl SoftStep {
         let soft = Softness::new(hertz, settings.contact_damping_ratio, h);
         let static_soft = Softness::new(2.0 * hertz, settings.contact_damping_ratio, h);
         let warm = if settings.warm_starting { 1.0 } else { 0.0 };
+        let push_out = settings.push_out_speed;
+        // The bias rate of a contact between two dynamic bodies (1/s).
+        let rate = soft.mass_scale * soft.bias_rate;
+        // Plain comparisons: the values are finite (f64::min's NaN
+        // handling costs instructions on every contact).
+        let demand_of = |c: &Contact| {
+            let demand = -rate * deepest(c);
+            if demand < push_out { demand } else { push_out }
+        };
+        let both_dynamic =
+            |a: &BodyMass, b: &BodyMass| a.kind == BodyKind::Dynamic && b.kind == BodyKind::Dynamic;
         self.colouring.clear(self.sims.len());
         self.constrained.clear();
+        self.push_demand.clear();
+        self.push_demand.resize(self.sims.len(), 0.0);
         let mut points = 0;
         for (index, c) in self.contacts.contacts.iter().enumerate() {
             if c.count == 0 {
@@ -66,6 +96,13 @@ impl SoftStep {
                 .add(dynamic(c.body_a, sa), dynamic(c.body_b, sb));
             self.constrained.push(index);
             points += c.count;
+            if both_dynamic(sa, sb) {
+                let demand = demand_of(c);
+                if demand > 0.0 {
+                    self.push_demand[c.body_a] += demand;
+                    self.push_demand[c.body_b] += demand;
+                }
+            }
         }
         let touching = self.constrained.len();
         let records = self.colouring.finish();
@@ -75,6 +112,7 @@ impl SoftStep {
         self.wide_extra.resize(records, WideExtra::default());
         self.constraints.clear();
         let (masses, contacts, bodies) = (&self.masses, &self.contacts.contacts, &self.bodies);
+        let demand = &self.push_demand;
         // In contact order, so that the contacts are read in memory order;
         // each colour's records are written in order too.
         for (i, &index) in self.constrained.iter().enumerate() {
@@ -88,12 +126,22 @@ impl SoftStep {
                 inv_mass_b: sb.inv_mass,
                 inv_inertia_b: sb.inv_inertia,
             };
-            let softness = if sa.kind == BodyKind::Static || sb.kind == BodyKind::Static {
-                static_soft
+            let (softness, bound) = if both_dynamic(sa, sb) {
+                let (da, db) = (demand[c.body_a], demand[c.body_b]);
+                let most = if da > db { da } else { db };
+                let bound = if most > push_out {
+                    demand_of(c).max(0.0) * (push_out / most)
+                } else {
+                    push_out
+                };
+                (soft, bound)
+            } else if sa.kind == BodyKind::Static || sb.kind == BodyKind::Static {
+                (static_soft, push_out)
             } else {
-                soft
+                (soft, push_out)
             };
-            let constraint = contact_solver::prepare(c, index, mass, softness, bodies, warm);
+            let constraint =
+                contact_solver::prepare(c, index, mass, (softness, bound), bodies, warm);
             match self.colouring.slot(i) {
                 Slot::Lane { record, lane } => wide_solver::set_lane(
                     (&mut self.wide[record], &mut self.wide_extra[record]),
@@ -131,6 +179,18 @@ impl SoftStep {
                 );
             }
         }
+    }
+}
+
+/// The separation of the deepest point of `c` (m, negative inside; the
+/// contact has one or two points).
+#[inline(always)]
+fn deepest(c: &Contact) -> f64 {
+    let (first, second) = (c.points[0].separation, c.points[1].separation);
+    if c.count == 2 && second < first {
+        second
+    } else {
+        first
     }
 }
 

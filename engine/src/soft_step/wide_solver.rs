@@ -63,6 +63,8 @@ pub(crate) struct WideConstraint {
     pub bias_rate: F64x4,
     pub mass_scale: F64x4,
     pub impulse_scale: F64x4,
+    /// Minus each lane's push-out bound (m/s): the bias is at least this.
+    pub min_bias: F64x4,
     pub points: [WidePoint; 2],
 }
 
@@ -95,6 +97,7 @@ pub(crate) fn set_lane(
     w.bias_rate.set_lane(l, c.softness.bias_rate);
     w.mass_scale.set_lane(l, c.softness.mass_scale);
     w.impulse_scale.set_lane(l, c.softness.impulse_scale);
+    w.min_bias.set_lane(l, -c.push_out);
     e.restitution.set_lane(l, c.restitution);
     for k in 0..2 {
         let cp = if k < c.count {
@@ -132,6 +135,7 @@ pub(crate) fn set_padding_lane((w, e): (&mut WideConstraint, &mut WideExtra), l:
         inv_mass_b: 0.0,
         inv_inertia_b: 0.0,
         softness: super::Softness::RIGID,
+        push_out: 0.0,
         count: 0,
         points: [ConstraintPoint::default(); 2],
     };
@@ -340,23 +344,13 @@ fn warm_start_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: &mut [S
 
 /// The solve pass, with the soft bias (see [`super::contact_solver::solve`]).
 #[inline(never)]
-pub(crate) fn solve(
-    constraints: &mut [WideConstraint],
-    bodies: &mut [SolverBody],
-    inv_h: f64,
-    push_out_speed: f64,
-) {
-    dispatch!(solve_with, solve_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64, push_out_speed: f64));
+pub(crate) fn solve(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
+    dispatch!(solve_with, solve_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64));
 }
 
 #[inline(always)]
-fn solve_with<L: Lanes>(
-    constraints: &mut [WideConstraint],
-    bodies: &mut [SolverBody],
-    inv_h: f64,
-    push_out_speed: f64,
-) {
-    pass::<L, true>(constraints, bodies, inv_h, push_out_speed);
+fn solve_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
+    pass::<L, true>(constraints, bodies, inv_h);
 }
 
 /// The relax pass: without bias, with friction.
@@ -367,7 +361,7 @@ pub(crate) fn relax(constraints: &mut [WideConstraint], bodies: &mut [SolverBody
 
 #[inline(always)]
 fn relax_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
-    pass::<L, false>(constraints, bodies, inv_h, 0.0);
+    pass::<L, false>(constraints, bodies, inv_h);
 }
 
 /// One pass of sequential impulses over four lanes at a time.
@@ -376,25 +370,25 @@ fn pass<L: Lanes, const BIAS: bool>(
     constraints: &mut [WideConstraint],
     bodies: &mut [SolverBody],
     inv_h: f64,
-    push_out_speed: f64,
 ) {
     let inv_h = L::splat(inv_h);
-    let min_bias = L::splat(-push_out_speed);
     let (zero, one) = (L::splat(0.0), L::splat(1.0));
     for c in constraints.iter_mut() {
         let (mut a, mut b) = (gather::<L>(bodies, &c.a), gather::<L>(bodies, &c.b));
         let separation = separations::<L>(bodies, c, (&a, &b));
         let m = Masses::of(c);
         let (nx, ny) = (L::load(&c.normal_x), L::load(&c.normal_y));
-        let (bias_rate, mass_scale, impulse_scale) = if BIAS {
+        let (bias_rate, mass_scale, impulse_scale, min_bias) = if BIAS {
             let mass_scale = L::load(&c.mass_scale);
             (
                 mass_scale * L::load(&c.bias_rate),
                 mass_scale,
                 L::load(&c.impulse_scale),
+                L::load(&c.min_bias),
             )
         } else {
-            (zero, one, zero)
+            // Relax: no bias (0 · s is ±0, and max(±0, −0) is ±0 as before).
+            (zero, one, zero, L::splat(-0.0))
         };
         for (p, s) in c.points.iter_mut().zip(separation) {
             let speculative = s.gt(zero);
@@ -548,7 +542,12 @@ mod tests {
             let mut point = |k: usize| ConstraintPoint {
                 ra: Vector2::new(0.5 * n.next(), 0.5 * n.next()),
                 rb: Vector2::new(0.5 * n.next(), 0.5 * n.next()),
-                base_separation: 0.01 * n.next(),
+                // Every fourth contact deep, its bias at its push-out bound.
+                base_separation: if contact % 4 == 1 {
+                    -0.5 - 0.1 * n.next().abs()
+                } else {
+                    0.01 * n.next()
+                },
                 normal_mass: 1.0 + n.next(),
                 tangent_mass: 1.0 + n.next(),
                 normal_impulse: (k as f64 + n.next()).max(0.0),
@@ -574,6 +573,9 @@ mod tests {
                 } else {
                     soft
                 },
+                // A shared push-out bound on some lanes (prepare's rule for
+                // a body with several deep contacts).
+                push_out: if contact % 4 == 1 { 0.75 } else { 3.0 },
                 count: 1 + contact % 2,
                 points,
             });
@@ -610,12 +612,12 @@ mod tests {
         let mut by_lane: Vec<usize> = (0..constraints.len()).collect();
         by_lane.sort_by_key(|&i| order[i]);
         let mut scalar: Vec<ContactConstraint> = by_lane.iter().map(|&i| constraints[i]).collect();
-        let (inv_h, push_out) = (240.0, 3.0);
+        let inv_h = 240.0;
         let mut scalar_bodies = bodies.clone();
         for _ in 0..3 {
             contact_solver::warm_start(&mut scalar, &mut scalar_bodies);
-            contact_solver::solve(&mut scalar, &mut scalar_bodies, inv_h, push_out, true);
-            contact_solver::solve(&mut scalar, &mut scalar_bodies, inv_h, push_out, false);
+            contact_solver::solve(&mut scalar, &mut scalar_bodies, inv_h, true);
+            contact_solver::solve(&mut scalar, &mut scalar_bodies, inv_h, false);
         }
         contact_solver::restitution(&mut scalar, &mut scalar_bodies, 1.0);
         let mut set = super::super::contacts::ContactSet::default();
@@ -633,11 +635,11 @@ mod tests {
             for _ in 0..3 {
                 if sse2 {
                     warm_start_with::<F64x4>(&mut wide, &mut wide_bodies);
-                    solve_with::<F64x4>(&mut wide, &mut wide_bodies, inv_h, push_out);
+                    solve_with::<F64x4>(&mut wide, &mut wide_bodies, inv_h);
                     relax_with::<F64x4>(&mut wide, &mut wide_bodies, inv_h);
                 } else {
                     warm_start(&mut wide, &mut wide_bodies);
-                    solve(&mut wide, &mut wide_bodies, inv_h, push_out);
+                    solve(&mut wide, &mut wide_bodies, inv_h);
                     relax(&mut wide, &mut wide_bodies, inv_h);
                 }
             }
