@@ -20,14 +20,18 @@
 //! boxes reached 90 m/s, flew 450 m high and fell through the ground
 //! (Box2D and rapier2d do the same). The first loop therefore sums, per
 //! dynamic body, the bias speeds its contacts with other dynamic bodies
-//! ask for (each min(bias rate × depth, push-out speed), its *push
-//! demand*); where a body's sum exceeds the push-out speed, each of those
-//! contacts' bias is scaled by push-out speed / sum (the larger sum of its
-//! two bodies), so that together they push at the push-out speed. Contacts
+//! ask for (each d = min(bias rate × depth, push-out speed)), each weighted
+//! by twice the body's share of the pair's inverse mass (1 for equal
+//! masses, whose bodies each move at d/2; near 2 for a light body against
+//! a heavy one; near 0 for the heavy one): its *push demand*. Where a
+//! body's demand exceeds the push-out speed, each of those contacts' bias
+//! is scaled by push-out speed / demand (the larger demand of its two
+//! bodies), so that no body is pushed faster than one equal pair at the
+//! full speed would push it. Contacts
 //! with static or kinematic bodies keep theirs: the ground has the last
-//! word. In an ordinary scene no sum comes near the push-out speed (in the
-//! 5050-box pyramid the largest is under 1 m/s), so nothing changes there,
-//! bit for bit.
+//! word. In a scene built without overlaps no sum comes near the push-out
+//! speed, so nothing changes there, bit for bit (the benchmark and
+//! validation scenes).
 
 use super::bodies::{BodyMass, SolverBody, solver_body, solver_index};
 use super::colouring::Slot;
@@ -99,8 +103,15 @@ impl SoftStep {
             if both_dynamic(sa, sb) {
                 let demand = demand_of(c);
                 if demand > 0.0 {
-                    self.push_demand[c.body_a] += demand;
-                    self.push_demand[c.body_b] += demand;
+                    // Each body's part of the relative push, twice its
+                    // share of the pair's inverse mass: 1 for equal masses
+                    // (each moves at half the relative speed), near 2 for
+                    // a light body against a heavy one, near 0 for the
+                    // heavy one (pushed by many light ones, it hardly
+                    // moves).
+                    let part = 2.0 * demand / (sa.inv_mass + sb.inv_mass);
+                    self.push_demand[c.body_a] += part * sa.inv_mass;
+                    self.push_demand[c.body_b] += part * sb.inv_mass;
                 }
             }
         }

@@ -26,8 +26,9 @@ pub struct SoftStepSettings {
     /// bounce. Default 10.
     pub contact_damping_ratio: f64,
     /// Largest speed (m/s, > 0) at which the soft bias pushes overlapping
-    /// bodies apart: bounds the energy a deep overlap can inject. Default
-    /// 3 m/s.
+    /// bodies apart: bounds the energy a deep overlap can inject. A body
+    /// deep inside several others shares it among those contacts (see
+    /// `docs/soft_step.md`, the contact update). Default 3 m/s.
     pub push_out_speed: f64,
     /// Relative normal speed (m/s, ≥ 0) below which no restitution is
     /// applied: slow contacts do not bounce, so a resting pile of
