@@ -183,6 +183,8 @@ mod prepare;
 mod settings;
 mod sleep;
 mod softness;
+#[cfg(test)]
+mod test_numbers;
 mod wide_solver;
 mod world_joints;
 

@@ -510,18 +510,7 @@ mod tests {
     use crate::soft_step::colouring::{Colouring, Slot};
     use nalgebra::Vector2;
 
-    /// A deterministic stream of numbers in [−1, 1).
-    struct Numbers(u64);
-
-    impl Numbers {
-        fn next(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        }
-    }
+    use crate::soft_step::test_numbers::Numbers;
 
     /// Twelve moving bodies and the static dummy; a chain of revolute
     /// joints between neighbours and one to the world per body, with
