@@ -13,8 +13,8 @@ use engine::error::readable;
 use engine::{Body, Method, World};
 
 /// Refuses a world whose energy at t = 0 is not finite, naming the body
-/// (its velocity or angular velocity), else the force, whose term
-/// overflows; else the sum.
+/// (its velocity or angular velocity, or its position under the scene's
+/// gravity), else the force, whose term overflows; else the sum.
 pub(crate) fn initial_energy(plan: &WorldPlan, method: Method) -> Checked<()> {
     let bodies = FieldPath::root().key("bodies");
     for (i, def) in plan.bodies.iter().enumerate() {
@@ -39,8 +39,31 @@ pub(crate) fn initial_energy(plan: &WorldPlan, method: Method) -> Checked<()> {
             ));
         }
     }
+    // Gravity as a world setting ([simulation] gravity): m |g| |x| per
+    // body, located at the position (the height is what a user changes).
+    let g = plan.gravity.map_or(0.0, |g| g.norm());
+    for (i, def) in plan.bodies.iter().enumerate() {
+        let Ok((body, state)) = Body::from_def(def) else {
+            continue;
+        };
+        let potential = body.mass * g * state.position.norm();
+        if body.is_dynamic() && !potential.is_finite() {
+            return Err(overflow(
+                &bodies.index(i).key("position"),
+                format!(
+                    "the potential energy of body '{}' under the gravity of [simulation] \
+                     (m |g| |x|) is {} J",
+                    def.name,
+                    readable(potential)
+                ),
+            ));
+        }
+    }
     let total = |forces: &[crate::build::PlannedForce]| -> Option<f64> {
         let mut world = World::new(method).ok()?;
+        if let Some(g) = plan.gravity {
+            world.set_gravity(g).ok()?;
+        }
         for def in &plan.bodies {
             world.add_body(def.clone()).ok()?;
         }

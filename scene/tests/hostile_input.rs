@@ -174,6 +174,21 @@ fn an_initial_energy_that_overflows_names_the_velocity() {
     assert!(e.message().contains("kinetic energy"), "{e}");
 }
 
+/// Found by the long fuzz run: a mass of 1.3e154 kg at a height of
+/// 1.3e154 m under the gravity of [simulation] (each number in range, m g y
+/// is not) loaded, then failed its first step with a blow-up.
+#[test]
+fn a_potential_energy_that_overflows_names_the_position() {
+    let text = "[simulation]\ndt = 0.1\nduration = 1.0\ngravity = [0.0, -10.0]\n\n\
+                [[bodies]]\nname = \"box\"\nmass = 1.3e154\nposition = [0.0, 1.3e154]\n";
+    let e = error(text);
+    check(&e, ErrorKind::OutOfRange, Some("bodies[0].position"), 9);
+    assert!(
+        e.message().contains("potential energy of body 'box'"),
+        "{e}"
+    );
+}
+
 #[test]
 fn an_energy_that_overflows_during_the_run_is_an_error_not_nan() {
     let text = body("mass = 1.0\n[[forces]]\ntype = \"gravity\"\ng = [1e154, -1e154]\n");
