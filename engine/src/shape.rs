@@ -10,6 +10,7 @@ use crate::error::{EngineError, Result, require_positive};
 use nalgebra::Vector2;
 
 /// 2D cross product `a × b = a.x b.y − a.y b.x` (a scalar in 2D).
+#[inline]
 pub fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
     a.x * b.y - a.y * b.x
 }

@@ -337,8 +337,9 @@ fn three_hundred_bodies_dropped_into_a_container_stay_inside() {
 /// Forty boxes of 1 m created at one place on the ground (issue 11's
 /// coincident boxes, under the default model). Each pair's push-out speed
 /// bounds only that pair, so the boxes used to fan out at many times it
-/// (56 m/s here, 70 m/s and one box through the ground in the scene-file
-/// run; Box2D and rapier2d do the same with 100). With the push-out speed
+/// (without the sharing below this test fails at its first step, a box at
+/// 15 m/s; scenes/robustness/coincident_boxes.toml is the 100-box scene
+/// file, with Box2D and rapier2d through `--compare`). With the push-out speed
 /// shared among a body's deep contacts (`soft_step/prepare.rs`) the push
 /// adds no more than that speed to what gravity gives: no box is ever
 /// faster than a fall from the highest point any box has reached, plus the

@@ -8,7 +8,7 @@
 //! approximated.
 
 use anyhow::{Result, bail};
-use engine::{Body, BodyKind};
+use engine::{Body, BodyKind, BodyState};
 use references::rapier_world::{RapierBody, RapierForce};
 use scene::Scene;
 use scene::format::{ForceSpec, Window};
@@ -107,14 +107,7 @@ pub fn rapier_single_body(scene: &Scene) -> Result<SingleBody> {
         );
     }
     let (body, state) = Body::from_def(&defs[index])?;
-    let rapier_body = RapierBody {
-        mass: body.mass,
-        inertia: body.inertia,
-        position: [state.position.x, state.position.y],
-        angle: state.angle,
-        velocity: [state.velocity.x, state.velocity.y],
-        angular_velocity: state.angular_velocity,
-    };
+    let single = rapier_body(&body, &state);
     let mut forces = Vec::new();
     if let Some(g) = scene.gravity() {
         forces.push(RapierForce::Gravity([g.x, g.y]));
@@ -193,7 +186,7 @@ pub fn rapier_single_body(scene: &Scene) -> Result<SingleBody> {
     }
     Ok(SingleBody {
         index,
-        body: rapier_body,
+        body: single,
         forces,
     })
 }
@@ -203,6 +196,19 @@ pub fn rapier_single_body(scene: &Scene) -> Result<SingleBody> {
 pub fn rapier_problem(scene: &Scene) -> Result<(RapierBody, Vec<RapierForce>)> {
     let single = rapier_single_body(scene)?;
     Ok((single.body, single.forces))
+}
+
+/// `body` at `state` as the rapier2d adapters take a dynamic body: mass,
+/// inertia (none for a particle), pose and velocities, SI units.
+pub(crate) fn rapier_body(body: &Body, state: &BodyState) -> RapierBody {
+    RapierBody {
+        mass: body.mass,
+        inertia: body.inertia,
+        position: [state.position.x, state.position.y],
+        angle: state.angle,
+        velocity: [state.velocity.x, state.velocity.y],
+        angular_velocity: state.angular_velocity,
+    }
 }
 
 #[cfg(test)]

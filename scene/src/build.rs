@@ -311,7 +311,7 @@ fn world(file: &SceneFile) -> Checked<WorldPlan> {
     let names = crate::joints::Names::new(&bodies);
     let mut planned = crate::joints::joints(&file.joints, &names)?;
     if model == Some(ContactModelSpec::Exact) {
-        if let Some(first) = planned.first().or(joints.first()) {
+        if let Some(first) = planned.first() {
             return Err(Problem::new(
                 &first.path,
                 ErrorKind::InvalidValue,

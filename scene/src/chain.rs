@@ -15,8 +15,9 @@
 use crate::build::{Checked, positive, xy};
 use crate::error::{ErrorKind, FieldPath, Problem};
 use crate::format::Xy;
+use crate::generate::generated_body;
 use engine::error::readable;
-use engine::{BodyDef, BodyId, BodyKind, BodyState, JointDef, Revolute, Shape};
+use engine::{BodyDef, BodyId, BodyState, JointDef, Revolute, Shape};
 use nalgebra::Vector2;
 
 /// What a chain generator asks for, as written.
@@ -151,23 +152,17 @@ pub(crate) fn expand(
     for k in 0..spec.count {
         let (a, b) = (points[k], points[k + 1]);
         let d = b - a;
-        bodies.push(BodyDef {
-            name: format!("{prefix}_{k}"),
-            kind: BodyKind::Dynamic,
-            mass: None,
-            density: Some(density),
-            inertia: None,
-            shape: Some(box_shape.clone()),
-            state: BodyState {
+        bodies.push(generated_body(
+            format!("{prefix}_{k}"),
+            box_shape.clone(),
+            (density, false),
+            BodyState {
                 position: 0.5 * (a + b),
                 angle: d.y.atan2(d.x),
                 velocity: Vector2::zeros(),
                 angular_velocity: 0.0,
             },
-            friction: None,
-            restitution: None,
-            collision_group: None,
-        });
+        ));
         let before = (k > 0).then(|| first + k - 1);
         joints.push(JointDef::revolute(
             &format!("{prefix}_j{k}"),

@@ -17,11 +17,16 @@ use engine::{Body, Method, World};
 /// gravity), else the force, whose term overflows; else the sum.
 pub(crate) fn initial_energy(plan: &WorldPlan, method: Method) -> Checked<()> {
     let bodies = FieldPath::root().key("bodies");
-    for (i, def) in plan.bodies.iter().enumerate() {
-        let Ok((body, state)) = Body::from_def(def) else {
-            continue; // refused earlier, with its own message
-        };
-        let kinetic = body.kinetic_energy(&state);
+    // Each body as the engine builds it; one refused earlier (with its own
+    // message) is skipped.
+    let built: Vec<_> = plan
+        .bodies
+        .iter()
+        .enumerate()
+        .filter_map(|(i, def)| Body::from_def(def).ok().map(|b| (i, def, b)))
+        .collect();
+    for &(i, def, (ref body, ref state)) in &built {
+        let kinetic = body.kinetic_energy(state);
         if !kinetic.is_finite() {
             let translation = 0.5 * body.mass * state.velocity.norm_squared();
             let field = if translation.is_finite() {
@@ -42,10 +47,7 @@ pub(crate) fn initial_energy(plan: &WorldPlan, method: Method) -> Checked<()> {
     // Gravity as a world setting ([simulation] gravity): m |g| |x| per
     // body, located at the position (the height is what a user changes).
     let g = plan.gravity.map_or(0.0, |g| g.norm());
-    for (i, def) in plan.bodies.iter().enumerate() {
-        let Ok((body, state)) = Body::from_def(def) else {
-            continue;
-        };
+    for &(i, def, (ref body, ref state)) in &built {
         let potential = body.mass * g * state.position.norm();
         if body.is_dynamic() && !potential.is_finite() {
             return Err(overflow(
@@ -72,6 +74,13 @@ pub(crate) fn initial_energy(plan: &WorldPlan, method: Method) -> Checked<()> {
         }
         Some(world.energy())
     };
+    // A finite sum has only finite terms: the search for the force to
+    // blame runs only when the whole is not finite (each try builds a
+    // world of every body).
+    let whole = total(&plan.forces);
+    if whole.is_none_or(f64::is_finite) {
+        return Ok(());
+    }
     for f in &plan.forces {
         if let Some(energy) = total(std::slice::from_ref(f)) {
             if !energy.is_finite() {
@@ -85,7 +94,7 @@ pub(crate) fn initial_energy(plan: &WorldPlan, method: Method) -> Checked<()> {
             }
         }
     }
-    match total(&plan.forces) {
+    match whole {
         Some(energy) if !energy.is_finite() => Err(overflow(
             &bodies,
             format!(

@@ -144,10 +144,11 @@ pub(crate) fn literal_words(literal: &str) -> String {
 /// `bodies`, `forces` or `events` written as an array, would reach serde as
 /// a sequence, which it reads positionally into the table's fields and
 /// reports in Rust's terms at a field the user never wrote.
-pub(crate) fn check_sections(origin: &str, text: &str) -> Result<(), SceneError> {
-    let Ok(root) = DeTable::parse(text) else {
-        return Ok(());
-    };
+pub(crate) fn check_sections(
+    origin: &str,
+    text: &str,
+    root: &toml::Spanned<DeTable<'_>>,
+) -> Result<(), SceneError> {
     let at = |span: std::ops::Range<usize>| Some(line_column(text, span.start));
     for (key, value) in root.get_ref() {
         let name = key.get_ref().as_ref();

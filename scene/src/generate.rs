@@ -728,25 +728,19 @@ pub(crate) fn expand(path: &FieldPath, spec: &GenerateSpec, so_far: usize) -> Ch
         .into_iter()
         .enumerate()
         .map(|(k, (shape, position, angle))| BodyDef {
-            name: format!("{prefix}_{k}"),
-            kind: if fixed {
-                BodyKind::Static
-            } else {
-                BodyKind::Dynamic
-            },
-            mass: None,
-            density: (!fixed).then_some(density),
-            inertia: None,
-            shape: Some(shape),
-            state: BodyState {
-                position,
-                angle,
-                velocity,
-                angular_velocity: 0.0,
-            },
             friction,
             restitution,
-            collision_group: None,
+            ..generated_body(
+                format!("{prefix}_{k}"),
+                shape,
+                (density, fixed),
+                BodyState {
+                    position,
+                    angle,
+                    velocity,
+                    angular_velocity: 0.0,
+                },
+            )
         })
         .collect::<Vec<_>>();
     checked(path, "origin", &bodies)?;
@@ -978,6 +972,34 @@ fn grid_shape(kind: GridShape, d: f64, rng: &mut SplitMix64) -> engine::Result<S
                 .collect();
             Shape::polygon(vertices)
         }
+    }
+}
+
+/// A generated body: `shape` at `state`, of density `density.0` (kg/m²),
+/// or static (no density) when `density.1`; materials from `[contact]`, no
+/// collision group (the generators that need one add it with
+/// `BodyDef::with_collision_group`).
+pub(crate) fn generated_body(
+    name: String,
+    shape: Shape,
+    (density, fixed): (f64, bool),
+    state: BodyState,
+) -> BodyDef {
+    BodyDef {
+        name,
+        kind: if fixed {
+            BodyKind::Static
+        } else {
+            BodyKind::Dynamic
+        },
+        mass: None,
+        density: (!fixed).then_some(density),
+        inertia: None,
+        shape: Some(shape),
+        state,
+        friction: None,
+        restitution: None,
+        collision_group: None,
     }
 }
 

@@ -20,7 +20,8 @@
 use crate::build::{Checked, positive, xy};
 use crate::error::{ErrorKind, FieldPath, Problem};
 use crate::format::Xy;
-use engine::{BodyDef, BodyId, BodyKind, BodyState, JointDef, Revolute, Shape};
+use crate::generate::generated_body;
+use engine::{BodyDef, BodyId, BodyState, JointDef, Revolute, Shape};
 use nalgebra::Vector2;
 
 /// Box2D's count of static circles in the top row.
@@ -78,25 +79,18 @@ pub(crate) fn expand(
         for i in 0..rows {
             let index = k * rows + i;
             let fixed_here = is_fixed(k, i);
-            bodies.push(BodyDef {
-                name: format!("{prefix}_{index}"),
-                kind: if fixed_here {
-                    BodyKind::Static
-                } else {
-                    BodyKind::Dynamic
-                },
-                mass: None,
-                density: (!fixed_here).then_some(density),
-                inertia: None,
-                shape: Some(circle.clone()),
-                state: BodyState {
-                    position: at(k, i),
-                    ..BodyState::default()
-                },
-                friction: None,
-                restitution: None,
-                collision_group: Some(group),
-            });
+            bodies.push(
+                generated_body(
+                    format!("{prefix}_{index}"),
+                    circle.clone(),
+                    (density, fixed_here),
+                    BodyState {
+                        position: at(k, i),
+                        ..BodyState::default()
+                    },
+                )
+                .with_collision_group(group),
+            );
             let mut join = |other: usize, other_fixed: bool, anchor: Vector2<f64>| {
                 if fixed_here && other_fixed {
                     return;
@@ -132,6 +126,7 @@ pub(crate) fn expand(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use engine::BodyKind;
 
     fn spec(columns: usize, rows: usize, fixed: Option<i64>) -> JointGridSpec<'static> {
         const ORIGIN: Xy = Xy { x: 0.0, y: 0.0 };

@@ -51,10 +51,10 @@ impl Scene {
     /// Parses and validates scene text; `origin` names it in errors (a file
     /// name, or e.g. `"<inline>"`).
     pub fn parse_str(origin: &str, text: &str) -> Result<Scene, SceneError> {
-        if let Err(e) = toml::de::DeTable::parse(text) {
-            return Err(syntax_error(origin, text, &e));
+        match toml::de::DeTable::parse(text) {
+            Err(e) => return Err(syntax_error(origin, text, &e)),
+            Ok(root) => crate::form_error::check_sections(origin, text, &root)?,
         }
-        crate::form_error::check_sections(origin, text)?;
         let file: SceneFile = toml::from_str(text).map_err(|e| form_error(origin, text, &e))?;
         let plan = build::plan(&file).map_err(|p| locate(origin, text, p))?;
         Ok(Scene {

@@ -17,9 +17,10 @@
 use crate::Colour;
 use crate::build::{Checked, non_negative, positive};
 use crate::error::{FieldPath, Problem};
+use crate::generate::generated_body;
 use engine::{
-    BodyDef, BodyId, BodyKind, BodyState, Compound, CompoundPart, ConvexPolygon, JointDef,
-    JointSpring, Revolute, RevoluteMotor, Shape,
+    BodyDef, BodyId, BodyState, Compound, CompoundPart, ConvexPolygon, JointDef, JointSpring,
+    Revolute, RevoluteMotor, Shape,
 };
 use nalgebra::Vector2;
 use std::f64::consts::PI;
@@ -260,23 +261,21 @@ pub(crate) fn expand(
     for (i, b) in SKELETON.iter().enumerate() {
         let shape = bone_shape(b, k).map_err(|e| Problem::engine(path, e))?;
         let origin = position + Vector2::new(0.0, k * b.height);
-        bodies.push(BodyDef {
-            name: format!("{prefix}_{}", b.name),
-            kind: BodyKind::Dynamic,
-            mass: None,
-            density: Some(spec.density),
-            inertia: None,
-            state: BodyState {
-                position: origin + centroid(&shape),
-                angle: 0.0,
-                velocity: spec.velocity,
-                angular_velocity: 0.0,
-            },
-            shape: Some(shape),
-            friction: None,
-            restitution: None,
-            collision_group: Some(group),
-        });
+        let state = BodyState {
+            position: origin + centroid(&shape),
+            angle: 0.0,
+            velocity: spec.velocity,
+            angular_velocity: 0.0,
+        };
+        bodies.push(
+            generated_body(
+                format!("{prefix}_{}", b.name),
+                shape,
+                (spec.density, false),
+                state,
+            )
+            .with_collision_group(group),
+        );
         colours.push(b.colour);
         let Some(j) = &b.joint else {
             continue;

@@ -36,6 +36,7 @@
 use super::bodies::SolverBody;
 use super::contacts::Contact;
 use super::softness::Softness;
+use crate::shape::cross;
 use nalgebra::Vector2;
 
 /// A point of a constraint.
@@ -83,12 +84,6 @@ pub(crate) struct ContactConstraint {
     pub push_out: f64,
     pub count: usize,
     pub points: [ConstraintPoint; 2],
-}
-
-/// 2D cross product of vectors.
-#[inline(always)]
-fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
-    a.x * b.y - a.y * b.x
 }
 
 /// ω × r for a scalar ω.

@@ -16,9 +16,9 @@
 //! **Shared push-out.** The push-out speed bounds the bias of each
 //! contact, so a body overlapping k others deeply could be pushed at k
 //! times that speed, and n bodies created in one place, each pushed away
-//! from every other, fan out at up to (n − 1) times it: 100 coincident
-//! boxes reached 90 m/s, flew 450 m high and fell through the ground
-//! (Box2D and rapier2d do the same). The first loop therefore sums, per
+//! from every other, fan out at up to (n − 1) times it
+//! (`scenes/robustness/coincident_boxes.toml`; docs/soft_step.md gives
+//! what Box2D, rapier2d and this rule do with it). The first loop therefore sums, per
 //! dynamic body, the bias speeds its contacts with other dynamic bodies
 //! ask for (each d = min(bias rate × depth, push-out speed)), each weighted
 //! by twice the body's share of the pair's inverse mass (1 for equal

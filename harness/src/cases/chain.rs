@@ -183,12 +183,7 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
     let h = elastic.horizontal_force;
     let springs = 4.0 * n as f64 * g.damper_torque / h;
     let mut report = CaseReport::default();
-    let engines: &[Engine] = if reference_engines {
-        &[Engine::SoftStep, Engine::Box2d, Engine::Rapier]
-    } else {
-        &[Engine::SoftStep]
-    };
-    for &engine in engines {
+    for &engine in Engine::of_run(reference_engines) {
         let config = Config::of(&js.scene, engine)?;
         let run = js.run(&config, steps(js.scene.duration(), config.dt))?;
         let at_rest = pins(&g, &run);

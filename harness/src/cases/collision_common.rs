@@ -3,6 +3,7 @@
 //! per-phase profile) and in rapier2d-f64, and the text form of contact
 //! events for snapshots.
 
+use crate::rapier_scene::rapier_body;
 use crate::row::RowSink;
 use crate::scenes;
 use crate::snapshot::round_sig;
@@ -12,7 +13,7 @@ use nalgebra::Vector2;
 use references::rapier_contacts::{
     RapierContactBody, RapierContactRun, RapierContactScene, run_contact_scene,
 };
-use references::rapier_world::{RapierBody, RapierSettings};
+use references::rapier_world::RapierSettings;
 use scene::Scene;
 use scene::format::ForceSpec;
 use std::fmt::Write as _;
@@ -169,14 +170,7 @@ pub fn rapier_scene(scene: &Scene) -> Result<RapierContactScene> {
                 shape,
             },
             BodyKind::Dynamic => RapierContactBody::Dynamic {
-                body: RapierBody {
-                    mass: body.mass,
-                    inertia: body.inertia,
-                    position: [state.position.x, state.position.y],
-                    angle: state.angle,
-                    velocity: [state.velocity.x, state.velocity.y],
-                    angular_velocity: state.angular_velocity,
-                },
+                body: rapier_body(&body, &state),
                 shape,
             },
             BodyKind::Kinematic => bail!(

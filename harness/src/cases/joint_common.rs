@@ -40,6 +40,17 @@ impl Engine {
     /// Every engine, this one first.
     pub const ALL: [Engine; 3] = [Engine::SoftStep, Engine::Rapier, Engine::Box2d];
 
+    /// The engines a case runs: this one, then Box2D and rapier2d when
+    /// `reference_engines` (the full run; the reduced tests run the soft
+    /// step alone).
+    pub fn of_run(reference_engines: bool) -> &'static [Engine] {
+        if reference_engines {
+            &[Engine::SoftStep, Engine::Box2d, Engine::Rapier]
+        } else {
+            &[Engine::SoftStep]
+        }
+    }
+
     /// The method id of its rows.
     pub fn id(self) -> &'static str {
         match self {

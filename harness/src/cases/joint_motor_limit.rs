@@ -135,12 +135,7 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
     let spin_up = i_wheel * speed / (torque - brake);
     let mut report = CaseReport::default();
     let mut report_rapier_stall = None;
-    let engines: &[Engine] = if reference_engines {
-        &[Engine::SoftStep, Engine::Box2d, Engine::Rapier]
-    } else {
-        &[Engine::SoftStep]
-    };
-    for &engine in engines {
+    for &engine in Engine::of_run(reference_engines) {
         let config = Config::of(&js.scene, engine)?;
         let h = config.substep();
         let rows_model = match engine {

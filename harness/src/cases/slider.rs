@@ -113,12 +113,7 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
         bail!("slider: the scene needs an undamped and a damped rail");
     };
     let mut report = CaseReport::default();
-    let engines: &[Engine] = if reference_engines {
-        &[Engine::SoftStep, Engine::Box2d, Engine::Rapier]
-    } else {
-        &[Engine::SoftStep]
-    };
-    for &engine in engines {
+    for &engine in Engine::of_run(reference_engines) {
         let config = Config::of(&js.scene, engine)?;
         let h = config.substep();
         let run = js.run(&config, steps(js.scene.duration(), config.dt))?;

@@ -28,15 +28,103 @@ impl BodyLook {
     /// The largest distance from the centre of mass to the outline (m); 0
     /// for a particle.
     pub fn radius(&self) -> f64 {
-        match &self.shape {
-            None => 0.0,
-            Some(Shape::Circle(c)) => c.radius,
-            Some(Shape::Polygon(p)) => p.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max),
-            Some(shape @ Shape::Compound(_)) => {
-                engine::validation::collision::narrow_phase::rotation_radius(shape)
+        self.shape.as_ref().map_or(0.0, shape_radius)
+    }
+}
+
+/// The largest distance from the centre of mass to the outline of `shape`
+/// (m).
+pub fn shape_radius(shape: &Shape) -> f64 {
+    match shape {
+        Shape::Circle(c) => c.radius,
+        Shape::Polygon(p) => p.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max),
+        Shape::Compound(_) => engine::validation::collision::narrow_phase::rotation_radius(shape),
+    }
+}
+
+/// The springs of `scene`, as pairs of ends (the anchor or other body's
+/// end first).
+pub fn springs(scene: &Scene) -> Vec<(SpringEnd, SpringEnd)> {
+    let zero = Vector2::zeros();
+    let end = |name: &str, point: Option<&scene::format::Xy>| -> Option<SpringEnd> {
+        Some(SpringEnd::Body {
+            body: scene.body_id(name)?,
+            local: point.map_or(zero, |p| p.vector()),
+        })
+    };
+    scene
+        .file()
+        .forces
+        .iter()
+        .filter_map(|f| match f {
+            ForceSpec::Spring {
+                body,
+                point,
+                anchor,
+                other_body,
+                other_point,
+                ..
+            } => {
+                let b = end(body, point.as_ref())?;
+                let a = match (anchor, other_body) {
+                    (Some(p), _) => SpringEnd::World(p.vector()),
+                    (None, Some(other)) => end(other, other_point.as_ref())?,
+                    (None, None) => return None,
+                };
+                Some((a, b))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+/// The levels of the landing events of `scene` (m), sorted, each once.
+pub fn grounds(scene: &Scene) -> Vec<f64> {
+    let mut levels: Vec<f64> = scene
+        .file()
+        .events
+        .iter()
+        .filter_map(|e| match e {
+            EventEntry::Landing { level, .. } => Some(*level),
+            EventEntry::Apex { .. } => None,
+        })
+        .collect();
+    levels.sort_by(f64::total_cmp);
+    levels.dedup();
+    levels
+}
+
+/// Widens the view `(lo, hi)` (m) by the static bodies' boxes `statics`,
+/// each cut to half the view's size around it when the view has a size
+/// (a 20 m floor under a ball), and by the ground lines' heights `grounds`
+/// (they span the width already there).
+pub fn fit_statics(
+    (mut lo, mut hi): (Vector2<f64>, Vector2<f64>),
+    statics: Vec<(Vector2<f64>, Vector2<f64>)>,
+    grounds: &[f64],
+) -> (Vector2<f64>, Vector2<f64>) {
+    if lo.x.is_finite() {
+        let size = hi - lo;
+        let reach = Vector2::repeat(0.5 * size.x.max(size.y).max(1e-3));
+        let (near_lo, near_hi) = (lo - reach, hi + reach);
+        for (a, b) in statics {
+            let (a, b) = (a.sup(&near_lo), b.inf(&near_hi));
+            if a.x <= b.x && a.y <= b.y {
+                lo = lo.inf(&a);
+                hi = hi.sup(&b);
             }
         }
+    } else {
+        for (a, b) in statics {
+            lo = lo.inf(&a);
+            hi = hi.sup(&b);
+        }
     }
+    for &level in grounds {
+        lo.y = lo.y.min(level);
+        hi.y = hi.y.max(level);
+    }
+    (lo, hi)
 }
 
 /// One end of a drawn spring.
@@ -117,37 +205,7 @@ impl Film {
                 rotates: b.rotates(),
             })
             .collect();
-        let zero = Vector2::zeros();
-        let end = |name: &str, point: Option<&scene::format::Xy>| -> Option<SpringEnd> {
-            Some(SpringEnd::Body {
-                body: scene.body_id(name)?,
-                local: point.map_or(zero, |p| p.vector()),
-            })
-        };
-        let springs = scene
-            .file()
-            .forces
-            .iter()
-            .filter_map(|f| match f {
-                ForceSpec::Spring {
-                    body,
-                    point,
-                    anchor,
-                    other_body,
-                    other_point,
-                    ..
-                } => {
-                    let b = end(body, point.as_ref())?;
-                    let a = match (anchor, other_body) {
-                        (Some(p), _) => SpringEnd::World(p.vector()),
-                        (None, Some(other)) => end(other, other_point.as_ref())?,
-                        (None, None) => return None,
-                    };
-                    Some((a, b))
-                }
-                _ => None,
-            })
-            .collect();
+        let springs = springs(scene);
         // The joints' anchors in the bodies' frames, resolved at t = 0.
         let initial: Vec<BodyState> = scene.bodies().iter().map(|b| b.state).collect();
         let joint_end = |body: Option<usize>, local: Vector2<f64>| match body {
@@ -161,17 +219,7 @@ impl Film {
                 (joint_end(j.body_a, a), joint_end(j.body_b, b))
             })
             .collect();
-        let mut grounds: Vec<f64> = scene
-            .file()
-            .events
-            .iter()
-            .filter_map(|e| match e {
-                EventEntry::Landing { level, .. } => Some(*level),
-                EventEntry::Apex { .. } => None,
-            })
-            .collect();
-        grounds.sort_by(f64::total_cmp);
-        grounds.dedup();
+        let grounds = grounds(scene);
         Self {
             title,
             subtitle,
@@ -297,28 +345,7 @@ impl Film {
                     .collect()
             })
             .unwrap_or_default();
-        if lo.x.is_finite() {
-            let size = hi - lo;
-            let reach = Vector2::repeat(0.5 * size.x.max(size.y).max(1e-3));
-            let (near_lo, near_hi) = (lo - reach, hi + reach);
-            for (a, b) in statics {
-                let (a, b) = (a.sup(&near_lo), b.inf(&near_hi));
-                if a.x <= b.x && a.y <= b.y {
-                    lo = lo.inf(&a);
-                    hi = hi.sup(&b);
-                }
-            }
-        } else {
-            for (a, b) in statics {
-                lo = lo.inf(&a);
-                hi = hi.sup(&b);
-            }
-        }
-        // Ground lines span the width already there; only their height counts.
-        for &level in &self.grounds {
-            lo.y = lo.y.min(level);
-            hi.y = hi.y.max(level);
-        }
+        let (lo, hi) = fit_statics((lo, hi), statics, &self.grounds);
         (lo.iter().chain(hi.iter()).all(|v| v.is_finite())).then_some((lo, hi))
     }
 }

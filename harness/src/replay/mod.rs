@@ -45,10 +45,11 @@
 mod encode;
 mod thin;
 
+use crate::pictures::film::{fit_statics, grounds, shape_radius, springs};
 use anyhow::Result;
 use engine::{Body, BodyKind, BodyState, EventRecord, Shape};
 use nalgebra::Vector2;
-use scene::format::{EventEntry, ForceSpec};
+use scene::format::EventEntry;
 use scene::{Colour, Scene};
 
 /// Height of the page's header (CSS px).
@@ -92,19 +93,7 @@ pub struct ReplayBody {
     pub shape: Option<Shape>,
 }
 
-/// One end of a spring.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum SpringEnd {
-    /// A fixed world point (m).
-    World(Vector2<f64>),
-    /// A point of a body, in its frame from its centre of mass (m).
-    Body {
-        /// Body index.
-        body: usize,
-        /// The point in the body frame (m).
-        local: Vector2<f64>,
-    },
-}
+pub use crate::pictures::film::SpringEnd;
 
 /// A located event, marked once its time has passed.
 #[derive(Debug, Clone, PartialEq)]
@@ -227,7 +216,7 @@ impl Replay {
                     },
                     mass: dynamic.then_some(b.mass),
                     inertia: if dynamic { b.inertia } else { None },
-                    radius: b.shape.as_ref().map_or(0.0, radius),
+                    radius: b.shape.as_ref().map_or(0.0, shape_radius),
                     shape: b.shape.clone(),
                 }
             })
@@ -294,27 +283,7 @@ impl Replay {
                     .collect()
             })
             .unwrap_or_default();
-        if lo.x.is_finite() {
-            let size = hi - lo;
-            let reach = Vector2::repeat(0.5 * size.x.max(size.y).max(1e-3));
-            let (near_lo, near_hi) = (lo - reach, hi + reach);
-            for (a, b) in statics {
-                let (a, b) = (a.sup(&near_lo), b.inf(&near_hi));
-                if a.x <= b.x && a.y <= b.y {
-                    lo = lo.inf(&a);
-                    hi = hi.sup(&b);
-                }
-            }
-        } else {
-            for (a, b) in statics {
-                lo = lo.inf(&a);
-                hi = hi.sup(&b);
-            }
-        }
-        for &level in &self.grounds {
-            lo.y = lo.y.min(level);
-            hi.y = hi.y.max(level);
-        }
+        (lo, hi) = fit_statics((lo, hi), statics, &self.grounds);
         if !(lo.x.is_finite() && lo.y.is_finite() && hi.x.is_finite() && hi.y.is_finite()) {
             lo = Vector2::repeat(-1.0);
             hi = Vector2::repeat(1.0);
@@ -402,66 +371,6 @@ fn assemble(title: &str, data: &str) -> String {
         .replace("/*{{STYLE}}*/", STYLE)
         .replace("/*{{SCRIPT}}*/", SCRIPT)
         .replace("{{DATA}}", &data)
-}
-
-/// The largest distance from the centre of mass to the outline (m).
-fn radius(shape: &Shape) -> f64 {
-    match shape {
-        Shape::Circle(c) => c.radius,
-        Shape::Polygon(p) => p.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max),
-        Shape::Compound(_) => engine::validation::collision::narrow_phase::rotation_radius(shape),
-    }
-}
-
-/// The springs of `scene`, as pairs of ends.
-fn springs(scene: &Scene) -> Vec<(SpringEnd, SpringEnd)> {
-    let zero = Vector2::zeros();
-    let end = |name: &str, point: Option<&scene::format::Xy>| -> Option<SpringEnd> {
-        Some(SpringEnd::Body {
-            body: scene.body_id(name)?,
-            local: point.map_or(zero, |p| p.vector()),
-        })
-    };
-    scene
-        .file()
-        .forces
-        .iter()
-        .filter_map(|f| match f {
-            ForceSpec::Spring {
-                body,
-                point,
-                anchor,
-                other_body,
-                other_point,
-                ..
-            } => {
-                let b = end(body, point.as_ref())?;
-                let a = match (anchor, other_body) {
-                    (Some(p), _) => SpringEnd::World(p.vector()),
-                    (None, Some(other)) => end(other, other_point.as_ref())?,
-                    (None, None) => return None,
-                };
-                Some((a, b))
-            }
-            _ => None,
-        })
-        .collect()
-}
-
-/// The levels of the landing events of `scene` (m), sorted, each once.
-fn grounds(scene: &Scene) -> Vec<f64> {
-    let mut levels: Vec<f64> = scene
-        .file()
-        .events
-        .iter()
-        .filter_map(|e| match e {
-            EventEntry::Landing { level, .. } => Some(*level),
-            EventEntry::Apex { .. } => None,
-        })
-        .collect();
-    levels.sort_by(f64::total_cmp);
-    levels.dedup();
-    levels
 }
 
 /// Angles read as principal values (−π, π] made continuous: each change

@@ -15,11 +15,8 @@ use super::super::bodies::SolverBody;
 use crate::soft_step::Softness;
 use nalgebra::Vector2;
 
-/// 2D cross product of vectors.
-#[inline(always)]
-pub(super) fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
-    a.x * b.y - a.y * b.x
-}
+/// 2D cross product of vectors (the shape module's).
+pub(super) use crate::shape::cross;
 
 /// ω × r for a scalar ω.
 #[inline(always)]

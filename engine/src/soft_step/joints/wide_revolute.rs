@@ -168,9 +168,9 @@ pub(crate) fn set_lane(
 pub(crate) fn set_padding_lane((w, x): (&mut WideRevolute, &mut WideAxial), l: usize) {
     let rows = RevoluteRows::new(super::Revolute::default());
     let frame = JointFrame::EMPTY;
-    let axial = w.axial;
+    // No spring, motor or limits: the record's axial rows are left as
+    // its other lanes set them.
     set_lane((w, x), l, (&frame, &rows), 0.0);
-    w.axial = axial;
 }
 
 /// Copies the impulses of lane `l` of `(w, x)` back into `rows`.

@@ -15,14 +15,14 @@
 
 use super::super::CompareWith;
 use crate::bench::convert::{Defaults, neutral_scene};
-use crate::rapier_scene::{SingleBody, describe_force, rapier_single_body};
+use crate::rapier_scene::{SingleBody, describe_force, rapier_body, rapier_single_body};
 use anyhow::{Result, anyhow, bail};
 use engine::{Body, BodyKind, ContactModel};
 use references::box2d_world::Box2dWorld;
 use references::many_body::{ManyBodyEngine, ManyBodyError, ManyBodyScene};
 use references::rapier_contacts::{RapierContactBody, RapierContactScene};
 use references::rapier_many::RapierManyWorld;
-use references::rapier_world::{RapierBody, RapierSettings, configuration_summary};
+use references::rapier_world::{RapierSettings, configuration_summary};
 use scene::Scene;
 use scene::format::ForceSpec;
 
@@ -187,14 +187,7 @@ fn contact_scene(
         let shape = body.shape.clone().expect("checked: every body has a shape");
         bodies.push(match body.kind {
             BodyKind::Dynamic => RapierContactBody::Dynamic {
-                body: RapierBody {
-                    mass: body.mass,
-                    inertia: body.inertia,
-                    position: [state.position.x, state.position.y],
-                    angle: state.angle,
-                    velocity: [state.velocity.x, state.velocity.y],
-                    angular_velocity: state.angular_velocity,
-                },
+                body: rapier_body(&body, &state),
                 shape,
             },
             BodyKind::Static => RapierContactBody::Fixed {
