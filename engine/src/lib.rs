@@ -73,6 +73,7 @@ mod contact_model;
 pub mod error;
 pub mod events;
 mod exact_model;
+pub mod filter;
 pub mod forces;
 pub mod integrators;
 pub mod ode;
@@ -94,6 +95,7 @@ pub use contact::{ContactEvent, ContactEventKind, ContactSettings, StepProfile, 
 pub use contact_model::ContactModel;
 pub use error::{EngineError, Result};
 pub use events::{Crossing, EventRecord, EventSpec, Quantity};
+pub use filter::{Filter, QueryFilter};
 pub use forces::{Force, ForceContext, TimeWindow, Wrench};
 pub use integrators::{
     Integrator, Method, Solution, Stats, Tolerance, integrate_fixed, integrate_to,

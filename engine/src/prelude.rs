@@ -18,6 +18,7 @@ pub use crate::contact::{ContactSettings, ToiMethod};
 pub use crate::contact_model::ContactModel;
 pub use crate::error::{EngineError, Result};
 pub use crate::events::EventSpec;
+pub use crate::filter::{Filter, QueryFilter};
 pub use crate::forces::{
     AngularDrag, Attachment, Force, Gravity, PointForce, QuadraticDrag, Spring, TimeWindow, Torque,
 };
