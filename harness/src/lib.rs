@@ -8,6 +8,7 @@ pub mod cases;
 pub mod clip;
 pub mod convergence;
 pub mod fuzz;
+pub mod interrupt;
 pub mod links;
 pub mod pictures;
 pub mod plots;

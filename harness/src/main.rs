@@ -74,6 +74,9 @@ fn die_quietly_on_a_closed_pipe() {
 }
 
 fn main() -> std::process::ExitCode {
+    // First, before any thread starts: SIGINT and SIGTERM then leave no
+    // temporary file and no half-written output (`harness::interrupt`).
+    harness::interrupt::install();
     die_quietly_on_a_closed_pipe();
     harness::progress::init_tracing();
     match real_main() {
@@ -136,8 +139,23 @@ fn real_main() -> Result<bool> {
             } else {
                 harness::bench::BenchSettings::DEFAULT
             };
-            let results = harness::bench::run_selected(&dir, settings, &scenes)?;
-            if scenes.is_empty() && workspace::same_dir(&dir, &workspace::reports_dir()) && !full {
+            let readme_too =
+                scenes.is_empty() && workspace::same_dir(&dir, &workspace::reports_dir()) && !full;
+            println!(
+                "bench: writes benchmarks.md, benchmarks.json and the benchmark charts into {}{}.",
+                dir.display(),
+                if readme_too {
+                    ", and the speed table of README.md"
+                } else {
+                    ""
+                }
+            );
+            // Written aside and moved into place at the end: an interrupted
+            // benchmark leaves the folder as it was.
+            let staging = harness::interrupt::Staging::new(&dir)?;
+            let results = harness::bench::run_selected(staging.dir(), settings, &scenes)?;
+            let _hold = staging.commit()?;
+            if readme_too {
                 harness::bench::report::update_readme(&workspace::readme(), &results)?;
             }
             println!(
@@ -222,8 +240,31 @@ fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Resu
             }
         })
     });
+    let into_reports = out
+        .as_deref()
+        .is_some_and(|d| workspace::same_dir(d, &workspace::reports_dir()));
+    let readme_too = full && !quick && into_reports;
+    if let Some(dir) = &out {
+        println!(
+            "run: writes the report into {}{} at the end (its files are replaced;              an interrupted run leaves it as it was).",
+            dir.display(),
+            if readme_too {
+                ", and the headline table of README.md"
+            } else {
+                ""
+            }
+        );
+    }
     // Read before anything is written, so the commit's state is the code's.
     let provenance = harness::provenance::paragraph(settings.timing_runs);
+    // The report is written into a staging folder next to `out`, moved
+    // into place once complete (a signal or an error before then removes
+    // it): an interrupted run leaves `out` as it was.
+    let staging = match &out {
+        Some(dir) => Some(harness::interrupt::Staging::new(dir)?),
+        None => None,
+    };
+    let stage = staging.as_ref().map(|s| s.dir().to_path_buf());
     let started = Instant::now();
     let mut results: Vec<(&str, CaseReport)> = Vec::new();
     for case in selected {
@@ -234,20 +275,16 @@ fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Resu
     // The studies (sweeps, orders, stability, energy, trajectories) run with
     // every full run that writes a report; a run of selected cases checks
     // only those.
-    let study = match (&out, full) {
+    let study = match (&stage, full) {
         (Some(dir), true) => Some(harness::study::run(dir, settings)?),
         _ => None,
     };
     // The many-body benchmark runs with a full (not quick) run that writes
     // a report, at the sizes of `BenchSettings::DEFAULT`.
-    let bench = match (&out, full && !quick) {
-        (Some(dir), true) => Some(harness::bench::run(
-            dir,
-            harness::bench::BenchSettings::DEFAULT,
-        )?),
-        _ => None,
-    };
-    if let Some(dir) = &out {
+    if let (Some(dir), true) = (&stage, full && !quick) {
+        harness::bench::run(dir, harness::bench::BenchSettings::DEFAULT)?;
+    }
+    if let Some(dir) = &stage {
         // The pictures index has one section per scene drawn: each case's
         // first scene file (the parry comparison has none).
         let scenes: Vec<(&str, CaseReport)> = results
@@ -260,6 +297,10 @@ fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Resu
         harness::replay_cases::write_case_replays(dir, &ids)?;
         // After the pictures, so that the pages can link them.
         report::write(dir, &results, study.as_ref(), &provenance)?;
+    }
+    // Into place; a signal waits until the README is written too.
+    let _hold = staging.map(|s| s.commit()).transpose()?;
+    if let Some(dir) = &out {
         let broken = harness::links::broken_links(dir)?;
         if !broken.is_empty() {
             bail!(
@@ -272,19 +313,16 @@ fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Resu
     // The README's headline table is printed by the harness too: only by a
     // full run writing the committed report, so that neither a partial run
     // nor a report written elsewhere changes it.
-    let into_reports = out
-        .as_deref()
-        .is_some_and(|d| workspace::same_dir(d, &workspace::reports_dir()));
-    if full && !quick && into_reports {
+    // The README's speed table is `bench`'s alone: rewriting it on every
+    // run would change a tracked file by timing noise only.
+    if readme_too {
         let mut all: Vec<&harness::row::Row> = results.iter().flat_map(|(_, r)| &r.rows).collect();
         if let Some(study) = &study {
             all.extend(&study.rows);
         }
         report::update_readme(&workspace::readme(), &all)?;
-        if let Some(bench) = &bench {
-            harness::bench::report::update_readme(&workspace::readme(), bench)?;
-        }
     }
+    drop(_hold);
     let mut rows: Vec<_> = results.iter().flat_map(|(_, r)| &r.rows).collect();
     if let Some(study) = &study {
         print!("{}", report::console_table("studies", &study.rows, reasons));

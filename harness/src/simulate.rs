@@ -58,6 +58,7 @@ mod diagnosis;
 mod linear_test;
 mod outputs;
 mod run_text;
+mod warnings;
 
 use outputs::{Output, check_outputs, outputs, write_all};
 pub use outputs::{refuse_special, write_atomically};
@@ -264,12 +265,9 @@ pub fn record(
     let budget = Budget::new(limits.budget);
     for i in 1..=steps {
         let t = grid_time(t0, until, dt, i, steps);
-        let events = world.step_to(t).map_err(|e| {
-            anyhow!(e).context(format!(
-                "the run failed in step {i} of {steps} (t = {} s)",
-                world.time()
-            ))
-        })?;
+        let events = world
+            .step_to(t)
+            .map_err(|e| diagnosis::step_failed(e, i, steps, world.time()))?;
         rec.events.extend(events);
         let stopped = world.is_stopped();
         let out_of_time = !stopped && i < steps && budget.exhausted();
@@ -284,10 +282,7 @@ pub fn record(
                 step: i - 1,
                 reason: format!("energy {energy} J is not a finite number"),
             };
-            return Err(anyhow!(blow_up).context(format!(
-                "the run failed in step {i} of {steps} (t = {} s)",
-                world.time()
-            )));
+            return Err(diagnosis::step_failed(blow_up, i, steps, world.time()));
         }
         ticker.tick();
         on_step(i, !stopped && (i < steps || last_is_whole), world);
@@ -362,11 +357,11 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     if scene.is_linear_test() {
         return linear_test::run_linear_test(&scene, args, method, (dt, until), &header);
     }
-    let mut world = if args.method.is_some() {
-        scene.build_world(Some(method))?
-    } else {
-        scene.build_world(None)?
-    };
+    let mut world = scene.build_world(None)?;
+    if let Some(id) = &args.method {
+        refuse_method_under_soft_step(&scene, &world, id, method)?;
+        world = scene.build_world(Some(method))?;
+    }
     let mut engines: Vec<CompareWith> = Vec::new();
     for e in &args.compare {
         if !engines.contains(e) {
@@ -385,7 +380,10 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         )?)
     };
     println!("{header}");
-    println!("{}", run_text::model_line(&world));
+    println!("{}", run_text::model_line(&world, dt));
+    for warning in warnings::before_run(&scene, dt, args.dt.is_some(), until) {
+        eprintln!("{warning}");
+    }
     let limits = RunLimits {
         max_samples: args.max_samples,
         budget: args.budget,
@@ -411,6 +409,11 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         }
         None => Vec::new(),
     };
+    if let Some(warning) =
+        warnings::energy_growth(scene.origin(), method.id(), dt, &recorded.energies)
+    {
+        eprintln!("{warning}");
+    }
     if let Some((t, a, b)) = contacts_off::first_overlap(&world, &recorded) {
         let names = scene.body_names();
         let warning = format!(
@@ -474,6 +477,39 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     write_all(&files, &recorded)?;
     tracing::info!("simulate done in {:.3} s", started.elapsed().as_secs_f64());
     Ok(())
+}
+
+/// Refuses `--method ID` (`method`) on a scene that runs under the soft
+/// step (which integrates by itself, by semi-implicit Euler per substep):
+/// the fault is the option's, not the file's `[contact]` table.
+fn refuse_method_under_soft_step(
+    scene: &Scene,
+    world: &World,
+    id: &str,
+    method: Method,
+) -> Result<()> {
+    let soft = matches!(
+        world.contact_model(),
+        Some(engine::ContactModel::SoftStep(_))
+    );
+    if !soft || method == Method::SemiImplicitEuler {
+        return Ok(());
+    }
+    let why = if scene.file().contact.is_some() {
+        "its [contact] table asks for the soft-step contact model"
+    } else {
+        "it has joints, which run under the soft-step contact model"
+    };
+    let exact = if scene.joint_count() == 0 {
+        format!(", or set [contact] model = \"exact\" in the file to integrate it by {id}")
+    } else {
+        String::new()
+    };
+    Err(anyhow!(
+        "--method {id}: {} runs under the soft step ({why}), which integrates by itself \
+         (semi-implicit Euler per substep) and takes no other method: drop --method{exact}",
+        scene.origin()
+    ))
 }
 
 /// A replay of `scene` run with its own method, step and duration, with

@@ -451,18 +451,31 @@ fn generated(
 }
 
 /// The error of a body feature the scene's contact model cannot simulate.
+/// The remedy depends on the model: a scene without `[contact]` adds one;
+/// a scene with `model = "exact"` changes the model or, for a material,
+/// gives it world-wide (the exact model's `[contact]` friction and
+/// restitution are the whole world's).
 fn needs_soft_step(path: &FieldPath, what: &str, model: Option<ContactModelSpec>) -> Problem {
-    let now = match model {
-        Some(ContactModelSpec::Exact) => "this scene uses [contact] model = \"exact\"",
-        _ => "this scene has no [contact] table (contacts are off)",
-    };
-    Problem::new(
-        path,
-        ErrorKind::InvalidValue,
-        format!(
-            "{what} needs the soft_step contact model, and {now}: add [contact] (model = \"soft_step\" is the default)"
+    let message = match model {
+        Some(ContactModelSpec::Exact) => {
+            let world_wide = path
+                .last_key()
+                .filter(|k| *k == "friction" || *k == "restitution")
+                .map(|k| {
+                    format!(", or remove it and give [contact] {k}, the whole world's under the exact model")
+                })
+                .unwrap_or_default();
+            format!(
+                "{what} needs the soft_step contact model, and this scene's [contact] has model = \"exact\": \
+                 set [contact] model = \"soft_step\"{world_wide}"
+            )
+        }
+        _ => format!(
+            "{what} needs the soft_step contact model, and this scene has no [contact] table (contacts are off): \
+             add [contact] (model = \"soft_step\" is the default)"
         ),
-    )
+    };
+    Problem::new(path, ErrorKind::InvalidValue, message)
 }
 
 /// Refuses what the scene's contact model cannot simulate, at its field.

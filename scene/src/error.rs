@@ -197,6 +197,14 @@ impl FieldPath {
         p.0.push(Segment::Index(index));
         p
     }
+
+    /// The last key of the path, if it ends with one.
+    pub(crate) fn last_key(&self) -> Option<&str> {
+        match self.0.last() {
+            Some(Segment::Key(k)) => Some(k),
+            _ => None,
+        }
+    }
 }
 
 impl fmt::Display for FieldPath {

@@ -47,6 +47,25 @@ pub(crate) fn form_error(origin: &str, text: &str, error: &toml::de::Error) -> S
         ErrorKind::UnknownField | ErrorKind::MissingField => message.split('`').nth(1),
         _ => None,
     };
+    if kind == ErrorKind::MissingField && named_key == Some("simulation") {
+        // serde spans the first table it buffered (`bodies[0]`), but
+        // `[simulation]` is a table of the file itself.
+        return SceneError::new(
+            origin,
+            kind,
+            "the file has no [simulation] table: add one with `dt` and `duration` (both required, in s)",
+        )
+        .with_field(Some("simulation".into()))
+        .at(Some((1, 1)));
+    }
+    if let (ErrorKind::MissingField, Some(key)) = (kind, named_key)
+        && let Some(sub) = sub_table_missing(text, &path, key)
+    {
+        // serde spans the whole joint; the key belongs to its motor or
+        // spring, which lacks it.
+        position = position_of(text, &sub).or(position);
+        path = sub;
+    }
     if let Some(key) = named_key {
         if path.0.last() != Some(&Segment::Key(key.to_owned())) {
             path = match kind {
@@ -282,6 +301,31 @@ fn quoted_key(key: &str) -> String {
     } else {
         format!("\"{}\"", key.escape_default())
     }
+}
+
+/// The inline table of the table at `path` that lacks the required `key`
+/// of its kind: a joint's `motor` (`max_torque`, `max_force`) or one of
+/// its springs (`hertz`). `None` when the key is not such a key or no
+/// such table lacks it (the key is then the table's own).
+fn sub_table_missing(text: &str, path: &FieldPath, key: &str) -> Option<FieldPath> {
+    let owners: &[&str] = match key {
+        "max_torque" | "max_force" => &["motor"],
+        "hertz" => &["spring", "linear_spring", "angular_spring"],
+        _ => return None,
+    };
+    let root = DeTable::parse(text).ok()?;
+    let table = table_at(root.get_ref(), path)?;
+    owners.iter().find_map(|owner| {
+        table.iter().find_map(|(k, v)| match v.get_ref() {
+            DeValue::Table(inner)
+                if k.get_ref().as_ref() == *owner
+                    && !inner.iter().any(|(n, _)| n.get_ref().as_ref() == key) =>
+            {
+                Some(path.key(owner))
+            }
+            _ => None,
+        })
+    })
 }
 
 fn table_at<'a, 'i>(root: &'a DeTable<'i>, path: &FieldPath) -> Option<&'a DeTable<'i>> {

@@ -10,7 +10,10 @@
 //! Units are SI: m, s, kg, rad. A file describes either a world of bodies
 //! (`[[bodies]]`, `[[forces]]`, `[[events]]`, `[[joints]]`, `[contact]`) or
 //! the scalar stiff test (`[linear_test]`), with `[simulation]` in both. A
-//! complete example is in the crate documentation.
+//! complete example is in the crate documentation; every table and key,
+//! with an example each, in `docs/scene_format.md`, which the test
+//! `scene/tests/scene_format_doc.rs` keeps in step with these structures
+//! (a key added here without its line there fails it, naming the key).
 
 use serde::Deserialize;
 use serde::de::{self, Deserializer, IgnoredAny, SeqAccess, Visitor};
@@ -109,7 +112,8 @@ pub enum BodyKindSpec {
 pub struct BodySpec {
     /// Unique, non-empty name; forces and events refer to the body by it.
     pub name: String,
-    /// `"dynamic"` (default) or `"static"`.
+    /// `"dynamic"` (default), `"static"` or `"kinematic"` (soft-step
+    /// contact model only): [`BodyKindSpec`].
     #[serde(default)]
     pub kind: BodyKindSpec,
     /// Mass (kg), > 0. Give this or `density`, not both.

@@ -45,11 +45,21 @@ pub fn run_selected(
             known.join(", ")
         );
     }
-    let selected = scenes::SCENES
+    let selected: Vec<_> = scenes::SCENES
         .iter()
-        .filter(|s| only.is_empty() || only.iter().any(|id| id == s.id));
+        .filter(|s| only.is_empty() || only.iter().any(|id| id == s.id))
+        .collect();
+    // One unit per scene, and one for the contact-precision study (a full
+    // benchmark); drawn on a terminal only (`crate::progress::bar`).
+    let units = selected.len() + usize::from(only.is_empty());
+    let bar = crate::progress::bar(units as u64, "bench");
+    if crate::progress::enabled() {
+        // A scene takes seconds: keep the elapsed time counting.
+        bar.enable_steady_tick(crate::progress::REDRAW);
+    }
     let mut results = Vec::new();
     for bench in selected {
+        bar.set_message(format!("bench {}", bench.id));
         let file = match (settings.full, bench.full) {
             (true, Some(full)) => full,
             _ => bench.file,
@@ -57,24 +67,30 @@ pub fn run_selected(
         let scene =
             crate::scenes::load(file).with_context(|| format!("benchmark scene {}", bench.id))?;
         let result = measure::measure(*bench, &scene, settings)?;
-        println!(
-            "bench {:<14} {:>6} bodies: {}",
-            bench.id,
-            result.rows[0].bodies,
-            result
-                .rows
-                .iter()
-                .map(|r| format!("{} {:.3} ms", short(&r.engine), r.ms_per_step_min))
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
+        bar.inc(1);
+        // Printed on stdout even when the bar is hidden (CI, pipes).
+        bar.suspend(|| {
+            println!(
+                "bench {:<14} {:>6} bodies: {}",
+                bench.id,
+                result.rows[0].bodies,
+                result
+                    .rows
+                    .iter()
+                    .map(|r| format!("{} {:.3} ms", short(&r.engine), r.ms_per_step_min))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        });
         results.push(result);
     }
     let precision = if only.is_empty() {
+        bar.set_message("bench contact precision");
         contact_precision::run(settings)?
     } else {
         Vec::new()
     };
+    bar.finish_and_clear();
     let mut charts = crate::plots::bench::draw(dir, &results)?;
     if !precision.is_empty() {
         charts.push(contact_precision::chart(dir, &precision)?);

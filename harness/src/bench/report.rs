@@ -268,7 +268,7 @@ pub fn update_readme(readme: &Path, results: &[SceneResult]) -> Result<bool> {
     let table = table(&headers, &rows);
     let new = format!("{}{start}\n{table}{}", &text[..a], &text[b..]);
     if new != text {
-        std::fs::write(readme, new)?;
+        crate::simulate::write_atomically(readme, new.as_bytes())?;
     }
     Ok(true)
 }

@@ -262,7 +262,7 @@ pub fn update_readme(readme: &Path, all_rows: &[&Row]) -> Result<bool> {
     let table = table::markdown(&rows, true);
     let new = format!("{}{start}\n{table}{}", &text[..a], &text[b..]);
     if new != text {
-        std::fs::write(readme, new).with_context(|| format!("writing {}", readme.display()))?;
+        crate::simulate::write_atomically(readme, new.as_bytes())?;
     }
     Ok(true)
 }

@@ -11,14 +11,70 @@
 //!   angular drag 2·D·|ω|/I, a spring √(k/m). An explicit method needs
 //!   steps below a few times 1/rate to stay stable: the force with the
 //!   largest rate · dt is named.
-//! - **Blow-up of the energy**: the state is finite but the energy is not:
-//!   the body with the largest speed is named.
+//! - **Blow-up of the energy**: the state is finite but the energy is not.
+//!   After the energy grew by orders of magnitude over many steps (more
+//!   than [`UNSTABLE_GROWTH`] times its size at t = 0 when the failed step
+//!   began), the method is unstable at this step: the step is blamed.
+//!   Otherwise (the first step, or a scene whose numbers are already
+//!   huge) the scene's magnitudes are, and the fastest body is named.
 //! - **Blow-up of the state**: the method is unstable at this step.
 
 use engine::error::readable;
 use engine::{EngineError, World};
 use scene::Scene;
 use scene::format::ForceSpec;
+
+/// The energy's growth (its size when the failed step began over its size
+/// at t = 0) beyond which a blow-up is blamed on the method's instability
+/// at this step rather than on the scene's magnitudes: six orders of
+/// magnitude, far beyond what an accurate run does (energy drifts by
+/// fractions) and what a stable but coarse one does, and reached only by
+/// geometric growth.
+pub const UNSTABLE_GROWTH: f64 = 1e6;
+
+/// A step that failed, counted as the header counts them (from 1 to
+/// `steps`), said once: the engine's error inside it numbers steps from
+/// 0, so its own text is not repeated.
+#[derive(Debug)]
+pub struct StepFailed {
+    /// The step that failed, from 1.
+    pub step: u64,
+    /// The run's steps.
+    pub steps: u64,
+    /// Time at the start of the failed step (s).
+    pub t: f64,
+    /// The engine's error.
+    pub error: EngineError,
+}
+
+impl std::fmt::Display for StepFailed {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (step, steps, t) = (self.step, self.steps, readable(self.t));
+        match &self.error {
+            EngineError::BlowUp { reason, .. } => write!(
+                f,
+                "the run failed in step {step} of {steps} (the step from t = {t} s): blow-up: {reason}"
+            ),
+            other => write!(
+                f,
+                "the run failed in step {step} of {steps} (t = {t} s): {other}"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for StepFailed {}
+
+/// The engine's `error` in step `step` of `steps`, the world standing at
+/// `t` (s) when it was refused.
+pub(super) fn step_failed(error: EngineError, step: u64, steps: u64, t: f64) -> anyhow::Error {
+    anyhow::Error::new(StepFailed {
+        step,
+        steps,
+        t,
+        error,
+    })
+}
 
 /// `error` with a hint appended when its cause can be told.
 pub(super) fn explain(
@@ -27,11 +83,16 @@ pub(super) fn explain(
     world: &World,
     dt: f64,
 ) -> anyhow::Error {
-    let hint = match error.downcast_ref::<EngineError>() {
+    let failed = error.downcast_ref::<StepFailed>();
+    let engine_error = failed
+        .map(|f| &f.error)
+        .or_else(|| error.downcast_ref::<EngineError>());
+    let hint = match engine_error {
         Some(EngineError::StepSizeUnderflow { .. }) => Some(stiffness_hint(scene, world, dt)),
-        Some(EngineError::BlowUp { reason, .. }) if reason.contains("energy") => {
-            Some(energy_hint(scene, world))
-        }
+        Some(EngineError::BlowUp { reason, .. }) if reason.contains("energy") => Some(
+            unstable_hint(scene, world, dt, failed.map_or(1, |f| f.step))
+                .unwrap_or_else(|| energy_hint(scene, world)),
+        ),
         Some(EngineError::BlowUp { .. }) => Some(format!(
             "{} is unstable with this step: use a smaller dt or --method implicit_euler",
             world.method().id()
@@ -135,6 +196,31 @@ fn stiffness_hint(scene: &Scene, world: &World, dt: f64) -> String {
         ),
         _ => "dormand_prince could not meet its tolerance with any step here: the forces change too fast; try --method implicit_euler or a looser tolerance".into(),
     }
+}
+
+/// The hint of an energy that overflowed after growing by more than
+/// [`UNSTABLE_GROWTH`] times its size at t = 0, in a step after the first;
+/// `None` otherwise. `world` stands at the start of the failed step.
+fn unstable_hint(scene: &Scene, world: &World, dt: f64, step: u64) -> Option<String> {
+    if step <= 1 {
+        return None;
+    }
+    let initial = scene.build_world(None).ok()?.energy();
+    let before = world.energy();
+    let size = initial.abs();
+    let grown = before.abs() / size;
+    (size > 0.0 && initial.is_finite() && grown > UNSTABLE_GROWTH).then(|| {
+        format!(
+            "the energy grew from {} J at t = 0 to {} J when the failed step began ({} times), \
+             the mark of a method unstable at this step: {} with dt = {} s amplifies the motion at \
+             every step. Use a smaller dt, or --method implicit_euler (stable at any step)",
+            engine::error::approximate(initial),
+            engine::error::approximate(before),
+            engine::error::approximate(grown),
+            world.method().id(),
+            readable(dt)
+        )
+    })
 }
 
 fn energy_hint(scene: &Scene, world: &World) -> String {

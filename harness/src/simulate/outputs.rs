@@ -54,7 +54,7 @@ fn special_kind(file_type: &std::fs::FileType) -> &'static str {
 
 /// Writes `bytes` to `path` through a temporary file in the same folder
 /// renamed into place, so that a failure never leaves half a file (nor
-/// destroys the previous one).
+/// destroys the previous one), nor SIGINT or SIGTERM ([`crate::interrupt`]).
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
     let dir = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
@@ -69,6 +69,9 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
         std::process::id()
     ));
     refuse_special(path)?;
+    // A signal waits until the file is renamed into place (or removed):
+    // an interrupted run leaves neither the temporary file nor half a file.
+    let _hold = crate::interrupt::hold();
     std::fs::write(&tmp, bytes).with_context(|| format!("writing {}", tmp.display()))?;
     std::fs::rename(&tmp, path).map_err(|e| {
         let _ = std::fs::remove_file(&tmp);

@@ -13,8 +13,10 @@ pub const LISTED_BODIES: usize = 12;
 
 /// `contacts: soft_step (4 substeps, …)`, `contacts: exact (…)` or
 /// `contacts: off (…)`: the model that runs and every setting that changes
-/// what it computes, then the number of joints if any (`; 2 joints`).
-pub fn model_line(world: &World) -> String {
+/// what it computes, at the values the solver uses with the step `dt` (s)
+/// (a contact stiffness above the cap is printed capped, and said so),
+/// then the number of joints if any (`; 2 joints`).
+pub fn model_line(world: &World, dt: f64) -> String {
     let joints = match world.joint_count() {
         0 => String::new(),
         1 => "; 1 joint".to_owned(),
@@ -25,7 +27,7 @@ pub fn model_line(world: &World) -> String {
             "contacts: soft_step ({} substeps, contact {} Hz, damping ratio {}, push-out {} m/s, \
              friction {}, restitution {} above {} m/s, speculative {} m, continuous {}, sleeping {})",
             s.substeps,
-            short(s.contact_hertz),
+            contact_hertz_used(s.contact_hertz, dt / s.substeps as f64),
             short(s.contact_damping_ratio),
             short(s.push_out_speed),
             short(s.friction),
@@ -52,6 +54,24 @@ pub fn model_line(world: &World) -> String {
             .to_owned(),
     };
     format!("{model}{joints}")
+}
+
+/// The contact stiffness the soft step uses, in Hz, as printed: the
+/// engine caps the requested `hertz` at 1/(8 h) for the substep `h` (s)
+/// (a quarter of the substep's Nyquist frequency,
+/// `engine/src/soft_step/prepare.rs`), which the line says when it bites.
+fn contact_hertz_used(hertz: f64, h: f64) -> String {
+    let cap = 0.125 / h;
+    if hertz > cap {
+        format!(
+            "{} (capped: {} requested, above 1/(8 h) for the substep h = {} s)",
+            short(cap),
+            short(hertz),
+            short(h)
+        )
+    } else {
+        short(hertz)
+    }
 }
 
 fn on_off(on: bool) -> &'static str {
@@ -117,20 +137,28 @@ mod tests {
     #[test]
     fn the_model_line_names_the_model() {
         let mut world = World::new(engine::Method::Rk4).unwrap();
-        assert!(model_line(&world).starts_with("contacts: off"));
+        assert!(model_line(&world, 0.01).starts_with("contacts: off"));
         world
             .set_contact_settings(engine::ContactSettings::default())
             .unwrap();
-        let line = model_line(&world);
+        let line = model_line(&world, 0.01);
         assert!(line.starts_with("contacts: exact (restitution 1"), "{line}");
         let soft = World::with_model(
             engine::Method::SemiImplicitEuler,
             ContactModel::SoftStep(engine::SoftStepSettings::default()),
         )
         .unwrap();
-        let line = model_line(&soft);
+        let line = model_line(&soft, 1.0 / 60.0);
         assert!(
             line.starts_with("contacts: soft_step (4 substeps, contact 30 Hz, damping ratio 10,"),
+            "{line}"
+        );
+        // dt = 0.1 s in 4 substeps: h = 0.025 s, cap 1/(8 h) = 5 Hz.
+        let line = model_line(&soft, 0.1);
+        assert!(
+            line.contains(
+                "contact 5 Hz (capped: 30 requested, above 1/(8 h) for the substep h = 0.025 s)"
+            ),
             "{line}"
         );
     }
