@@ -405,6 +405,9 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         Some(c) => {
             let (text, runs) = c.report()?;
             print!("{text}");
+            for (message, count) in references::box2d_world::log::repeated() {
+                eprintln!("Box2D logged \"{message}\" {count} times in all (printed once)");
+            }
             runs
         }
         None => Vec::new(),
@@ -510,6 +513,22 @@ fn refuse_method_under_soft_step(
          (semi-implicit Euler per substep) and takes no other method: drop --method{exact}",
         scene.origin()
     ))
+}
+
+/// `error` and its causes on one line, each said once, joined by ": ".
+pub(crate) fn one_line(error: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in error.chain() {
+        let part = cause.to_string();
+        if text.contains(&part) {
+            continue;
+        }
+        if !text.is_empty() {
+            text.push_str(": ");
+        }
+        text.push_str(&part);
+    }
+    text
 }
 
 /// A replay of `scene` run with its own method, step and duration, with

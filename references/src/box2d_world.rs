@@ -147,6 +147,7 @@ fn scene_f32(field: &'static str, x: f64) -> Result<f32, ManyBodyError> {
 }
 
 pub mod joints;
+pub mod log;
 
 /// A [`ManyBodyScene`] in a Box2D world.
 pub struct Box2dWorld {
@@ -166,7 +167,7 @@ impl Box2dWorld {
     /// polygons Box2D cannot hold unchanged.
     pub fn new(scene: &ManyBodyScene) -> Result<Self, ManyBodyError> {
         scene.validate()?;
-        let foundation = Foundation::initialize_default().map_err(engine_error)?;
+        let foundation = Foundation::initialize(log::config()).map_err(engine_error)?;
         let gravity = [
             scene_f32("gravity x", scene.gravity[0])?,
             scene_f32("gravity y", scene.gravity[1])?,

@@ -24,7 +24,7 @@ pub fn model_line(world: &World, dt: f64) -> String {
     };
     let model = match world.contact_model() {
         Some(ContactModel::SoftStep(s)) => format!(
-            "contacts: soft_step ({} substeps, contact {} Hz, damping ratio {}, push-out {} m/s, \
+            "contacts: soft_step ({} substeps, contact {}, damping ratio {}, push-out {} m/s, \
              friction {}, restitution {} above {} m/s, speculative {} m, continuous {}, sleeping {})",
             s.substeps,
             contact_hertz_used(s.contact_hertz, dt / s.substeps as f64),
@@ -64,13 +64,13 @@ fn contact_hertz_used(hertz: f64, h: f64) -> String {
     let cap = 0.125 / h;
     if hertz > cap {
         format!(
-            "{} (capped: {} requested, above 1/(8 h) for the substep h = {} s)",
+            "{} Hz (capped: {} Hz requested, above 1/(8 h) for the substep h = {} s)",
             short(cap),
             short(hertz),
             short(h)
         )
     } else {
-        short(hertz)
+        format!("{} Hz", short(hertz))
     }
 }
 
@@ -157,7 +157,7 @@ mod tests {
         let line = model_line(&soft, 0.1);
         assert!(
             line.contains(
-                "contact 5 Hz (capped: 30 requested, above 1/(8 h) for the substep h = 0.025 s)"
+                "contact 5 Hz (capped: 30 Hz requested, above 1/(8 h) for the substep h = 0.025 s)"
             ),
             "{line}"
         );

@@ -85,6 +85,12 @@ pub(in crate::simulate) struct Comparison {
     moving: Vec<bool>,
     rotates: bool,
     verbose: bool,
+    /// The engines of several that refused the scene, each with its reason
+    /// (`--compare rapier,box2d` runs those that accept it).
+    refused: Vec<String>,
+    /// Moving bodies in contact (more than two): a chaotic scene, whose
+    /// runs part whatever their accuracy (said under the tables).
+    pile: Option<usize>,
 }
 
 fn wrap_angle(a: f64) -> f64 {
@@ -95,7 +101,9 @@ fn wrap_angle(a: f64) -> f64 {
 impl Comparison {
     /// Sets up every engine of `with` for `scene`, to run `steps` steps of
     /// `dt` (s) from `initial`, keeping every `stride`-th state for the
-    /// replay. Refuses a scene an engine cannot represent.
+    /// replay. Refuses a scene an engine cannot represent; of several
+    /// engines, runs those that can and names the others with their reason
+    /// (refuses only when none can).
     pub(in crate::simulate) fn prepare(
         scene: &Scene,
         with: &[CompareWith],
@@ -104,13 +112,20 @@ impl Comparison {
         verbose: bool,
     ) -> Result<Self> {
         let mut references = Vec::new();
+        let mut refused = Vec::new();
         for &engine in with {
             let option = match engine {
                 CompareWith::Rapier => "--compare rapier",
                 CompareWith::Box2d => "--compare box2d",
             };
-            let mut prepared =
-                adapters::prepare(scene, engine, dt).map_err(|e| e.context(option))?;
+            let mut prepared = match adapters::prepare(scene, engine, dt) {
+                Ok(prepared) => prepared,
+                Err(e) if with.len() > 1 => {
+                    refused.push(format!("{option}: {}", crate::simulate::one_line(&e)));
+                    continue;
+                }
+                Err(e) => return Err(e.context(option)),
+            };
             let states = initial.to_vec();
             let mut scratch = Vec::new();
             let mut first = states.clone();
@@ -144,6 +159,12 @@ impl Comparison {
                 scratch,
             });
         }
+        if references.is_empty() {
+            bail!(
+                "--compare: no engine of those named takes this scene:\n  {}",
+                refused.join("\n  ")
+            );
+        }
         let keep_engine = references
             .iter()
             .any(|r| !matches!(r.prepared.adapter, Adapter::Many(_)));
@@ -156,6 +177,12 @@ impl Comparison {
             );
         }
         let defs = scene.bodies();
+        let moving_bodies = defs
+            .iter()
+            .filter(|b| b.kind != engine::BodyKind::Static)
+            .count();
+        let contacts = scene.file().contact.is_some() || scene.joint_count() > 0;
+        let pile = (contacts && moving_bodies > 2).then_some(moving_bodies);
         Ok(Self {
             references,
             engine: if keep_engine {
@@ -176,6 +203,8 @@ impl Comparison {
                 engine::Body::from_def(def).is_ok_and(|(b, _)| b.is_dynamic() && b.rotates())
             }),
             verbose,
+            refused,
+            pile,
         })
     }
 
@@ -261,6 +290,9 @@ impl Comparison {
             r.compared = steps;
         }
         let mut out = String::new();
+        for refused in &self.refused {
+            let _ = writeln!(out, "\nnot compared: {refused}");
+        }
         let mut runs = Vec::new();
         for mut r in self.references {
             self::write_reference(
@@ -272,6 +304,14 @@ impl Comparison {
                 self.rotates,
                 self.verbose,
             );
+            if let Some(n) = self.pile {
+                let _ = writeln!(
+                    out,
+                    "  A pile of {n} moving bodies in contact is chaotic: a difference in the last \
+                     digit grows at every collision, so the runs of two engines part, whatever their \
+                     accuracy; these maxima say where and when they diverged, not which is right."
+                );
+            }
             crate::replay::unwrap_angles(&mut r.replay.states);
             runs.push(r.replay);
         }
