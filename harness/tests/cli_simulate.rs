@@ -183,14 +183,15 @@ fn the_scene_is_run_with_the_command_line_overrides() {
 fn the_comparison_refuses_what_an_adapter_cannot_represent_naming_it() {
     let dir = tempfile::tempdir().expect("temp dir");
     let pendulum = workspace().join("scenes/examples/elastic_pendulum.toml");
-    // Box2D collides every pair, and contacts are off in this scene.
+    // Box2D collides every pair, and contacts are off in this scene: asked
+    // alone, it is refused with the reason.
     let done = harness(
         dir.path(),
         &[
             "simulate",
             pendulum.to_str().unwrap(),
             "--compare",
-            "rapier,box2d",
+            "box2d",
             "--svg",
             "p.svg",
         ],
@@ -200,6 +201,29 @@ fn the_comparison_refuses_what_an_adapter_cannot_represent_naming_it() {
     assert!(done.stderr.contains("contacts are off"), "{}", done.stderr);
     assert!(!done.stderr.contains("panicked"));
     assert!(!dir.path().join("p.svg").exists());
+    // Asked with rapier, which takes the scene, rapier runs and Box2D is
+    // named with the same reason.
+    let done = harness(
+        dir.path(),
+        &[
+            "simulate",
+            pendulum.to_str().unwrap(),
+            "--compare",
+            "rapier,box2d",
+        ],
+    );
+    assert_eq!(done.code, Some(0), "{}", done.stderr);
+    assert!(
+        done.stdout.contains("not compared: --compare box2d:")
+            && done.stdout.contains("contacts are off"),
+        "{}",
+        done.stdout
+    );
+    assert!(
+        done.stdout.contains("rapier2d-f64 0.36") && done.stdout.contains("against the engine"),
+        "{}",
+        done.stdout
+    );
     // A force the adapter does not take is named as the scene says it.
     let text = std::fs::read_to_string(&pendulum).unwrap().replace(
         "type = \"spring\"\n",
