@@ -44,7 +44,10 @@ enum Command {
     /// Benchmarks this engine's soft step against rapier2d-f64 and Box2D v3
     /// on the many-body scenes, side by side, and writes
     /// `benchmarks.md`/`benchmarks.json` and the charts into the report
-    /// folder (`reports/` unless `--out` says).
+    /// folder (`reports/` unless `--out` says), and, writing `reports/`
+    /// at the default sizes, the README's speed table (which only this
+    /// command rewrites: a full run leaves it, so that timing noise alone
+    /// does not change the README).
     Bench {
         /// Benchmark ids (`pyramid_20`, `joint_grid`, ...) to run alone
         /// (every scene when none is named); a selection needs `--out`
