@@ -7,8 +7,11 @@
 //!    serde's refusal ("unknown field `__probe__`, expected one of `a`,
 //!    `b`, ...") lists every key the table accepts; an unknown `type`
 //!    lists every type, an unknown value of an enumerated field every
-//!    value. A key added to a structure without a line in the doc fails
-//!    here, saying which key to document and under which heading.
+//!    value; each key is also fed a table `{ __probe__ = 1 }`, which finds
+//!    the inline tables (a joint's `motor`, its `spring`) and their keys,
+//!    documented as `motor.speed` rows. A key, a type or an inline table
+//!    added to the structures without a line in the doc fails here, saying
+//!    which key to document and under which heading.
 //! 2. Every ```toml block of the doc is a whole scene file, loaded through
 //!    the scene loader ([`Scene::parse_str`]); every section of a table
 //!    has at least one.
@@ -24,25 +27,39 @@ fn doc() -> String {
 }
 
 /// The names serde lists after "expected" in its refusal of `probe` (a
-/// scene text holding `__probe__` where a key, a type or a value goes).
+/// scene text holding `__probe__` where a key, a type or a value goes);
+/// `None` when the text is refused for another reason (the place does
+/// not take a table of keys) or accepted.
+fn listed(probe: &str) -> Option<Vec<String>> {
+    let error = toml::from_str::<SceneFile>(probe)
+        .err()?
+        .message()
+        .to_owned();
+    if !error.contains("__probe__") {
+        return None;
+    }
+    let (_, expected) = error.split_once("expected")?;
+    Some(
+        expected
+            .split('`')
+            .skip(1)
+            .step_by(2)
+            .map(str::to_owned)
+            .collect(),
+    )
+}
+
+/// [`listed`], which must list something here.
 fn accepted(probe: &str) -> Vec<String> {
-    let error = match toml::from_str::<SceneFile>(probe) {
-        Ok(_) => panic!("the probe was accepted, so it lists nothing:\n{probe}"),
-        Err(e) => e.message().to_owned(),
-    };
-    assert!(
-        error.contains("__probe__"),
-        "the probe failed for another reason than its `__probe__` ({error}):\n{probe}"
-    );
-    let Some((_, expected)) = error.split_once("expected") else {
-        panic!("serde's message lists no names: {error}\n{probe}");
-    };
-    expected
-        .split('`')
-        .skip(1)
-        .step_by(2)
-        .map(str::to_owned)
-        .collect()
+    listed(probe).unwrap_or_else(|| {
+        let error = toml::from_str::<SceneFile>(probe)
+            .err()
+            .map(|e| e.to_string());
+        panic!(
+            "the probe lists no names: is serde's message still \"unknown field `__probe__`, \
+             expected ...\"? ({error:?})\n{probe}"
+        )
+    })
 }
 
 /// A section of the doc: from a heading holding `title` to the next
@@ -68,12 +85,6 @@ fn section<'d>(doc: &'d str, title: &str) -> Option<&'d str> {
     start.map(|s| &doc[s..])
 }
 
-/// The `type` values of a tagged table (`[[forces]]`, `shape`, ...), from
-/// a probe with `type = "__probe__"` at `place`.
-fn types(place: &str) -> Vec<String> {
-    accepted(place)
-}
-
 /// The heading of the section documenting `table` (and `type`, if tagged).
 fn heading(table: &str, kind: Option<&str>) -> String {
     match kind {
@@ -88,73 +99,54 @@ struct Table {
     keys: Vec<String>,
 }
 
-/// Keys of a tagged table's variants, probed by `make(kind)` (a scene text
-/// with the table of type `kind` holding `__probe__ = 1`).
-fn tagged(table: &str, types_probe: &str, make: impl Fn(&str) -> String) -> Vec<Table> {
-    types(types_probe)
-        .into_iter()
-        .map(|kind| Table {
-            heading: heading(table, Some(&kind)),
-            keys: accepted(&make(&kind)),
-        })
-        .collect()
-}
-
-/// Every table of the format with its keys, read from the code.
+/// Every table of the format with its keys, read from the code: the
+/// tables, each type of the tagged ones (`shape`, `[[forces]]`,
+/// `[[events]]`, `[[joints]]`, `[[generate]]`), and the inline tables
+/// found among their keys (a joint's `motor` or `spring`), whose keys are
+/// documented in their table as `motor.speed` rows. Types and inline
+/// tables added later are found the same way.
 fn tables() -> Vec<Table> {
-    let mut out = vec![
-        Table {
-            heading: "The file".into(),
-            keys: accepted("__probe__ = 1\n"),
-        },
-        Table {
-            heading: heading("[simulation]", None),
-            keys: accepted("[simulation]\n__probe__ = 1\n"),
-        },
-        Table {
-            heading: heading("[[bodies]]", None),
-            keys: accepted("[[bodies]]\n__probe__ = 1\n"),
-        },
-        Table {
-            heading: heading("[contact]", None),
-            keys: accepted("[contact]\n__probe__ = 1\n"),
-        },
-        Table {
-            heading: heading("[linear_test]", None),
-            keys: accepted("[linear_test]\n__probe__ = 1\n"),
-        },
-    ];
-    out.extend(tagged(
-        "shape",
-        "[[bodies]]\nshape = { type = \"__probe__\" }\n",
-        |k| format!("[[bodies]]\nshape = {{ type = \"{k}\", __probe__ = 1 }}\n"),
-    ));
-    for table in ["forces", "events", "joints", "generate"] {
-        out.extend(tagged(
-            &format!("[[{table}]]"),
-            &format!("[[{table}]]\ntype = \"__probe__\"\n"),
-            |k| format!("[[{table}]]\ntype = \"{k}\"\n__probe__ = 1\n"),
+    // Each table's heading and a scene text with `@@` where a key goes.
+    let mut templates: Vec<(String, String)> =
+        ["[simulation]", "[[bodies]]", "[contact]", "[linear_test]"]
+            .iter()
+            .map(|t| (heading(t, None), format!("{t}\n@@\n")))
+            .collect();
+    for kind in accepted("[[bodies]]\nshape = { type = \"__probe__\" }\n") {
+        templates.push((
+            heading("shape", Some(&kind)),
+            format!("[[bodies]]\nshape = {{ type = \"{kind}\", @@ }}\n"),
         ));
     }
-    // Sub-tables of joints, documented in their joint's table as
-    // `sub.key` rows.
-    let sub_tables = [
-        ("revolute", "motor"),
-        ("revolute", "spring"),
-        ("prismatic", "motor"),
-        ("prismatic", "spring"),
-        ("distance", "spring"),
-        ("weld", "linear_spring"),
-        ("weld", "angular_spring"),
-    ];
-    for (kind, sub) in sub_tables {
-        let keys = accepted(&format!(
-            "[[joints]]\ntype = \"{kind}\"\n{sub} = {{ __probe__ = 1 }}\n"
-        ));
-        out.push(Table {
-            heading: heading("[[joints]]", Some(kind)),
-            keys: keys.iter().map(|k| format!("{sub}.{k}")).collect(),
-        });
+    for table in ["forces", "events", "joints", "generate"] {
+        for kind in accepted(&format!("[[{table}]]\ntype = \"__probe__\"\n")) {
+            templates.push((
+                heading(&format!("[[{table}]]"), Some(&kind)),
+                format!("[[{table}]]\ntype = \"{kind}\"\n@@\n"),
+            ));
+        }
+    }
+    let mut out = vec![Table {
+        heading: "The file".into(),
+        keys: accepted("__probe__ = 1\n"),
+    }];
+    for (heading, template) in templates {
+        let keys = accepted(&template.replace("@@", "__probe__ = 1"));
+        for key in &keys {
+            let inline = template.replace("@@", &format!("{key} = {{ __probe__ = 1 }}"));
+            // A table of keys refuses `__probe__` as an unknown field; a
+            // name (`kind`, `model`) given as a table, as an unknown variant.
+            let is_table_of_keys = toml::from_str::<SceneFile>(&inline)
+                .err()
+                .is_some_and(|e| e.message().starts_with("unknown field"));
+            if let Some(inner) = listed(&inline).filter(|_| is_table_of_keys) {
+                out.push(Table {
+                    heading: heading.clone(),
+                    keys: inner.iter().map(|k| format!("{key}.{k}")).collect(),
+                });
+            }
+        }
+        out.push(Table { heading, keys });
     }
     out
 }
@@ -296,4 +288,24 @@ fn every_table_has_an_example() {
         }
     }
     assert!(missing.is_empty(), "{DOC_PATH}:\n{}", missing.join("\n"));
+}
+
+#[test]
+fn the_probes_find_the_joints_inline_tables() {
+    // The inline tables known today: a change in how they are found must
+    // not lose them silently.
+    let tables = tables();
+    for key in [
+        "motor.max_torque",
+        "motor.max_force",
+        "spring.hertz",
+        "spring.target",
+        "linear_spring.hertz",
+        "angular_spring.damping_ratio",
+    ] {
+        assert!(
+            tables.iter().any(|t| t.keys.iter().any(|k| k == key)),
+            "no table has {key}"
+        );
+    }
 }
