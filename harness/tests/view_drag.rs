@@ -57,11 +57,24 @@ position = [0.0, 0.5]
 colour = "#d62728"
 "##;
 
-/// Kills a child process when dropped (a failed assertion included).
+/// Ends a child process when dropped (a failed assertion included): by
+/// SIGTERM, so that Xvfb removes its lock and socket, then SIGKILL after a
+/// second.
 struct Killed(Child);
 
 impl Drop for Killed {
     fn drop(&mut self) {
+        if let Ok(pid) = i32::try_from(self.0.id()) {
+            // SAFETY: signalling our own child, which has not been reaped.
+            unsafe { libc::kill(pid, libc::SIGTERM) };
+        }
+        let started = Instant::now();
+        while started.elapsed() < Duration::from_secs(1) {
+            if let Ok(Some(_)) = self.0.try_wait() {
+                return;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
         let _ = self.0.kill();
         let _ = self.0.wait();
     }
@@ -229,27 +242,42 @@ fn wait_for(what: &str, mut ready: impl FnMut() -> bool) {
     }
 }
 
-/// A free X display number and its Xvfb.
+/// An Xvfb on a display number it finds free, once it accepts
+/// connections (`-displayfd`: it writes the number when ready), and the
+/// number.
 fn start_xvfb(xvfb: &Path) -> (String, Killed) {
-    let n = (90..200)
-        .find(|n| {
-            !Path::new(&format!("/tmp/.X{n}-lock")).exists()
-                && !Path::new(&format!("/tmp/.X11-unix/X{n}")).exists()
-        })
-        .expect("a free display number");
-    let display = format!(":{n}");
-    let server = Killed(
+    use std::io::BufRead;
+    let mut server = Killed(
         Command::new(xvfb)
-            .args([&display, "-screen", "0", "1024x768x24", "-nolisten", "tcp"])
-            .stdout(Stdio::null())
+            .args([
+                "-displayfd",
+                "1",
+                "-screen",
+                "0",
+                "1024x768x24",
+                "-nolisten",
+                "tcp",
+            ])
+            .stdout(Stdio::piped())
             .stderr(Stdio::null())
             .spawn()
             .unwrap(),
     );
-    wait_for("Xvfb's socket", || {
-        Path::new(&format!("/tmp/.X11-unix/X{n}")).exists()
+    let stdout = server.0.stdout.take().unwrap();
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let mut line = String::new();
+        let _ = std::io::BufReader::new(stdout).read_line(&mut line);
+        let _ = tx.send(line);
     });
-    (display, server)
+    let line = rx
+        .recv_timeout(PATIENCE)
+        .expect("Xvfb did not say its display");
+    let number: u32 = line
+        .trim()
+        .parse()
+        .unwrap_or_else(|_| panic!("Xvfb said '{line}'"));
+    (format!(":{number}"), server)
 }
 
 /// An `xwd` picture (ZPixmap, 24 or 32 bits per pixel, true colour).
@@ -441,7 +469,12 @@ fn a_box_dragged_with_the_mouse_goes_where_the_cursor_took_it() {
         (picture.width, picture.height),
         (WINDOW.0 as usize, WINDOW.1 as usize)
     );
-    let (bx, by) = to_screen(&stepped, x, y);
+    // A point of the box a quarter metre from its centre (where the drag's
+    // marks are), in the box's frame.
+    let angle = body(&stepped, "box")["angle"].as_f64().unwrap();
+    let (s, c) = angle.sin_cos();
+    let (qx, qy) = (x + 0.25 * c + 0.25 * s, y + 0.25 * s - 0.25 * c);
+    let (bx, by) = to_screen(&stepped, qx, qy);
     assert_eq!(
         picture.rgb(bx as usize, by as usize),
         BOX,

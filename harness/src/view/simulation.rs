@@ -22,7 +22,7 @@ use engine::{BodyDef, BodyKind, ContactModel, ContactSettings, Shape, SoftStepSe
 use nalgebra::Vector2;
 use scene::{Colour, Scene};
 use serde::Serialize;
-use std::collections::VecDeque;
+use std::collections::{HashSet, VecDeque};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -174,6 +174,9 @@ pub struct Simulation {
     message: String,
     needs: Needs,
     paths: Vec<(usize, VecDeque<Vector2<f64>>)>,
+    /// The pairs of bodies (lower id first) the scene's joints keep from
+    /// colliding.
+    joined: HashSet<(usize, usize)>,
     meter: Meter,
     /// Wall time spent in steps since the start or the last reset.
     stepping: Duration,
@@ -194,6 +197,12 @@ impl Simulation {
         }
         let world = scene.build_world(None)?;
         let drop_size = median_body(&world);
+        let joined = scene
+            .joints()
+            .filter(|j| !j.collide_connected)
+            .filter_map(|j| Some((j.body_a?, j.body_b?)))
+            .map(|(a, b)| (a.min(b), a.max(b)))
+            .collect();
         let mut sim = Self {
             dt: scene.dt(),
             looks: Arc::new(Vec::new()),
@@ -210,6 +219,7 @@ impl Simulation {
             message: String::new(),
             needs: Needs::default(),
             paths: Vec::new(),
+            joined,
             meter: Meter::default(),
             stepping: Duration::ZERO,
             stepping_cpu: Some(Duration::ZERO),
@@ -536,7 +546,7 @@ impl Simulation {
         if self.needs.paths {
             snapshot::record_paths(&mut self.paths, &self.world);
         }
-        snapshot::fill(frame, &self.world, self.needs, &self.paths);
+        snapshot::fill(frame, &self.world, self.needs, &self.paths, &self.joined);
         frame.drag = self.drag.map(|d| {
             let joint = self.world.joint(d.joint);
             (joint.map_or(d.target, |j| j.anchor_b), d.target)

@@ -11,8 +11,9 @@
 use super::frame::{ContactMark, Frame, JointLine};
 use super::simulation::{Needs, PATH_BODIES, PATH_POINTS};
 use engine::validation::collision::{Aabb, SweepAndPrune, collide};
-use engine::{BodyKind, World};
+use engine::{BodyKind, ContactModel, World};
 use nalgebra::{Isometry2, Vector2};
+use std::collections::HashSet;
 use std::collections::VecDeque;
 
 /// Contacts are drawn for shapes touching or closer than this (m): Box2D's
@@ -27,6 +28,7 @@ pub fn fill(
     world: &World,
     needs: Needs,
     paths: &[(usize, VecDeque<Vector2<f64>>)],
+    joined: &HashSet<(usize, usize)>,
 ) {
     let n = world.bodies().len();
     frame.states.clear();
@@ -62,7 +64,7 @@ pub fn fill(
     frame.status.joints = live_joints;
     frame.contacts.clear();
     if needs.contacts {
-        contacts(world, &mut frame.contacts);
+        contacts(world, joined, &mut frame.contacts);
     }
     frame.paths.clear();
     frame.paths.extend(
@@ -72,8 +74,13 @@ pub fn fill(
     );
 }
 
-/// The contact points and normals of the world's shapes now.
-fn contacts(world: &World, out: &mut Vec<ContactMark>) {
+/// The contact points and normals of the world's shapes now; `joined`
+/// holds the pairs (lower id first) a joint keeps from colliding.
+fn contacts(world: &World, joined: &HashSet<(usize, usize)>, out: &mut Vec<ContactMark>) {
+    let soft_step = match world.contact_model() {
+        None => return,
+        Some(model) => matches!(model, ContactModel::SoftStep(_)),
+    };
     let bodies = world.bodies();
     let states = world.states();
     let shaped: Vec<usize> = (0..bodies.len())
@@ -94,6 +101,11 @@ fn contacts(world: &World, out: &mut Vec<ContactMark>) {
     for (i, j) in SweepAndPrune::new().pairs(&boxes) {
         let (a, b) = (shaped[i], shaped[j]);
         if bodies[a].kind != BodyKind::Dynamic && bodies[b].kind != BodyKind::Dynamic {
+            continue;
+        }
+        let same_group = bodies[a].collision_group.is_some()
+            && bodies[a].collision_group == bodies[b].collision_group;
+        if soft_step && (same_group || joined.contains(&(a.min(b), a.max(b)))) {
             continue;
         }
         let (Some(sa), Some(sb)) = (&bodies[a].shape, &bodies[b].shape) else {
