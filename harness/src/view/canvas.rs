@@ -136,7 +136,7 @@ impl Canvas {
 
     /// Fills a disc of centre (`cx`, `cy`) and radius `r` (px).
     pub fn fill_circle(&mut self, cx: f64, cy: f64, r: f64, colour: Rgb) {
-        if !(r > 0.0) || cx + r < 0.0 || cy + r < 0.0 {
+        if r.is_nan() || r <= 0.0 || cx + r < 0.0 || cy + r < 0.0 {
             return;
         }
         if cx - r > self.width as f64 || cy - r > self.height as f64 {
@@ -205,7 +205,7 @@ impl Canvas {
                 }
             }
         }
-        (t0 <= t1).then(|| (x0 + t0 * dx, y0 + t0 * dy, x0 + t1 * dx, y0 + t1 * dy))
+        (t0 <= t1).then_some((x0 + t0 * dx, y0 + t0 * dy, x0 + t1 * dx, y0 + t1 * dy))
     }
 
     /// Outlines the rectangle between two corners (px).

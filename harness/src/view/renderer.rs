@@ -193,13 +193,13 @@ impl Renderer {
         }
         lines.push((counts, INK));
         if on.profile {
-            if !s.phases.is_empty() {
-                let phases: Vec<String> = s
-                    .phases
-                    .iter()
-                    .filter(|(_, ms)| *ms >= 0.005)
-                    .map(|(name, ms)| format!("{name} {ms:.2}"))
-                    .collect();
+            let phases: Vec<String> = s
+                .phases
+                .iter()
+                .filter(|(_, ms)| *ms >= 0.005)
+                .map(|(name, ms)| format!("{name} {ms:.2}"))
+                .collect();
+            if !phases.is_empty() {
                 lines.push((format!("profile, ms per step: {}", phases.join(" · ")), INK));
             }
             let counters: Vec<String> = s

@@ -1,7 +1,8 @@
 //! `--screenshot out.png --steps N`: the view's picture after N steps,
 //! drawn by the window's renderer into a canvas and written as PNG, with
 //! no window and no display (for docs and tests). The overlays are the
-//! window's defaults; the numbers in the corner are this run's.
+//! window's defaults; the numbers in the corner are this run's, its
+//! counters but not its wall times.
 
 use super::camera::Camera;
 use super::canvas::Canvas;
@@ -37,6 +38,11 @@ pub fn write(mut sim: Simulation, options: &ScreenshotOptions) -> Result<()> {
     let mut frame = Frame::default();
     sim.publish(&mut frame);
     sim.whole_run_means(&mut frame.status);
+    // Wall times would be the noise of whatever else the machine ran while
+    // the picture was made: a picture keeps the counters only (`--frames`
+    // measures times).
+    frame.status.step_ms = None;
+    frame.status.phases.clear();
     let (w, h) = options.size;
     let camera = Camera::fit_frame(&frame, w, h);
     let mut canvas = Canvas::new(w, h);

@@ -476,8 +476,13 @@ impl Simulation {
             };
             match result {
                 Ok(()) => {
+                    let how = if next == "off" {
+                        "bodies pass through each other"
+                    } else {
+                        "at the engine's defaults"
+                    };
                     self.message = format!(
-                        "contact model: {next} (engine defaults){}",
+                        "contact model: {next} ({how}){}",
                         if refused.is_empty() {
                             String::new()
                         } else {
