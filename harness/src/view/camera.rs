@@ -78,8 +78,8 @@ impl Camera {
 
     /// A camera on a `width × height` px window showing the scene of
     /// `frame`: every dynamic body, with room for at least
-    /// [`ROOM_IN_BODIES`] of the widest across, and the static ones not
-    /// much larger than that (a 1 km ground would make a pile of boxes
+    /// [`ROOM_IN_BODIES`] of the widest across, and the parts of the
+    /// static ones near them (a 1 km ground would make a pile of boxes
     /// invisible); every body when none is dynamic.
     pub fn fit_frame(frame: &Frame, width: u32, height: u32) -> Self {
         let reach = |id: usize| {
@@ -106,12 +106,19 @@ impl Camera {
             (centre - half, centre + half)
         });
         let bounds = match moving {
+            // The static bodies where the dynamic ones are, clipped to
+            // their box enlarged by a quarter on each side: the ground
+            // under a pile shows, a 1 km ground does not shrink the pile.
             Some((lo, hi)) => {
-                let size = (hi - lo).norm().max(PARTICLE_REACH);
-                let small = |id: &usize| 2.0 * frame.looks[*id].radius <= 1.5 * size;
-                let statics =
-                    union(&mut (0..n).filter(live).filter(|id| !dynamic(id)).filter(small));
-                statics.map_or((lo, hi), |(a, b)| (lo.inf(&a), hi.sup(&b)))
+                let reach = 0.25 * (hi - lo);
+                let (near_lo, near_hi) = (lo - reach, hi + reach);
+                (0..n)
+                    .filter(live)
+                    .filter(|id| !dynamic(id))
+                    .map(|id| frame.looks[id].aabb(&frame.states[id]))
+                    .map(|(a, b)| (a.sup(&near_lo), b.inf(&near_hi)))
+                    .filter(|(a, b)| a.x <= b.x && a.y <= b.y)
+                    .fold((lo, hi), |(a, b), (c, d)| (a.inf(&c), b.sup(&d)))
             }
             None => union(&mut (0..n).filter(live))
                 .unwrap_or((Vector2::repeat(-1.0), Vector2::repeat(1.0))),

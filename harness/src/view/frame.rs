@@ -57,6 +57,28 @@ impl BodyLook {
         look
     }
 
+    /// The axis-aligned box of the shape at `state` (m): lower and upper
+    /// corners; the centre twice for a particle.
+    pub fn aabb(&self, state: &BodyState) -> (Vector2<f64>, Vector2<f64>) {
+        if self.is_particle() {
+            return (state.position, state.position);
+        }
+        let rotation = Rotation2::new(state.angle);
+        let mut lo = Vector2::repeat(f64::INFINITY);
+        let mut hi = Vector2::repeat(f64::NEG_INFINITY);
+        for v in self.polygons.iter().flatten() {
+            let p = state.position + rotation * v;
+            lo = lo.inf(&p);
+            hi = hi.sup(&p);
+        }
+        for (c, r) in &self.circles {
+            let p = state.position + rotation * c;
+            lo = lo.inf(&(p - Vector2::repeat(*r)));
+            hi = hi.sup(&(p + Vector2::repeat(*r)));
+        }
+        (lo, hi)
+    }
+
     /// Whether the body has no shape (a point mass, drawn as a dot).
     pub fn is_particle(&self) -> bool {
         self.polygons.is_empty() && self.circles.is_empty()

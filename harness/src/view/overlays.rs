@@ -7,7 +7,6 @@ use super::camera::Camera;
 use super::canvas::{Canvas, Rgb, rgb};
 use super::frame::Frame;
 use super::simulation::Needs;
-use nalgebra::{Rotation2, Vector2};
 
 /// Which overlays are on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -166,19 +165,7 @@ fn boxes(canvas: &mut Canvas, frame: &Frame, camera: &Camera) {
         let Some(s) = frame.states.get(id) else {
             continue;
         };
-        let rotation = Rotation2::new(s.angle);
-        let mut lo = Vector2::repeat(f64::INFINITY);
-        let mut hi = Vector2::repeat(f64::NEG_INFINITY);
-        for v in look.polygons.iter().flatten() {
-            let p = s.position + rotation * v;
-            lo = lo.inf(&p);
-            hi = hi.sup(&p);
-        }
-        for (c, r) in &look.circles {
-            let p = s.position + rotation * c;
-            lo = lo.inf(&(p - Vector2::repeat(*r)));
-            hi = hi.sup(&(p + Vector2::repeat(*r)));
-        }
+        let (lo, hi) = look.aabb(s);
         let (a, b) = (camera.to_screen(lo), camera.to_screen(hi));
         canvas.rect(a.0, a.1, b.0, b.1, AABB);
     }

@@ -168,9 +168,10 @@ impl Renderer {
         } else {
             "paused".to_owned()
         };
-        let achieved = s
-            .achieved_speed
-            .map_or(String::new(), |a| format!(" · achieved ×{a:.2}"));
+        let achieved = match s.achieved_speed {
+            Some(a) if s.running => format!(" · achieved ×{a:.2}"),
+            _ => String::new(),
+        };
         lines.push((
             format!(
                 "{} · t = {:.3} s · step {} (dt = {} s) · {state}{achieved}",
@@ -218,16 +219,43 @@ impl Renderer {
             }
         }
         let line_h = self.glyphs.line_height();
-        self.panel(canvas, &lines, 6.0, line_h);
+        self.panel(canvas, &lines, Some(6.0), line_h);
         if on.help {
             let help = [(HELP.to_owned(), INK), (on.legend(), INK)];
-            let y = canvas.height() as f32 - 2.0 * line_h - 8.0;
-            self.panel(canvas, &help, y, line_h);
+            self.panel(canvas, &help, None, line_h);
         }
     }
 
-    /// Lines of text on a pale band from `top` (px).
-    fn panel(&mut self, canvas: &mut Canvas, lines: &[(String, Rgb)], top: f32, line_h: f32) {
+    /// Lines of text on a pale band from `top` (px; `None`: ending at the
+    /// bottom), each wrapped at spaces to the canvas's width.
+    fn panel(
+        &mut self,
+        canvas: &mut Canvas,
+        lines: &[(String, Rgb)],
+        top: Option<f32>,
+        line_h: f32,
+    ) {
+        let room = (canvas.width() as f32 - 24.0).max(40.0);
+        let mut wrapped: Vec<(String, Rgb)> = Vec::new();
+        for (line, colour) in lines {
+            let mut current = String::new();
+            for word in line.split(' ') {
+                let candidate = if current.is_empty() {
+                    word.to_owned()
+                } else {
+                    format!("{current} {word}")
+                };
+                if !current.is_empty() && self.glyphs.width(&candidate) > room {
+                    wrapped.push((std::mem::take(&mut current), *colour));
+                    current = word.to_owned();
+                } else {
+                    current = candidate;
+                }
+            }
+            wrapped.push((current, *colour));
+        }
+        let lines = &wrapped;
+        let top = top.unwrap_or(canvas.height() as f32 - lines.len() as f32 * line_h - 8.0);
         let width = lines
             .iter()
             .map(|(l, _)| self.glyphs.width(l))
