@@ -27,4 +27,6 @@ pub mod study;
 pub mod sweep;
 pub mod timing;
 pub mod tolerance;
+#[cfg(feature = "view")]
+pub mod view;
 pub mod workspace;

@@ -58,6 +58,19 @@ enum Command {
         #[arg(long)]
         full: bool,
     },
+    /// Runs a scene file live in a window: pause, step, drag bodies,
+    /// overlays (docs/view.md). Built with `--features view`.
+    #[cfg(feature = "view")]
+    View(Box<harness::view::ViewArgs>),
+    /// Runs a scene file live in a window (docs/view.md): this build has
+    /// no view; build it with `--features view`.
+    #[cfg(not(feature = "view"))]
+    #[command(disable_help_flag = true)]
+    View {
+        /// Whatever was given.
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
 }
 
 /// Exit codes: 0 every row passed (or the command succeeded), 1 a row
@@ -167,6 +180,17 @@ fn real_main() -> Result<bool> {
             );
             Ok(true)
         }
+        #[cfg(feature = "view")]
+        Some(Command::View(args)) => {
+            refuse_out(cli.out.as_deref(), "view")?;
+            harness::view::run(&args)?;
+            Ok(true)
+        }
+        #[cfg(not(feature = "view"))]
+        Some(Command::View { .. }) => bail!(
+            "this harness was built without its live view: \
+             cargo run --release -p harness --features view -- view SCENE.toml"
+        ),
         None => run(&[], false, false, cli.out),
     }
 }

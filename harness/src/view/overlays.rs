@@ -1,0 +1,172 @@
+//! The overlays a user toggles over the bodies: contact points with their
+//! normals, bounding boxes, joints, sleeping bodies, centres of mass,
+//! recent paths, and the step profile. Each is drawn from the frame; the
+//! ones that need the simulation to copy more out say so ([`Overlays::needs`]).
+
+use super::camera::Camera;
+use super::canvas::{Canvas, Rgb, rgb};
+use super::frame::Frame;
+use super::simulation::Needs;
+
+/// Which overlays are on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Overlays {
+    /// Contact points and normals.
+    pub contacts: bool,
+    /// Axis-aligned bounding boxes.
+    pub boxes: bool,
+    /// Joints: anchors and the lines to the bodies' centres.
+    pub joints: bool,
+    /// Sleeping bodies greyed.
+    pub sleeping: bool,
+    /// Centres of mass.
+    pub centres: bool,
+    /// Recent paths.
+    pub paths: bool,
+    /// The step profile and counters.
+    pub profile: bool,
+    /// The keys.
+    pub help: bool,
+}
+
+impl Default for Overlays {
+    fn default() -> Self {
+        Self {
+            contacts: false,
+            boxes: false,
+            joints: true,
+            sleeping: true,
+            centres: false,
+            paths: false,
+            profile: true,
+            help: true,
+        }
+    }
+}
+
+impl Overlays {
+    /// What the simulation must copy out for these overlays.
+    pub fn needs(&self) -> Needs {
+        Needs {
+            contacts: self.contacts,
+            joints: self.joints,
+            paths: self.paths,
+            profile: self.profile,
+        }
+    }
+
+    /// The overlays' keys, names and states, for the help line.
+    pub fn legend(&self) -> String {
+        [
+            ("1", "contacts", self.contacts),
+            ("2", "boxes", self.boxes),
+            ("3", "joints", self.joints),
+            ("4", "sleeping", self.sleeping),
+            ("5", "centres", self.centres),
+            ("6", "paths", self.paths),
+            ("P", "profile", self.profile),
+        ]
+        .iter()
+        .map(|(key, name, on)| format!("{key} {name} {}", if *on { "on" } else { "off" }))
+        .collect::<Vec<_>>()
+        .join(" · ")
+    }
+}
+
+/// Contact points.
+const CONTACT: Rgb = rgb(220, 30, 30);
+/// Contact normals.
+const NORMAL: Rgb = rgb(30, 160, 30);
+/// Bounding boxes.
+const AABB: Rgb = rgb(200, 60, 200);
+/// Joints.
+const JOINT: Rgb = rgb(40, 140, 200);
+/// Centres of mass.
+const CENTRE: Rgb = rgb(20, 20, 20);
+/// The drag's line and target.
+const DRAG: Rgb = rgb(0, 170, 0);
+/// A normal's length on screen (px).
+const NORMAL_PX: f64 = 12.0;
+
+/// Recent paths, under the bodies.
+pub fn paths(canvas: &mut Canvas, frame: &Frame, camera: &Camera) {
+    for (id, path) in &frame.paths {
+        let Some(look) = frame.looks.get(*id) else {
+            continue;
+        };
+        let colour = super::canvas::mix(look.colour, rgb(255, 255, 255), 0.4);
+        for pair in path.windows(2) {
+            let (a, b) = (camera.to_screen(pair[0]), camera.to_screen(pair[1]));
+            canvas.line(a.0, a.1, b.0, b.1, colour);
+        }
+    }
+}
+
+/// The overlays drawn over the bodies.
+pub fn over_bodies(canvas: &mut Canvas, frame: &Frame, camera: &Camera, on: &Overlays) {
+    if on.boxes {
+        boxes(canvas, frame, camera);
+    }
+    if on.joints {
+        for j in &frame.joints {
+            let a = camera.to_screen(j.anchor_a);
+            let b = camera.to_screen(j.anchor_b);
+            for (centre, anchor) in [(j.centre_a, a), (j.centre_b, b)] {
+                if let Some(c) = centre {
+                    let c = camera.to_screen(c);
+                    canvas.line(c.0, c.1, anchor.0, anchor.1, JOINT);
+                }
+            }
+            canvas.line(a.0, a.1, b.0, b.1, JOINT);
+            canvas.fill_circle(a.0, a.1, 3.0, JOINT);
+            canvas.fill_circle(b.0, b.1, 3.0, JOINT);
+        }
+    }
+    if on.contacts {
+        for c in &frame.contacts {
+            let p = camera.to_screen(c.point);
+            let tip = camera.to_screen(c.point + c.normal * (NORMAL_PX / camera.scale));
+            canvas.line(p.0, p.1, tip.0, tip.1, NORMAL);
+            canvas.fill_convex(
+                &[
+                    (p.0 - 2.0, p.1 - 2.0),
+                    (p.0 + 2.0, p.1 - 2.0),
+                    (p.0 + 2.0, p.1 + 2.0),
+                    (p.0 - 2.0, p.1 + 2.0),
+                ],
+                CONTACT,
+            );
+        }
+    }
+    if on.centres {
+        for (id, s) in frame.states.iter().enumerate() {
+            if frame.removed.get(id).copied().unwrap_or(false) {
+                continue;
+            }
+            let (x, y) = camera.to_screen(s.position);
+            canvas.line(x - 4.0, y, x + 4.0, y, CENTRE);
+            canvas.line(x, y - 4.0, x, y + 4.0, CENTRE);
+        }
+    }
+    if let Some((grabbed, target)) = frame.drag {
+        let (a, b) = (camera.to_screen(grabbed), camera.to_screen(target));
+        canvas.line(a.0, a.1, b.0, b.1, DRAG);
+        canvas.circle(b.0, b.1, 4.0, DRAG);
+        canvas.fill_circle(a.0, a.1, 2.5, DRAG);
+    }
+}
+
+/// Every shaped body's axis-aligned bounding box.
+fn boxes(canvas: &mut Canvas, frame: &Frame, camera: &Camera) {
+    for (id, look) in frame.looks.iter().enumerate() {
+        if look.is_particle() || frame.removed.get(id).copied().unwrap_or(false) {
+            continue;
+        }
+        let Some(s) = frame.states.get(id) else {
+            continue;
+        };
+        let (lo, hi) = look.aabb(s);
+        let (a, b) = (camera.to_screen(lo), camera.to_screen(hi));
+        canvas.rect(a.0, a.1, b.0, b.1, AABB);
+    }
+}
