@@ -52,7 +52,8 @@ pub fn console_kinds(rows: &[&Row]) -> String {
 /// The Markdown table counting each kind of row (and how many pass).
 fn kinds_table(rows: &[&Row]) -> String {
     let owned: Vec<Row> = rows.iter().map(|r| (*r).clone()).collect();
-    let mut out = String::from("| kind | rows | passed | checked against |\n|---|---|---|---|\n");
+    let mut out =
+        String::from("| kind | rows | passed | what the rows are checked |\n|---|---|---|---|\n");
     for (kind, n, passed) in count_kinds(&owned) {
         let passed = if passed == n {
             passed.to_string()
@@ -351,6 +352,42 @@ pub fn update_readme(readme: &Path, all_rows: &[&Row]) -> Result<bool> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_validation_cover_counts_validation_rows_by_case_and_the_other_kinds() {
+        let row = |kind, case: &str| {
+            Row::new(
+                kind,
+                case,
+                "x",
+                "m",
+                0.1,
+                0.0,
+                0.0,
+                1.0,
+                crate::row::Comparison::Within,
+                "r",
+            )
+        };
+        let rows = [
+            row(RowKind::Validation, "spring"),
+            row(RowKind::Validation, "spring"),
+            row(RowKind::Validation, "pyramid"),
+            row(RowKind::Criterion, "pyramid"),
+            row(RowKind::Regression, "falling_hinges"),
+        ];
+        let refs: Vec<&Row> = rows.iter().collect();
+        let text = validation_cover(&refs);
+        assert!(
+            text.starts_with("3 of the 5 rows are validation rows"),
+            "{text}"
+        );
+        assert!(text.contains("in 2 cases: spring 2, pyramid 1."), "{text}");
+        assert!(
+            text.contains("0 predicted_failure, 0 consistency, 1 regression, 1 criterion"),
+            "{text}"
+        );
+    }
     use crate::cases::CaseFigure;
     use crate::plots::{Chart, Series};
     use crate::row::Comparison;
