@@ -356,14 +356,12 @@ impl Replay {
                     }
                     let r = self.bodies[b].radius;
                     let kept = thin::keep_body(&run.times, &run.states, b, r, q_thin, tolerance);
-                    worst = worst.max(thin::max_error(
-                        &run.times,
-                        &run.states,
-                        b,
-                        r,
-                        q_thin,
-                        &kept,
-                    ));
+                    // A body whose samples are not finite (a blown-up run) cannot
+                    // be shown; the bound holds for every other body.
+                    let e = thin::max_error(&run.times, &run.states, b, r, q_thin, &kept);
+                    if e.is_finite() {
+                        worst = worst.max(e);
+                    }
                     kept
                 })
                 .collect();
@@ -396,6 +394,10 @@ impl Replay {
                 crate::pictures::sig(worst)
             ),
         };
+        anyhow::ensure!(
+            worst <= tolerance,
+            "the replay page would be {worst} m off a sample, over its bound {tolerance} m"
+        );
         notes.push(bound_note);
         // The size note states the size of the page without it; the note
         // adds a few dozen bytes.
