@@ -6,8 +6,8 @@
 //! body.
 //!
 //! The deviation is computed here, from the page's data decoded as the
-//! page's script decodes it (cumulative integer deltas times their
-//! quantum, linear interpolation in time between a body's kept samples)
+//! page's script decodes it (integer second differences summed twice,
+//! times their quantum, linear interpolation in time between a body's kept samples)
 //! and from the trace, not from what the page's builder claims. The run
 //! stops at 3 s (`--until`) to keep the test short: by then the first rows
 //! have landed on the floor and on each other, so the heap's contacts,
@@ -21,16 +21,17 @@ const BIN: &str = env!("CARGO_BIN_EXE_harness");
 /// Where the test's run stops (s).
 const UNTIL: &str = "3";
 
-/// Cumulative sums of integer deltas times `q`, as the page's script reads
-/// a channel.
+/// A channel's integer second differences summed twice, times `q`, as
+/// the page's script reads it.
 fn cumulative(deltas: &serde_json::Value, q: f64) -> Vec<f64> {
-    let mut n = 0_i64;
+    let (mut step, mut n) = (0_i64, 0_i64);
     deltas
         .as_array()
         .expect("a channel")
         .iter()
         .map(|d| {
-            n += d.as_i64().expect("an integer delta");
+            step += d.as_i64().expect("an integer difference");
+            n += step;
             n as f64 * q
         })
         .collect()

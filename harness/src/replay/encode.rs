@@ -1,6 +1,6 @@
 //! The replay's data as the page reads it: compact JSON, each moving
-//! body's channels quantised and delta-encoded, at the samples that body
-//! keeps.
+//! body's channels quantised and encoded as second differences, at the
+//! samples that body keeps.
 //!
 //! # Format (version 2)
 //!
@@ -25,8 +25,9 @@
 //!              "events": [{ "name", "t", "body": i | null, "at": [x, y] | null }] }] }
 //! ```
 //!
-//! A channel `c` with quantum `q` holds integers `d`: the value at frame
-//! `k` is `q × (d_0 + … + d_k)` (`k` with quantum 1). Between a body's kept
+//! A channel `c` with quantum `q` holds integers `d`, second differences:
+//! with `s_k = d_0 + … + d_k`, the value at frame `k` is
+//! `q × (s_0 + … + s_k)` (`k` with quantum 1). Between a body's kept
 //! samples the page interpolates linearly in time. Body parts are in the
 //! body frame, centred on the centre of mass (m). A body that never moves
 //! in a run is `fixed`.
@@ -46,15 +47,19 @@ pub fn quantum(magnitude: f64, digits: i32) -> f64 {
     10f64.powi(m.log10().floor() as i32 - digits + 1)
 }
 
-/// `values` quantised by `q` and delta-encoded.
+/// `values` quantised by `q` and encoded as second differences of the
+/// whole numbers: smooth motion sampled evenly gives small integers (a
+/// body's acceleration × dt² / q), evenly spaced times and consecutive
+/// indices give zeros.
 fn deltas(values: impl Iterator<Item = f64>, q: f64) -> Value {
-    let mut previous = 0_i64;
+    let (mut n1, mut d1) = (0_i64, 0_i64);
     let out: Vec<i64> = values
         .map(|v| {
             let n = (v / q).round() as i64;
-            let d = n - previous;
-            previous = n;
-            d
+            let d = n - n1;
+            let dd = d - d1;
+            (n1, d1) = (n, d);
+            dd
         })
         .collect();
     json!(out)
@@ -127,8 +132,8 @@ pub struct RunQuanta {
 }
 
 /// The quanta of `run` for a page whose bound is `tolerance` (m):
-/// positions to 6 digits of the view and at least ten times finer than the
-/// bound, angles to 1e-5 rad (coarser only past 1e7 rad) and at least ten
+/// positions ten to a hundred times finer than the bound (6 digits of the
+/// view when there is no bound), angles to 1e-5 rad (coarser only past 1e7 rad) and at least ten
 /// times finer than the bound over the largest moving radius (so rounding
 /// takes at most about a tenth of the bound; the thinning counts it),
 /// velocities to 6 digits (shown, not interpolated against the bound),
@@ -142,7 +147,10 @@ pub fn quanta(replay: &Replay, run: &ReplayRun, tolerance: f64) -> RunQuanta {
             f64::INFINITY
         }
     };
-    let q_p = quantum(replay.view_size(), 6).min(fine(tolerance));
+    let q_p = match fine(tolerance) {
+        q if q.is_finite() => q,
+        _ => quantum(replay.view_size(), 6),
+    };
     let max_of = |f: &dyn Fn(&BodyState) -> f64| {
         run.states
             .iter()
@@ -306,13 +314,19 @@ mod tests {
 
     #[test]
     fn deltas_sum_back_to_the_quantised_values() {
-        let values = [1.23456, 1.23466, -2.0, -2.0];
+        let values = [1.23456, 1.23466, -2.0, -2.0, 7.5];
         let d = deltas(values.iter().copied(), 1e-5);
         let d: Vec<i64> = serde_json::from_value(d).unwrap();
-        let mut sum = 0;
+        // Summed twice, as the page decodes them.
+        let (mut step, mut sum) = (0, 0);
         for (v, d) in values.iter().zip(d) {
-            sum += d;
+            step += d;
+            sum += step;
             assert!((sum as f64 * 1e-5 - v).abs() <= 0.5e-5 + 1e-12, "{v}");
         }
+        // Evenly spaced values: zeros after the first two.
+        let even: Vec<i64> =
+            serde_json::from_value(deltas((0..5).map(|i| 0.5 * i as f64), 0.5)).unwrap();
+        assert_eq!(even, [0, 1, 0, 0, 0]);
     }
 }

@@ -12,9 +12,10 @@
   var data = JSON.parse(document.getElementById('replay-data').textContent);
   var $ = function (id) { return document.getElementById(id); };
 
+  // A channel's second differences summed twice, times its quantum.
   function cumulative(d, q) {
-    var out = new Float64Array(d.length), n = 0;
-    for (var i = 0; i < d.length; i++) { n += d[i]; out[i] = n * q; }
+    var out = new Float64Array(d.length), step = 0, n = 0;
+    for (var i = 0; i < d.length; i++) { step += d[i]; n += step; out[i] = n * q; }
     return out;
   }
   function decimals(q) { return Math.max(0, Math.round(-Math.log10(q))); }
