@@ -11,7 +11,7 @@
 //! finest steps are the most asymptotic, and the median ignores one stray
 //! pair.
 
-use crate::row::Row;
+use crate::row::{Row, RowKind};
 use crate::sweep::{Sweep, SweepPoint};
 use engine::{Method, Tolerance};
 
@@ -93,7 +93,10 @@ pub fn order_rows(sweep: &Sweep) -> Vec<Row> {
         .map(|m| {
             let observed = observed_order(sweep, m.id());
             let finest = observed.used.last().map_or(f64::NAN, |p| p.h);
+            // The nominal order is the method's, from theory; the error
+            // is measured against the closed form.
             Row::new(
+                RowKind::Validation,
                 sweep.case,
                 "order",
                 m.id(),

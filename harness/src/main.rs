@@ -367,6 +367,7 @@ fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Resu
             d.display()
         ))
     );
+    print!("{}", report::console_kinds(&rows));
     if !reasons {
         println!(
             "Rows whose verdict is not obvious from their numbers show their reason (why:); \

@@ -46,13 +46,15 @@ fn draw(id: &str) -> Result<Drawn> {
     Ok(Drawn {
         id: id.to_owned(),
         note: format!(
-            "{} ({}; {:.0} kB)",
+            "{} ({}; within {} m of every sample; {:.0} kB)",
             runs.join(", "),
-            page.frames
+            page.samples
                 .iter()
-                .map(|f| format!("{f} frames"))
+                .zip(&page.frames)
+                .map(|(n, f)| format!("{n} samples, up to {f} kept per body"))
                 .collect::<Vec<_>>()
                 .join(", "),
+            crate::pictures::sig(page.tolerance),
             page.html.len() as f64 / 1024.0
         ),
         html: Some(page.html),

@@ -16,6 +16,80 @@ pub enum Comparison {
     AtMost,
 }
 
+/// What kind of evidence a row is: what its `expected` and `tolerance`
+/// come from. The report and the console count each kind, so "n rows pass"
+/// never mixes a check against an independent reference with a check
+/// against the code's own numbers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RowKind {
+    /// Against an independent closed form or a high-precision reference
+    /// (an exact solution, DOP853 at 1e-12, parry2d, exact arithmetic),
+    /// with a tolerance derived from the method, the step or the
+    /// reference's precision.
+    Validation,
+    /// A method failing the way stability theory predicts (growth,
+    /// blow-up, the stability limit), checked against that prediction.
+    PredictedFailure,
+    /// Against the solver's own error estimate (step doubling): evidence
+    /// that the error behaves as the method's order says, not that the
+    /// value is right to a known bound.
+    Consistency,
+    /// Against constants recorded from the code itself (hashes, steps,
+    /// snapshots): evidence that nothing changed, not that it is right.
+    Regression,
+    /// Against a bound chosen by hand (a figure quoted from docs/cases.md,
+    /// another engine's behaviour, a margin), with its source in `reason`.
+    Criterion,
+}
+
+impl RowKind {
+    /// Every kind, in the order the report counts them.
+    pub const ALL: [RowKind; 5] = [
+        RowKind::Validation,
+        RowKind::PredictedFailure,
+        RowKind::Consistency,
+        RowKind::Regression,
+        RowKind::Criterion,
+    ];
+
+    /// The snake_case id written to `summary.json`.
+    pub fn id(self) -> &'static str {
+        match self {
+            RowKind::Validation => "validation",
+            RowKind::PredictedFailure => "predicted_failure",
+            RowKind::Consistency => "consistency",
+            RowKind::Regression => "regression",
+            RowKind::Criterion => "criterion",
+        }
+    }
+
+    /// One line saying what rows of this kind prove.
+    pub fn meaning(self) -> &'static str {
+        match self {
+            RowKind::Validation => "against an independent closed form or high-precision reference",
+            RowKind::PredictedFailure => "a method failing as stability theory predicts",
+            RowKind::Consistency => "against the solver's own step-doubling error estimate",
+            RowKind::Regression => "against constants recorded from the code (hashes, steps)",
+            RowKind::Criterion => "against a bound chosen by hand (its source in the reason)",
+        }
+    }
+}
+
+/// The number of rows of each kind, in [`RowKind::ALL`]'s order, with the
+/// number of them that pass.
+pub fn count_kinds(rows: &[Row]) -> Vec<(RowKind, usize, usize)> {
+    RowKind::ALL
+        .iter()
+        .map(|&k| {
+            let of_kind = rows.iter().filter(|r| r.kind == k);
+            let n = of_kind.clone().count();
+            let passed = of_kind.filter(|r| r.pass).count();
+            (k, n, passed)
+        })
+        .collect()
+}
+
 /// A validation row of `reports/summary.json`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Row {
@@ -25,6 +99,8 @@ pub struct Row {
     pub check: String,
     /// Method id.
     pub method: String,
+    /// What kind of evidence the row is.
+    pub kind: RowKind,
     /// What else tells this row from a row of the same case, check, method
     /// and step (e.g. the stability axis); empty when nothing does.
     pub variant: String,
@@ -49,6 +125,7 @@ impl Row {
     /// value never passes.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
+        kind: RowKind,
         case: &str,
         check: &str,
         method: &str,
@@ -68,6 +145,7 @@ impl Row {
             case: case.into(),
             check: check.into(),
             method: method.into(),
+            kind,
             variant: String::new(),
             dt,
             value,
@@ -105,6 +183,7 @@ impl RowSink<'_> {
     /// Adds `|value − expected| ≤ tolerance`.
     pub fn within(
         &mut self,
+        kind: RowKind,
         check: &str,
         value: f64,
         expected: f64,
@@ -112,6 +191,7 @@ impl RowSink<'_> {
         reason: impl Into<String>,
     ) {
         self.push(
+            kind,
             check,
             value,
             expected,
@@ -124,6 +204,7 @@ impl RowSink<'_> {
     /// Adds `value ≥ expected − tolerance`.
     pub fn at_least(
         &mut self,
+        kind: RowKind,
         check: &str,
         value: f64,
         expected: f64,
@@ -131,6 +212,7 @@ impl RowSink<'_> {
         reason: impl Into<String>,
     ) {
         self.push(
+            kind,
             check,
             value,
             expected,
@@ -143,6 +225,7 @@ impl RowSink<'_> {
     /// Adds `value ≤ expected + tolerance`.
     pub fn at_most(
         &mut self,
+        kind: RowKind,
         check: &str,
         value: f64,
         expected: f64,
@@ -150,6 +233,7 @@ impl RowSink<'_> {
         reason: impl Into<String>,
     ) {
         self.push(
+            kind,
             check,
             value,
             expected,
@@ -159,8 +243,10 @@ impl RowSink<'_> {
         );
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn push(
         &mut self,
+        kind: RowKind,
         check: &str,
         value: f64,
         expected: f64,
@@ -169,6 +255,7 @@ impl RowSink<'_> {
         reason: impl Into<String>,
     ) {
         self.rows.push(Row::new(
+            kind,
             self.case,
             check,
             self.method,
@@ -179,5 +266,43 @@ impl RowSink<'_> {
             comparison,
             reason,
         ));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kinds_are_counted_with_their_verdicts_and_serialised_in_snake_case() {
+        let row = |kind, value: f64| {
+            Row::new(
+                kind,
+                "c",
+                "x",
+                "m",
+                0.1,
+                value,
+                0.0,
+                1.0,
+                Comparison::Within,
+                "r",
+            )
+        };
+        let rows = vec![
+            row(RowKind::Validation, 0.5),
+            row(RowKind::Validation, 2.0),
+            row(RowKind::PredictedFailure, 0.0),
+        ];
+        let counts = count_kinds(&rows);
+        assert_eq!(counts[0], (RowKind::Validation, 2, 1));
+        assert_eq!(counts[1], (RowKind::PredictedFailure, 1, 1));
+        assert!(counts[2..].iter().all(|&(_, n, p)| n == 0 && p == 0));
+        let json = serde_json::to_string(&rows[2]).unwrap();
+        assert!(json.contains(r#""kind":"predicted_failure""#), "{json}");
+        for kind in RowKind::ALL {
+            let json = serde_json::to_string(&kind).unwrap();
+            assert_eq!(json, format!("\"{}\"", kind.id()));
+        }
     }
 }

@@ -18,7 +18,7 @@
 //! Dormand–Prince is adaptive; its stability region is measured on its
 //! fixed-step fifth-order formula ([`engine::Integrator::single_step`]).
 
-use crate::row::{Comparison, Row};
+use crate::row::{Comparison, Row, RowKind};
 use crate::scenes;
 use anyhow::{Context, Result};
 use engine::{EngineError, FnSystem, Integrator, Method, Tolerance};
@@ -252,7 +252,8 @@ pub fn measure_all(problems: &[Problem]) -> Result<(Vec<Limit>, Vec<Row>)> {
                 "|h lambda|"
             };
             let theory = theory_limit(method, axis);
-            let mut row = |check: &str,
+            let mut row = |kind: RowKind,
+                           check: &str,
                            value: f64,
                            expected: f64,
                            tol: f64,
@@ -260,6 +261,7 @@ pub fn measure_all(problems: &[Problem]) -> Result<(Vec<Limit>, Vec<Row>)> {
                            reason: String| {
                 rows.push(
                     Row::new(
+                        kind,
                         case,
                         check,
                         method.id(),
@@ -284,6 +286,7 @@ pub fn measure_all(problems: &[Problem]) -> Result<(Vec<Limit>, Vec<Row>)> {
                     )?;
                     let value = found.map_or(f64::NAN, |h| h * scale);
                     row(
+                        RowKind::PredictedFailure,
                         "stability_limit",
                         value,
                         limit,
@@ -300,6 +303,7 @@ pub fn measure_all(problems: &[Problem]) -> Result<(Vec<Limit>, Vec<Row>)> {
                     let h = 1000.0 / scale;
                     let stable = is_stable(scene, method, axis, h)?;
                     row(
+                        RowKind::Validation,
                         "stable_at_1000",
                         f64::from(u8::from(stable)),
                         1.0,
@@ -322,6 +326,7 @@ pub fn measure_all(problems: &[Problem]) -> Result<(Vec<Limit>, Vec<Row>)> {
                     )
                     .map_or(f64::NAN, |g| g - 1.0);
                     row(
+                        RowKind::PredictedFailure,
                         "growth_per_step_at_0.05",
                         measured,
                         expected,

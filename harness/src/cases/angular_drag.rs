@@ -8,7 +8,7 @@ use super::{
     Case, CaseReport, FigureOutput, FigureSection, Headline, Snapshots, StudyFigure, sample_at,
 };
 use crate::plots::trajectories::ScalarFigure;
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use crate::scenes;
 use crate::sweep::{SweepCase, rapier_runner, step_world};
 use anyhow::Result;
@@ -55,6 +55,7 @@ pub fn run() -> Result<CaseReport> {
         rows: &mut report.rows,
     }
     .within(
+        RowKind::Validation,
         "theta_8.7",
         s.angle,
         exact.theta(8.7),

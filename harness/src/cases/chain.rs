@@ -33,7 +33,7 @@
 
 use super::joint_common::{Config, Engine, JointScene, Run, SoftRows, steps};
 use super::{Case, CaseReport, Headline, Snapshots};
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use anyhow::{Result, bail};
 use engine::Shape;
 use references::catenary::{Catenary, DiscreteChain};
@@ -251,6 +251,7 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
             }
         );
         sink.at_most(
+            RowKind::Validation,
             "pins_vs_elastic",
             vs_elastic,
             0.0,
@@ -264,6 +265,7 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
             ),
         );
         sink.at_most(
+            RowKind::Validation,
             "pins_vs_rigid",
             vs_rigid,
             0.0,

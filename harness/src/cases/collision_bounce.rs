@@ -9,7 +9,7 @@ use super::collision_common::{
     soft_step_sink,
 };
 use super::collision_plots::{Series, apex_chart, figure};
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use anyhow::{Context, Result, ensure};
 use engine::validation::collision::Aabb;
 use engine::{Body, ContactEventKind, Shape};
@@ -160,6 +160,7 @@ fn elastic(report: &mut CaseReport) -> Result<[Series; 3]> {
         rows: &mut report.rows,
     };
     sink.within(
+        RowKind::Validation,
         "apex_count_e1",
         apexes.len() as f64,
         100.0,
@@ -167,6 +168,7 @@ fn elastic(report: &mut CaseReport) -> Result<[Series; 3]> {
         "100 apexes of the ball in 91 s (apex n at 2n sqrt(2 h0/g) = 0.9032 n s)",
     );
     sink.at_most(
+        RowKind::Validation,
         "apex_drift_per_bounce_e1",
         drift,
         0.0,
@@ -176,6 +178,7 @@ fn elastic(report: &mut CaseReport) -> Result<[Series; 3]> {
          hence the apex, is kept whatever the residual gap (< ε) at the impact",
     );
     sink.within(
+        RowKind::Validation,
         "apex_100_e1",
         apexes[99],
         geo.h0,
@@ -185,6 +188,7 @@ fn elastic(report: &mut CaseReport) -> Result<[Series; 3]> {
     let e0 = run.trace.samples[0].energy;
     let e_end = run.trace.last().context("samples")?.energy;
     sink.within(
+        RowKind::Validation,
         "energy_end_e1",
         e_end,
         e0,
@@ -193,6 +197,7 @@ fn elastic(report: &mut CaseReport) -> Result<[Series; 3]> {
          reflections; 1e-9 relative covers the round-off of 9100 steps",
     );
     sink.within(
+        RowKind::Validation,
         "impact_count_e1",
         impacts.len() as f64,
         101.0,
@@ -209,6 +214,7 @@ fn elastic(report: &mut CaseReport) -> Result<[Series; 3]> {
     let v0 = (2.0 * geo.g * geo.h0).sqrt();
     let model_bound = RAPIER_LOSS_FACTOR * v0 * rdt / rap[9];
     rapier_row(
+        RowKind::Criterion,
         &mut report.rows,
         "collision_bounce",
         rdt,
@@ -233,6 +239,7 @@ fn elastic(report: &mut CaseReport) -> Result<[Series; 3]> {
         rows: &mut report.rows,
     }
     .at_most(
+        RowKind::Criterion,
         "apex_count_e1",
         rap.len() as f64,
         100.0,
@@ -299,6 +306,7 @@ fn restitution_08(report: &mut CaseReport) -> Result<[Series; 3]> {
         let n = i + 1;
         let want = expected(n);
         sink.within(
+            RowKind::Validation,
             &format!("apex_{n}_e0.8"),
             *h,
             want,
@@ -313,6 +321,7 @@ fn restitution_08(report: &mut CaseReport) -> Result<[Series; 3]> {
     let s = run.world.states()[geo.ball];
     let rest_height = s.position.y - geo.radius - geo.top;
     sink.within(
+        RowKind::Validation,
         "rest_height_e0.8",
         rest_height,
         0.0,
@@ -321,6 +330,7 @@ fn restitution_08(report: &mut CaseReport) -> Result<[Series; 3]> {
          m/s are given up), its bottom within the contact slop 4 ε = 4e-10 m of the surface",
     );
     sink.within(
+        RowKind::Validation,
         "rest_speed_e0.8",
         s.velocity.norm(),
         0.0,
@@ -336,6 +346,7 @@ fn restitution_08(report: &mut CaseReport) -> Result<[Series; 3]> {
     // have lasted Σ_k 2 e^k v / g = 2 e v/(g (1 - e)) <= 2 v_rest/(g (1 - e)).
     let given_up = 2.0 * v_rest / (geo.g * (1.0 - e));
     sink.within(
+        RowKind::Validation,
         "rest_time_e0.8",
         rest_time,
         zeno,
@@ -364,6 +375,7 @@ fn restitution_08(report: &mut CaseReport) -> Result<[Series; 3]> {
         let v_k = (2.0 * geo.g * expected(n - 1)).sqrt();
         bound += RAPIER_LOSS_FACTOR * v_k * rdt / want;
         rapier_row(
+            RowKind::Validation,
             &mut report.rows,
             "collision_bounce",
             rdt,
@@ -466,6 +478,7 @@ fn soft_step_elastic(report: &mut CaseReport) -> Result<()> {
     let v0 = (2.0 * geo.g * geo.h0).sqrt();
     let mut sink = soft_step_sink(&mut report.rows, "collision_bounce", &run);
     sink.at_most(
+        RowKind::Validation,
         "apex_change_per_bounce_e1",
         worst,
         0.0,
@@ -476,6 +489,7 @@ fn soft_step_elastic(report: &mut CaseReport) -> Result<()> {
          pushes out, and symplectic Euler tops out h v/2 lower",
     );
     sink.within(
+        RowKind::Validation,
         "apex_loss_per_bounce_e1",
         loss,
         0.0,
@@ -521,6 +535,7 @@ fn soft_step_08(report: &mut CaseReport) -> Result<()> {
     for n in 1..=apexes.len().min(expected_count) {
         let (before, apex) = (heights[n - 1], heights[n]);
         sink.within(
+            RowKind::Validation,
             &format!("apex_{n}_e0.8"),
             apex,
             e * e * before,
@@ -533,6 +548,7 @@ fn soft_step_08(report: &mut CaseReport) -> Result<()> {
         );
     }
     sink.within(
+        RowKind::Consistency,
         "bounce_count_e0.8",
         apexes.len() as f64,
         expected_count as f64,

@@ -259,6 +259,7 @@ pub fn kinetic_energy(bodies: &[Body], states: &[engine::BodyState]) -> f64 {
 /// soft-contact or step quantisation), not an accuracy goal.
 #[allow(clippy::too_many_arguments)]
 pub fn rapier_row(
+    kind: crate::row::RowKind,
     rows: &mut Vec<crate::row::Row>,
     case: &str,
     dt: f64,
@@ -274,7 +275,7 @@ pub fn rapier_row(
         dt,
         rows,
     }
-    .within(check, value, expected, bound, reason);
+    .within(kind, check, value, expected, bound, reason);
 }
 
 /// Relative size of the round-off of the few operations that compute an

@@ -8,7 +8,7 @@ use super::collision_common::{
     run_soft_step, soft_step_sink,
 };
 use super::{Case, CaseReport, Headline, Snapshots};
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use anyhow::{Context, Result, ensure};
 use engine::ContactEventKind;
 
@@ -66,6 +66,7 @@ fn head_on(report: &mut CaseReport, id: &str, e: f64, v1: f64, v2: f64) -> Resul
          (docs/cases.md)"
     );
     sink.within(
+        RowKind::Validation,
         &format!("v1_after_{tag}"),
         s[a].velocity.x,
         v1,
@@ -73,6 +74,7 @@ fn head_on(report: &mut CaseReport, id: &str, e: f64, v1: f64, v2: f64) -> Resul
         &why,
     );
     sink.within(
+        RowKind::Validation,
         &format!("v2_after_{tag}"),
         s[b].velocity.x,
         v2,
@@ -80,6 +82,7 @@ fn head_on(report: &mut CaseReport, id: &str, e: f64, v1: f64, v2: f64) -> Resul
         &why,
     );
     sink.within(
+        RowKind::Validation,
         &format!("momentum_{tag}"),
         m1 * s[a].velocity.x + m2 * s[b].velocity.x,
         m1 * 2.0,
@@ -87,6 +90,7 @@ fn head_on(report: &mut CaseReport, id: &str, e: f64, v1: f64, v2: f64) -> Resul
         "momentum m1 v1 + m2 v2 = 2 kg·m/s is kept by equal and opposite impulses; round-off, 1e-12 (docs/cases.md)",
     );
     sink.within(
+        RowKind::Validation,
         &format!("kinetic_energy_{tag}"),
         kinetic_energy(run.world.bodies(), s),
         energy_after,
@@ -94,6 +98,7 @@ fn head_on(report: &mut CaseReport, id: &str, e: f64, v1: f64, v2: f64) -> Resul
         "½ m1 v1'² + ½ m2 v2'² of the closed-form velocities (2 J kept for e = 1); round-off",
     );
     sink.within(
+        RowKind::Validation,
         &format!("impulse_{tag}"),
         impacts[0].normal_impulse,
         j,
@@ -104,6 +109,7 @@ fn head_on(report: &mut CaseReport, id: &str, e: f64, v1: f64, v2: f64) -> Resul
     let gap = (defs[b].state.position.x - defs[a].state.position.x) - 1.0;
     let t_hit = gap / 2.0;
     sink.within(
+        RowKind::Validation,
         &format!("impact_time_{tag}"),
         impacts[0].t,
         t_hit,
@@ -133,6 +139,7 @@ fn head_on(report: &mut CaseReport, id: &str, e: f64, v1: f64, v2: f64) -> Resul
          {contact_steps} step(s) with a contact impulse"
     );
     rapier_row(
+        RowKind::Validation,
         rows,
         case,
         rdt,
@@ -143,6 +150,7 @@ fn head_on(report: &mut CaseReport, id: &str, e: f64, v1: f64, v2: f64) -> Resul
         &model,
     );
     rapier_row(
+        RowKind::Validation,
         rows,
         case,
         rdt,
@@ -153,6 +161,7 @@ fn head_on(report: &mut CaseReport, id: &str, e: f64, v1: f64, v2: f64) -> Resul
         &model,
     );
     rapier_row(
+        RowKind::Validation,
         rows,
         case,
         rdt,
@@ -193,9 +202,10 @@ fn soft_step(report: &mut CaseReport, id: &str, (v1, v2): (f64, f64)) -> Result<
                speculative distance): the step's impulses act at one point along one normal \
                and the restitution pass ends at −e × the approach speed, so eq. 7.15 holds \
                to round-off, 1e-12";
-    sink.within(&format!("v1_after_{tag}"), s[a].velocity.x, v1, IMPULSE_ROUND_OFF, why);
-    sink.within(&format!("v2_after_{tag}"), s[b].velocity.x, v2, IMPULSE_ROUND_OFF, why);
+    sink.within(RowKind::Validation, &format!("v1_after_{tag}"), s[a].velocity.x, v1, IMPULSE_ROUND_OFF, why);
+    sink.within(RowKind::Validation, &format!("v2_after_{tag}"), s[b].velocity.x, v2, IMPULSE_ROUND_OFF, why);
     sink.within(
+        RowKind::Validation,
         &format!("momentum_{tag}"),
         s[a].velocity.x + 3.0 * s[b].velocity.x,
         2.0,

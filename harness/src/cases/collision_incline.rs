@@ -9,7 +9,7 @@ use super::collision_common::{
     run_engine, run_rapier,
 };
 use super::{Case, CaseReport, Headline, Snapshots};
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use anyhow::Result;
 use nalgebra::Vector2;
 
@@ -61,6 +61,7 @@ fn incline(report: &mut CaseReport, id: &str, slides: bool) -> Result<()> {
     if slides {
         let measured = 2.0 * moved.dot(&down) / (t_end * t_end);
         sink.within(
+            RowKind::Validation,
             "acceleration_slide",
             measured,
             a,
@@ -73,6 +74,7 @@ fn incline(report: &mut CaseReport, id: &str, slides: bool) -> Result<()> {
         );
     } else {
         sink.at_most(
+            RowKind::Validation,
             "motion_hold",
             moved.norm(),
             0.0,
@@ -81,6 +83,7 @@ fn incline(report: &mut CaseReport, id: &str, slides: bool) -> Result<()> {
         );
     }
     sink.at_most(
+        RowKind::Validation,
         &format!("normal_drift_{tag}"),
         moved.dot(&normal).abs(),
         0.0,
@@ -89,6 +92,7 @@ fn incline(report: &mut CaseReport, id: &str, slides: bool) -> Result<()> {
          relative normal acceleration at 0); 1e-9 m",
     );
     sink.at_most(
+        RowKind::Validation,
         &format!("rotation_{tag}"),
         (end.angle - theta).abs(),
         0.0,
@@ -111,6 +115,7 @@ fn incline(report: &mut CaseReport, id: &str, slides: bool) -> Result<()> {
     if slides {
         let measured = 2.0 * rmoved.dot(&down) / (rt * rt);
         rs.within(
+            RowKind::Criterion,
             "acceleration_slide",
             measured,
             a,
@@ -120,6 +125,7 @@ fn incline(report: &mut CaseReport, id: &str, slides: bool) -> Result<()> {
         );
     } else {
         rs.at_most(
+            RowKind::Criterion,
             "motion_hold",
             rmoved.norm(),
             0.0,
@@ -169,6 +175,7 @@ fn soft_step(report: &mut CaseReport, id: &str, slides: bool, a: f64) -> Result<
     if slides {
         let measured = (end.velocity - early.velocity).dot(&down) / (t_end - t1);
         sink.within(
+            RowKind::Validation,
             "acceleration_slide",
             measured,
             a,
@@ -180,6 +187,7 @@ fn soft_step(report: &mut CaseReport, id: &str, slides: bool, a: f64) -> Result<
     } else {
         let moved = (end.position - early.position).norm();
         sink.at_most(
+            RowKind::Validation,
             "motion_hold",
             moved,
             0.0,

@@ -8,7 +8,7 @@ use super::collision_common::{
     run_soft_step, soft_step_sink,
 };
 use super::{Case, CaseReport, Headline, Snapshots};
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use crate::scenes;
 use anyhow::{Context, Result, ensure};
 use engine::validation::contact::{ImpactBody, ImpactOutcome, Velocities, impact_eq_7_15};
@@ -208,9 +208,10 @@ fn off_centre(report: &mut CaseReport, id: &str, e: f64) -> Result<()> {
         ("omega_b_after", s[ib].angular_velocity, o.b.angular),
         ("impulse", hit.normal_impulse, o.impulse),
     ] {
-        sink.within(&format!("{check}_{tag}"), value, expected, tol, &why);
+        sink.within(RowKind::Validation, &format!("{check}_{tag}"), value, expected, tol, &why);
     }
     sink.within(
+        RowKind::Validation,
         &format!("impact_time_{tag}"),
         hit.t,
         closed.t_hit,
@@ -223,6 +224,7 @@ fn off_centre(report: &mut CaseReport, id: &str, e: f64) -> Result<()> {
     let p0 = ma * a0.velocity + mb * b0.velocity;
     let p = ma * s[ia].velocity + mb * s[ib].velocity;
     sink.within(
+        RowKind::Validation,
         &format!("momentum_x_{tag}"),
         p.x,
         p0.x,
@@ -230,6 +232,7 @@ fn off_centre(report: &mut CaseReport, id: &str, e: f64) -> Result<()> {
         "linear momentum is kept by equal and opposite impulses (eq. 7.11-7.12); round-off, 1e-12",
     );
     sink.within(
+        RowKind::Validation,
         &format!("momentum_y_{tag}"),
         p.y,
         p0.y,
@@ -248,6 +251,7 @@ fn off_centre(report: &mut CaseReport, id: &str, e: f64) -> Result<()> {
         + mb * cross(s[ib].position, s[ib].velocity)
         + ib_ * s[ib].angular_velocity;
     sink.within(
+        RowKind::Validation,
         &format!("angular_momentum_{tag}"),
         l1,
         l0,
@@ -257,6 +261,7 @@ fn off_centre(report: &mut CaseReport, id: &str, e: f64) -> Result<()> {
     let ke = kinetic_energy(run.world.bodies(), s);
     if e == 1.0 {
         sink.within(
+            RowKind::Validation,
             "kinetic_energy_e1",
             ke,
             0.5 * ma * 4.0,
@@ -269,6 +274,7 @@ fn off_centre(report: &mut CaseReport, id: &str, e: f64) -> Result<()> {
             + 0.5 * mb * o.b.linear.norm_squared()
             + 0.5 * ib_ * o.b.angular * o.b.angular;
         sink.within(
+            RowKind::Validation,
             "kinetic_energy_e0.5",
             ke,
             expected,
@@ -299,6 +305,7 @@ fn off_centre(report: &mut CaseReport, id: &str, e: f64) -> Result<()> {
         ("omega_b_after", last[ib].angular_velocity, o.b.angular),
     ] {
         rapier_row(
+            RowKind::Validation,
             &mut report.rows,
             case,
             rdt,
@@ -314,6 +321,7 @@ fn off_centre(report: &mut CaseReport, id: &str, e: f64) -> Result<()> {
         ma * last[ia].velocity[1] + mb * last[ib].velocity[1],
     ];
     rapier_row(
+        RowKind::Validation,
         &mut report.rows,
         case,
         rdt,
@@ -329,6 +337,7 @@ fn off_centre(report: &mut CaseReport, id: &str, e: f64) -> Result<()> {
             + 0.5 * mb * (last[ib].velocity[0].powi(2) + last[ib].velocity[1].powi(2))
             + 0.5 * ib_ * last[ib].angular_velocity.powi(2);
         rapier_row(
+            RowKind::Validation,
             &mut report.rows,
             case,
             rdt,
@@ -389,7 +398,7 @@ fn soft_step(report: &mut CaseReport, id: &str, o: &ImpactOutcome, e: f64) -> Re
         ("vb_y_after", s[ib].velocity.y, o.b.linear.y),
         ("omega_b_after", s[ib].angular_velocity, o.b.angular),
     ] {
-        sink.within(&format!("{check}_{tag}"), value, expected, IMPULSE_ROUND_OFF, why);
+        sink.within(RowKind::Validation, &format!("{check}_{tag}"), value, expected, IMPULSE_ROUND_OFF, why);
     }
     Ok(())
 }

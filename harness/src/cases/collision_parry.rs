@@ -15,7 +15,7 @@
 //!   checked to lie on the boundaries.
 
 use super::{Case, CaseReport, Headline, Snapshots};
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use anyhow::Result;
 use engine::validation::collision::{collide, distance_polygon_polygon, separation_polygon_polygon};
 use engine::{ConvexPolygon, Shape};
@@ -260,6 +260,7 @@ pub fn report(random: &Agreement, near: &Agreement) -> CaseReport {
         };
         let compared = s.pairs - s.near_touching;
         sink.within(
+            RowKind::Criterion,
             &format!("pairs_compared{tag}"),
             compared as f64,
             s.pairs as f64,
@@ -272,6 +273,7 @@ pub fn report(random: &Agreement, near: &Agreement) -> CaseReport {
         );
         let parry_wrong = s.verdict_engine_right;
         sink.at_least(
+            RowKind::Validation,
             &format!("verdict_agreement_rate{tag}"),
             1.0 - s.verdict_disagreements as f64 / compared.max(1) as f64,
             1.0,
@@ -285,6 +287,7 @@ pub fn report(random: &Agreement, near: &Agreement) -> CaseReport {
             ),
         );
         sink.at_most(
+            RowKind::Validation,
             &format!("max_depth_difference{tag}"),
             s.max_depth_diff,
             0.0,
@@ -296,6 +299,7 @@ pub fn report(random: &Agreement, near: &Agreement) -> CaseReport {
             ),
         );
         sink.at_most(
+            RowKind::Validation,
             &format!("max_normal_difference{tag}"),
             s.max_normal_diff,
             0.0,
@@ -303,6 +307,7 @@ pub fn report(random: &Agreement, near: &Agreement) -> CaseReport {
             "largest |engine normal - parry normal| over the overlapping pairs; docs/cases.md: 1e-9",
         );
         sink.at_most(
+            RowKind::Validation,
             &format!("max_distance_difference{tag}"),
             s.max_distance_diff,
             0.0,
@@ -311,6 +316,7 @@ pub fn report(random: &Agreement, near: &Agreement) -> CaseReport {
              vertex-edge distance against GJK; 1e-9",
         );
         sink.within(
+            RowKind::Validation,
             &format!("pairs_engine_worse{tag}"),
             (s.engine_worse + s.verdict_disagreements - s.verdict_engine_right) as f64,
             0.0,
@@ -319,6 +325,7 @@ pub fn report(random: &Agreement, near: &Agreement) -> CaseReport {
              inside the other polygon) finds the engine wrong: none",
         );
         sink.at_least(
+            RowKind::Criterion,
             &format!("pairs_parry_worse{tag}"),
             (s.parry_worse + s.verdict_engine_right) as f64,
             0.0,

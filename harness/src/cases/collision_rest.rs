@@ -7,7 +7,7 @@ use super::collision_common::{
     RAPIER, STILL, rapier_position, rapier_settings, run_engine, run_rapier,
 };
 use super::{Case, CaseReport, Headline, Snapshots};
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use anyhow::Result;
 
 /// A box resting on the ground.
@@ -44,6 +44,7 @@ pub fn run() -> Result<CaseReport> {
         rows: &mut report.rows,
     };
     sink.at_most(
+        RowKind::Validation,
         "motion",
         motion,
         0.0,
@@ -52,6 +53,7 @@ pub fn run() -> Result<CaseReport> {
          force equals the weight at every evaluation: nothing sinks, nothing is corrected)",
     );
     sink.at_most(
+        RowKind::Validation,
         "rotation",
         (end.angle - start.angle).abs(),
         0.0,
@@ -60,6 +62,7 @@ pub fn run() -> Result<CaseReport> {
          round-off",
     );
     sink.at_most(
+        RowKind::Validation,
         "speed",
         end.velocity.norm(),
         0.0,
@@ -68,6 +71,7 @@ pub fn run() -> Result<CaseReport> {
     );
     let events = run.world.contact_events();
     sink.within(
+        RowKind::Validation,
         "contact_events",
         events.len() as f64,
         1.0,
@@ -92,6 +96,7 @@ pub fn run() -> Result<CaseReport> {
         rows: &mut report.rows,
     }
     .at_most(
+        RowKind::Validation,
         "motion",
         rmotion,
         0.0,
@@ -130,6 +135,7 @@ fn soft_step(report: &mut CaseReport, id: &str) -> Result<()> {
     let settled = super::collision_common::engine_motion_after(&run, b, 1.0);
     let mut sink = soft_step_sink(&mut report.rows, "collision_rest", &run);
     sink.within(
+        RowKind::Validation,
         "sink",
         start.position.y - end.position.y,
         sink_depth,
@@ -141,6 +147,7 @@ fn soft_step(report: &mut CaseReport, id: &str) -> Result<()> {
         ),
     );
     sink.at_most(
+        RowKind::Validation,
         "motion_after_settling",
         settled,
         0.0,
@@ -148,6 +155,7 @@ fn soft_step(report: &mut CaseReport, id: &str) -> Result<()> {
         "distance moved from 1 s to 10 s, once the contact has settled; docs/cases.md's 1e-9 m",
     );
     sink.at_most(
+        RowKind::Validation,
         "drift_x",
         (end.position.x - start.position.x).abs(),
         0.0,

@@ -9,7 +9,7 @@ use super::collision_common::{
 };
 use super::collision_plots::{Series, difference_chart, figure, time_chart};
 use super::{Case, CaseReport, Headline, Snapshots};
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use anyhow::Result;
 use engine::ContactEventKind;
 
@@ -45,6 +45,7 @@ pub fn run() -> Result<CaseReport> {
         rows: &mut report.rows,
     };
     sink.within(
+        RowKind::Validation,
         "stopping_distance",
         end.position.x - start.position.x,
         distance,
@@ -55,6 +56,7 @@ pub fn run() -> Result<CaseReport> {
     );
     let stick = run.events(ContactEventKind::Stick);
     sink.within(
+        RowKind::Validation,
         "stopping_time",
         stick.first().map_or(f64::NAN, |e| e.t),
         stop,
@@ -63,6 +65,7 @@ pub fn run() -> Result<CaseReport> {
          1e-15 relative on the method's own (exact, linear) velocity; 1e-9 relative",
     );
     sink.within(
+        RowKind::Validation,
         "speed_after_stop",
         end.velocity.norm(),
         0.0,
@@ -71,6 +74,7 @@ pub fn run() -> Result<CaseReport> {
          speed 0 to round-off",
     );
     sink.at_most(
+        RowKind::Validation,
         "motion_after_stop",
         engine_motion_after(&run, b, stop.ceil()),
         0.0,
@@ -79,6 +83,7 @@ pub fn run() -> Result<CaseReport> {
          that must not move",
     );
     sink.at_most(
+        RowKind::Validation,
         "vertical_drift",
         (end.position.y - start.position.y).abs(),
         0.0,
@@ -117,6 +122,7 @@ pub fn run() -> Result<CaseReport> {
     };
     let sink_depth = start.position.y - rapier_position(&rapier, last, b).y;
     rs.within(
+        RowKind::Validation,
         "stopping_distance",
         travelled,
         distance,
@@ -129,6 +135,7 @@ pub fn run() -> Result<CaseReport> {
         ),
     );
     rs.within(
+        RowKind::Validation,
         "stopping_time",
         rstop,
         stop,
@@ -137,6 +144,7 @@ pub fn run() -> Result<CaseReport> {
          one substep of v0/(mu g)",
     );
     rs.at_most(
+        RowKind::Criterion,
         "speed_after_stop",
         jitter,
         0.0,
@@ -244,6 +252,7 @@ fn soft_step(report: &mut CaseReport, id: &str, (v0, a): (f64, f64)) -> Result<(
     let dt = run.scene.dt();
     let mut sink = soft_step_sink(&mut report.rows, "collision_slide", &run);
     sink.within(
+        RowKind::Validation,
         "stopping_distance",
         end.position.x - start.position.x,
         expected,
@@ -257,6 +266,7 @@ fn soft_step(report: &mut CaseReport, id: &str, (v0, a): (f64, f64)) -> Result<(
         ),
     );
     sink.at_most(
+        RowKind::Validation,
         "speed_after_stop",
         end.velocity.norm(),
         0.0,

@@ -8,7 +8,7 @@
 
 use super::{Case, CaseReport, Headline, Snapshots};
 use super::collision_common::{RAPIER, rapier_settings, run_rapier};
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use crate::scenes;
 use anyhow::{Context, Result};
 use engine::validation::collision::{Motion, ToiOptions, toi_bisection, toi_conservative_advancement};
@@ -91,6 +91,7 @@ pub fn run() -> Result<CaseReport> {
         rows: &mut report.rows,
     }
     .within(
+        RowKind::Validation,
         "toi_rotating_closed_form",
         exact_rotating,
         ROTATING_TOI,
@@ -121,6 +122,7 @@ pub fn run() -> Result<CaseReport> {
                 rows: &mut report.rows,
             };
             sink.within(
+                RowKind::Validation,
                 &format!("toi_world_{name}{tag}"),
                 hit.t,
                 exact,
@@ -134,6 +136,7 @@ pub fn run() -> Result<CaseReport> {
             );
             if omega != 0.0 {
                 sink.within(
+                    RowKind::Validation,
                     &format!("toi_world_{name}_vs_cases_md"),
                     hit.t,
                     ROTATING_TOI,
@@ -165,6 +168,7 @@ pub fn run() -> Result<CaseReport> {
                 rows: &mut report.rows,
             }
             .within(
+                RowKind::Validation,
                 &format!("toi_{name}{tag}"),
                 hit.time,
                 exact,
@@ -201,6 +205,7 @@ pub fn run() -> Result<CaseReport> {
             rows: &mut report.rows,
         };
         sink.within(
+            RowKind::Validation,
             &format!("toi_{}{tag}", parry.method),
             parry.time,
             exact,
@@ -214,6 +219,7 @@ pub fn run() -> Result<CaseReport> {
         );
         for (name, t) in &world_times {
             sink.within(
+                RowKind::Validation,
                 &format!("toi_world_{name}_minus_parry{tag}"),
                 t - parry.time,
                 0.0,
@@ -234,6 +240,7 @@ pub fn run() -> Result<CaseReport> {
             rows: &mut report.rows,
         }
         .within(
+            RowKind::Validation,
             &format!("first_contact_step{tag}"),
             first,
             exact,

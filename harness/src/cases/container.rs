@@ -17,7 +17,7 @@
 
 use super::soft_step_common::SOFT_STEP;
 use super::{Case, CaseReport, Snapshots};
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use crate::scenes;
 use crate::timing::min_time;
 use anyhow::{Context, Result, bail};
@@ -160,9 +160,10 @@ pub fn run() -> Result<CaseReport> {
         rows,
     };
     let outside_1000 = interior.outside(&world);
-    sink.at_most("outside_1000", outside_1000 as f64, 0.0, 0.0, OUTSIDE);
+    sink.at_most(RowKind::Criterion, "outside_1000", outside_1000 as f64, 0.0, 0.0, OUTSIDE);
     let fastest_1000 = fastest(&world);
     sink.at_most(
+        RowKind::Criterion,
         "fastest_at_end_1000",
         fastest_1000,
         0.0,
@@ -190,6 +191,7 @@ pub fn run() -> Result<CaseReport> {
         rows,
     };
     sink.at_most(
+        RowKind::Criterion,
         "below_ground_20",
         below as f64,
         0.0,
@@ -199,6 +201,7 @@ pub fn run() -> Result<CaseReport> {
     let e0 = scene.build_world(None)?.energy();
     let e1 = world.energy();
     sink.at_most(
+        RowKind::Validation,
         "energy_gain_20",
         (e1 - e0) / e0.abs(),
         0.0,
@@ -231,11 +234,12 @@ pub fn run() -> Result<CaseReport> {
         rows,
     };
     let outside_10k = interior.outside(&world);
-    sink.at_most("outside_10k", outside_10k as f64, 0.0, 0.0, OUTSIDE);
+    sink.at_most(RowKind::Criterion, "outside_10k", outside_10k as f64, 0.0, 0.0, OUTSIDE);
     let mass = total_dynamic_mass(&world);
     let settled = 0.5 * mass * v_rest * v_rest;
     let kinetic = kinetic_energy(&world);
     sink.at_most(
+        RowKind::Criterion,
         "kinetic_energy_at_end_10k",
         kinetic,
         0.0,

@@ -28,7 +28,7 @@
 
 use super::joint_common::{Config, Engine, JointScene, Run, steps};
 use super::{Case, CaseReport, Headline, Snapshots};
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use crate::tolerance::{RICHARDSON_FACTOR, richardson_error};
 use anyhow::{Result, bail};
 use engine::Shape;
@@ -224,6 +224,7 @@ pub fn run_sized(size: Size) -> Result<CaseReport> {
                 RICHARDSON_FACTOR * richardson_error(e[i], e2[i], 1).abs() + r.error_estimate;
             let t = r.time;
             sink.within(
+                RowKind::Consistency,
                 &format!("{name}_{}s", trim(t)),
                 e[i],
                 0.0,
@@ -234,7 +235,9 @@ pub fn run_sized(size: Size) -> Result<CaseReport> {
                      (Richardson) estimate of the soft step's own error at order 1, from the scene \
                      at h/2 = 1/480 s with its joints at 120 Hz, plus the reference's estimate. \
                      t is before the chaos horizon {horizon:.2} s (δ0 = {delta0:.1e} rad, the \
-                     soft step's error after its first step)",
+                     soft step's error after its first step). 1.5 is a chosen margin, covering a \
+                     next-order term up to 2^1 - 1 = 1 x the leading one \
+                     (harness/src/tolerance.rs)",
                     name.replace('_', " "),
                     [
                         r.state.angles[0],
@@ -253,6 +256,7 @@ pub fn run_sized(size: Size) -> Result<CaseReport> {
     let drift = (final_energy(&js, &soft, bodies) - e0) / scale;
     let drift_half = (final_energy(&js, &half, bodies) - e0) / scale;
     sink.within(
+        RowKind::Consistency,
         &format!("energy_{}s", trim(size.seconds)),
         drift,
         0.0,
@@ -261,17 +265,18 @@ pub fn run_sized(size: Size) -> Result<CaseReport> {
             "mean energy over the last second of {} s minus the initial energy, over m g × 1 m = \
              {scale:.2} J (h/2: {drift_half:+.3e}; the mean over a second damps symplectic \
              Euler's O(h) energy oscillation). Tolerance: 1.5 x the step-doubling estimate at \
-             order 1, from the scene at h/2 with its joints at 120 Hz. The energy stays a \
-             meaningful measure past the horizon: it needs no trajectory to follow",
+             order 1, from the scene at h/2 with its joints at 120 Hz (1.5: a chosen margin, \
+             covering a next-order term up to 1 x the leading one, harness/src/tolerance.rs). \
+             The energy stays a meaningful measure past the horizon: it needs no trajectory to \
+             follow",
             size.seconds
         ),
     );
     report.notes.push(format!(
         "The horizon: a reference known to δ0 = {delta0:.2e} rad (the soft step's angle error \
          after its first step of 1/60 s) predicts the motion to 1e-3 rad for {horizon:.2} s \
-         (references' divergence_time); the rows compare every {EVERY} s before it. The \
-         soft step's errors keep halving with h well past it (to about 6 s here), then chaos \
-         separates every run. DOP853's own energy drift over those times: {:.1e} J.",
+         (references' divergence_time); the rows compare every {EVERY} s before it. Past it \
+         chaos separates every run. DOP853's own energy drift over those times: {:.1e} J.",
         reference
             .iter()
             .map(|r| r.energy_drift)

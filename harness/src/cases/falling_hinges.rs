@@ -10,7 +10,7 @@
 
 use super::soft_step_common::SOFT_STEP;
 use super::{Case, CaseReport};
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use anyhow::{Context, Result};
 
 // REST_STEP, HINGES_HASH, UPDATE, run_to_rest and pose_hash: one copy for
@@ -50,6 +50,7 @@ pub fn run() -> Result<CaseReport> {
     let (step, hash) = first;
     let verdict = |same: bool| if same { "" } else { "; " };
     rows.within(
+        RowKind::Regression,
         "rest_step",
         step as f64,
         REST_STEP as f64,
@@ -62,6 +63,7 @@ pub fn run() -> Result<CaseReport> {
         ),
     );
     rows.within(
+        RowKind::Regression,
         "pose_hash_matches",
         f64::from(u8::from(hash == HINGES_HASH)),
         1.0,
@@ -74,6 +76,7 @@ pub fn run() -> Result<CaseReport> {
         ),
     );
     rows.within(
+        RowKind::Regression,
         "second_run_identical",
         f64::from(u8::from(second == first)),
         1.0,

@@ -7,6 +7,7 @@
 use super::soft_step_common::SoftRun;
 use super::{Case, CaseReport, Headline};
 use crate::cases::collision_common::{CLOSED_FORM_RELATIVE, STILL};
+use crate::row::RowKind;
 use anyhow::Result;
 use nalgebra::Vector2;
 
@@ -40,6 +41,7 @@ pub fn run() -> Result<CaseReport> {
             let measured = (last.states[b].velocity - early.states[b].velocity).dot(&down)
                 / (t_end - t1);
             rows.within(
+                RowKind::Validation,
                 &format!("acceleration_mu_{mu}"),
                 measured,
                 a,
@@ -54,6 +56,7 @@ pub fn run() -> Result<CaseReport> {
         } else {
             let moved = (last.states[b].position - early.states[b].position).norm();
             rows.at_most(
+                RowKind::Validation,
                 &format!("motion_mu_{mu}"),
                 moved,
                 0.0,

@@ -7,7 +7,7 @@
 
 use super::{Case, CaseReport, Snapshots};
 use crate::fuzz;
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use anyhow::Result;
 use std::time::Instant;
 
@@ -42,6 +42,7 @@ pub fn run() -> Result<CaseReport> {
         rows: &mut report.rows,
     };
     sink.at_most(
+        RowKind::Criterion,
         "failures",
         summary.failures.len() as f64,
         0.0,

@@ -10,7 +10,7 @@ use super::{
     dp_global_bound, dp_reason,
 };
 use crate::plots::failures;
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use crate::scenes;
 use crate::stability::Axis;
 use crate::sweep::SweepCase;
@@ -88,16 +88,26 @@ pub fn run() -> Result<CaseReport> {
                     let predicted =
                         (exact.y0 - 2.0) * (r.powi(n as i32) - (exact.lambda * t_last).exp());
                     let scale = predicted.abs().max(1.0);
+                    let theory_stable = r.abs() <= 1.0;
+                    // Where |R(hλ)| > 1 the rows check a failure theory
+                    // predicts; elsewhere the method's error against the
+                    // closed form.
+                    let kind = if theory_stable {
+                        RowKind::Validation
+                    } else {
+                        RowKind::PredictedFailure
+                    };
                     sink.within(
+                        kind,
                         "error_end",
                         error,
                         predicted,
                         ROUND_OFF_RELATIVE * scale,
                         "linear stability theory: e_n = R(h lambda)^n e_0 exactly; 1e-9 x max(1, |e|) round-off",
                     );
-                    let theory_stable = r.abs() <= 1.0;
                     let stable = error.abs() <= 1.0;
                     sink.within(
+                        kind,
                         "stable",
                         f64::from(u8::from(stable)),
                         f64::from(u8::from(theory_stable)),
@@ -106,6 +116,7 @@ pub fn run() -> Result<CaseReport> {
                     );
                     if !theory_stable && error.abs() > 1.0 && predicted.abs() > BLOW_UP {
                         sink.at_least(
+                            RowKind::PredictedFailure,
                             "blown_up",
                             error.abs(),
                             BLOW_UP,
@@ -117,6 +128,7 @@ pub fn run() -> Result<CaseReport> {
                 None => {
                     let bound = dp_global_bound(solution.stats.steps, 3.0);
                     sink.within(
+                        RowKind::Validation,
                         "error_end",
                         error,
                         0.0,

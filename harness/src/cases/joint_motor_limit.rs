@@ -35,7 +35,7 @@
 
 use super::joint_common::{Config, Engine, JointScene, Run, SoftRows, steps};
 use super::{Case, CaseReport, Headline, Snapshots};
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use crate::tolerance::ROUND_OFF_RELATIVE;
 use anyhow::{Result, bail};
 use references::many_body::JointKind;
@@ -217,6 +217,7 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
         };
         {
             s.within(
+                RowKind::Validation,
                 "driven_ramp",
                 ramp,
                 (torque - brake) * t_ramp / i_wheel,
@@ -229,6 +230,7 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
                 ),
             );
             s.within(
+                RowKind::Validation,
                 "driven_speed",
                 end[driven].angular_velocity,
                 speed,
@@ -241,6 +243,7 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
                 ),
             );
             s.at_most(
+                RowKind::Validation,
                 "driven_overshoot",
                 fastest - speed,
                 0.0,
@@ -260,6 +263,7 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
                 0.0
             };
             s.at_most(
+                RowKind::Validation,
                 "stalled_motion",
                 stall,
                 0.0,
@@ -285,6 +289,7 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
         let atan = if box2d { BOX2D_ANGLE } else { 0.0 };
         {
             s.at_most(
+                RowKind::Validation,
                 "limit_overshoot",
                 lower - lowest,
                 0.0,
@@ -305,6 +310,7 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
                 ),
             );
             s.within(
+                RowKind::Validation,
                 "limit_rest",
                 rest,
                 theta,
@@ -327,6 +333,7 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
             );
         }
         s.at_most(
+            RowKind::Validation,
             "upper_limit",
             highest - upper,
             0.0,

@@ -7,6 +7,7 @@
 
 use super::soft_step_common::{SoftRun, inverse_point_mass, point_compression};
 use super::{Case, CaseReport, Headline};
+use crate::row::RowKind;
 use anyhow::Result;
 
 /// The heavy box on two light ones.
@@ -49,6 +50,7 @@ pub fn run() -> Result<CaseReport> {
     let spread = top * (outer - inner) / inner;
     let mut rows = run.sink("mass_ratio", &mut report.rows);
     rows.within(
+        RowKind::Validation,
         "heavy_descent",
         start - end,
         expected,
@@ -62,6 +64,7 @@ pub fn run() -> Result<CaseReport> {
         ),
     );
     rows.at_most(
+        RowKind::Criterion,
         "fastest_at_end",
         run.fastest_at_end(),
         0.0,

@@ -13,7 +13,7 @@
 use super::joint_common::exact_model_refusal;
 use super::pendulum_swing::{self, Size};
 use super::{Case, CaseReport, Headline, Snapshots, pendulum_charts};
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use anyhow::Result;
 
 /// Six pendulums from 10°, 90° and 170°.
@@ -48,6 +48,7 @@ pub fn run_sized(size: Size) -> Result<CaseReport> {
         rows: &mut report.rows,
     };
     sink.at_least(
+        RowKind::Criterion,
         "exact_model_refuses_joints",
         1.0,
         1.0,

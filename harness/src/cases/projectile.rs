@@ -6,7 +6,7 @@ use super::{
     Case, CaseReport, Headline, MethodTrace, Snapshots, all_methods, dp_global_bound, dp_reason,
     sample_at,
 };
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use crate::scenes;
 use crate::tolerance::{ROUND_OFF_RELATIVE, from_order, from_order_reason};
 use anyhow::{Context, Result};
@@ -68,7 +68,7 @@ pub fn run() -> Result<CaseReport> {
         if method.is_adaptive() {
             for ((check, value), want) in EVENT_CHECKS.iter().zip(found).zip(expected) {
                 let bound = dp_global_bound(trace.stats.steps, want.abs());
-                sink.within(check, value, want, bound, dp_reason(trace.stats.steps));
+                sink.within(RowKind::Validation, check, value, want, bound, dp_reason(trace.stats.steps));
             }
         } else {
             let half = events(&scenes::world("projectile", method)?.run(duration, dt / 2.0)?)?;
@@ -78,6 +78,7 @@ pub fn run() -> Result<CaseReport> {
                 let floor = ROUND_OFF_RELATIVE * want.abs();
                 let tol = from_order(value, value_half, method.order(), floor);
                 sink.within(
+                    RowKind::Consistency,
                     check,
                     value,
                     want,
@@ -101,6 +102,7 @@ pub fn run() -> Result<CaseReport> {
                 let predicted = sign * g * dt * s.t / 2.0;
                 let error = s.states[0].position.y - exact.position(s.t)[1];
                 sink.within(
+                    RowKind::Validation,
                     "y_error_t8",
                     error,
                     predicted,
@@ -113,6 +115,7 @@ pub fn run() -> Result<CaseReport> {
                 let s = landing.states[0].position;
                 let error = (s.x - p[0]).hypot(s.y - p[1]);
                 sink.within(
+                    RowKind::Validation,
                     "position_error_at_landing",
                     error,
                     0.0,

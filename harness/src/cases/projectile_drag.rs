@@ -10,7 +10,7 @@ use super::{
 };
 use crate::plots::trajectories::{error_panel, runs};
 use crate::plots::{Chart, REFERENCE_ALT, Series, method_style, save_svg};
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use crate::scenes;
 use crate::sweep::{SweepCase, rapier_runner, step_world};
 use crate::tolerance::{from_order, from_order_reason, half_unit};
@@ -97,6 +97,7 @@ pub fn run() -> Result<CaseReport> {
             for (((check, &value), &want), &q) in checks.zip(values).zip(wants).zip(quotes) {
                 let bound = dp_global_bound(trace.stats.steps, want.abs()) + q;
                 sink.within(
+                    RowKind::Validation,
                     check,
                     value,
                     want,
@@ -118,6 +119,7 @@ pub fn run() -> Result<CaseReport> {
             {
                 let tol = from_order(value, value_half, method.order(), q);
                 sink.within(
+                    RowKind::Consistency,
                     check,
                     value,
                     want,
@@ -140,6 +142,7 @@ pub fn run() -> Result<CaseReport> {
                 rows: &mut report.rows,
             };
             coarse_sink.within(
+                RowKind::Validation,
                 "position_error_t5",
                 error,
                 cases_md::RK4_H02_POSITION_ERROR_AT_5_S,

@@ -6,6 +6,7 @@
 
 use super::soft_step_common::SoftRun;
 use super::{Case, CaseReport, Headline};
+use crate::row::RowKind;
 use anyhow::Result;
 
 /// The base-20 pyramid.
@@ -38,6 +39,7 @@ pub fn run() -> Result<CaseReport> {
     let fastest = run.fastest_at_end();
     let mut rows = run.sink("pyramid", &mut report.rows);
     rows.at_most(
+        RowKind::Criterion,
         "top_sink",
         sink,
         0.0,
@@ -48,6 +50,7 @@ pub fn run() -> Result<CaseReport> {
          pyramid, 0.05 m",
     );
     rows.at_most(
+        RowKind::Criterion,
         "fastest_at_end",
         fastest,
         0.0,
@@ -56,6 +59,7 @@ pub fn run() -> Result<CaseReport> {
          issue's criterion, 0.01 m/s",
     );
     rows.at_most(
+        RowKind::Criterion,
         "top_drift",
         drift,
         0.0,

@@ -12,7 +12,7 @@ use super::collision_common::{
     rapier_position, rapier_settings, run_engine, run_rapier, run_soft_step, soft_step_sink,
 };
 use super::{Case, CaseReport, Headline, Snapshots};
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use anyhow::{Result, bail};
 use nalgebra::Vector2;
 use std::time::{Duration, Instant};
@@ -163,6 +163,7 @@ fn disc(report: &mut CaseReport, id: &str, rolls: bool) -> Result<()> {
         (0.0, drift.slip_alpha)
     };
     sink.within(
+        RowKind::Validation,
         &format!("acceleration_{tag}"),
         2.0 * along / (t * t),
         geo.a,
@@ -188,6 +189,7 @@ fn disc(report: &mut CaseReport, id: &str, rolls: bool) -> Result<()> {
         ),
     );
     sink.within(
+        RowKind::Validation,
         &format!("angular_acceleration_{tag}"),
         2.0 * turned / (t * t),
         geo.alpha,
@@ -208,6 +210,7 @@ fn disc(report: &mut CaseReport, id: &str, rolls: bool) -> Result<()> {
     let spin_drift = geo.alpha * t * gap / 2.0;
     if rolls {
         sink.at_most(
+            RowKind::Validation,
             "contact_speed_roll",
             slip.abs(),
             0.0,
@@ -225,6 +228,7 @@ fn disc(report: &mut CaseReport, id: &str, rolls: bool) -> Result<()> {
         // distance ∫ α t d/2 dt = α t² d/4.
         let friction_work = kinetic / (0.5 * speed * speed) * geo.a / 2.0 * spin_drift * t / 2.0;
         sink.at_most(
+            RowKind::Validation,
             "energy_roll",
             (e1 - e0).abs(),
             0.0,
@@ -239,6 +243,7 @@ fn disc(report: &mut CaseReport, id: &str, rolls: bool) -> Result<()> {
         );
     } else {
         sink.within(
+            RowKind::Validation,
             "contact_speed_slip",
             slip,
             (geo.a - geo.alpha * geo.radius) * t,
@@ -248,6 +253,7 @@ fn disc(report: &mut CaseReport, id: &str, rolls: bool) -> Result<()> {
         );
     }
     sink.at_most(
+        RowKind::Validation,
         &format!("normal_drift_{tag}"),
         moved.dot(&geo.normal).abs(),
         0.0,
@@ -299,6 +305,7 @@ fn soft_step(report: &mut CaseReport, id: &str, geo: &Incline, rolls: bool) -> R
          docs/cases.md's 1e-6 if larger"
     );
     sink.within(
+        RowKind::Validation,
         &format!("acceleration_{tag}"),
         (end.velocity - early.velocity).dot(&geo.down) / (t_end - t1),
         geo.a,
@@ -306,6 +313,7 @@ fn soft_step(report: &mut CaseReport, id: &str, geo: &Incline, rolls: bool) -> R
         format!("Velocity down the plane {reason}"),
     );
     sink.within(
+        RowKind::Validation,
         &format!("angular_acceleration_{tag}"),
         (end.angular_velocity - early.angular_velocity) / (t_end - t1),
         geo.alpha,
@@ -348,6 +356,7 @@ fn rapier(
     };
     let g = gravity(run)?;
     sink.within(
+        RowKind::Criterion,
         &format!("acceleration_{tag}"),
         2.0 * moved.dot(&geo.down) / (rt * rt),
         geo.a,

@@ -17,7 +17,7 @@
 
 use super::joint_common::{Config, Engine, JointScene, Run, SoftRows, crossing_error, crossings, steps};
 use super::{Case, CaseReport, Headline, Snapshots};
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use crate::tolerance::ROUND_OFF_RELATIVE;
 use anyhow::{Result, bail};
 use references::many_body::JointKind;
@@ -173,6 +173,7 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
             rows: &mut report.rows,
         };
         sink.within(
+            RowKind::Validation,
             "period_free",
             period,
             t_exact,
@@ -188,6 +189,7 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
         );
         if engine == Engine::SoftStep {
             sink.within(
+                RowKind::Validation,
                 "period_free_discrete",
                 period,
                 t_discrete,
@@ -202,6 +204,7 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
             );
         }
         sink.within(
+            RowKind::Validation,
             "equilibrium_damped",
             rest,
             x_eq,
@@ -222,6 +225,7 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
         let g_across = s.gravity * s.angle.cos();
         for (rail, value) in [(free, across_free), (damped, across_damped)] {
             sink.at_most(
+                RowKind::Validation,
                 &format!("across_{}", rail.name),
                 value,
                 0.0,

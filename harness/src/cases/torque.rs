@@ -8,7 +8,7 @@ use super::{
     all_methods, dp_global_bound, dp_reason, sample_at,
 };
 use crate::plots::trajectories::ScalarFigure;
-use crate::row::RowSink;
+use crate::row::{RowKind, RowSink};
 use crate::scenes;
 use crate::tolerance::{from_order, from_order_reason};
 use anyhow::Result;
@@ -74,7 +74,7 @@ pub(crate) fn rotation_case(
         if method.is_adaptive() {
             for ((check, value), want) in checks.iter().zip(&values).zip(&expected) {
                 let bound = dp_global_bound(trace.stats.steps, want.abs()).max(FLOOR);
-                sink.within(check, *value, *want, bound, dp_reason(trace.stats.steps));
+                sink.within(RowKind::Validation, check, *value, *want, bound, dp_reason(trace.stats.steps));
             }
         } else {
             let half = pick(&scenes::world(case, method)?.run(duration, dt / 2.0)?)?;
@@ -83,6 +83,7 @@ pub(crate) fn rotation_case(
             {
                 let tol = from_order(*value, *value_half, method.order(), FLOOR);
                 sink.within(
+                    RowKind::Consistency,
                     check,
                     *value,
                     *want,

@@ -216,11 +216,43 @@ pub(crate) enum Trails {
     WholeAndPast,
 }
 
-/// Sample indices of the trails: at most about `count`, evenly spread.
+/// Sample indices of the trails: those the trailed bodies' paths need so
+/// that the polyline through them passes within 1 % of the smallest
+/// moving body's width of every sample's centre (1/2000 of the run's
+/// extent when no moving body has a shape), the first and the last
+/// included. `count` caps the samples taken when no body is trailed.
 pub(crate) fn trail_samples(film: &Film, count: usize) -> Vec<usize> {
     let n = film.times.len();
-    let stride = n.div_ceil(count.max(1)).max(1);
-    (0..n).step_by(stride).collect()
+    let moving: Vec<usize> = (0..film.bodies.len())
+        .filter(|&b| film.bodies[b].dynamic)
+        .collect();
+    if moving.is_empty() || moving.len() > TRAILS_MOST {
+        let stride = n.div_ceil(count.max(1)).max(1);
+        return (0..n).step_by(stride).collect();
+    }
+    let widest = film
+        .bounds()
+        .map_or(1.0, |(lo, hi)| (hi - lo).x.max((hi - lo).y));
+    let tolerance = moving
+        .iter()
+        .filter_map(|&b| film.bodies[b].shape.as_ref().map(super::film::shape_width))
+        .filter(|w| w.is_finite() && *w > 0.0)
+        .reduce(f64::min)
+        .map_or(widest / 2000.0, |w| 0.01 * w);
+    // The trail is drawn from the samples themselves: no rounding.
+    let exact = crate::replay::thin::Quanta {
+        t: 0.0,
+        p: 0.0,
+        a: 0.0,
+    };
+    let mut keep = vec![false; n];
+    for &b in &moving {
+        for i in crate::replay::thin::keep_body(&film.times, &film.states, b, 0.0, exact, tolerance)
+        {
+            keep[i] = true;
+        }
+    }
+    (0..n).filter(|&i| keep[i]).collect()
 }
 
 /// Draws the moving part at sample `k`: trails, springs, dynamic bodies,

@@ -42,6 +42,40 @@ pub fn shape_radius(shape: &Shape) -> f64 {
     }
 }
 
+/// The smallest width of `shape` (m): a circle's diameter, a polygon's
+/// least distance between parallel supporting lines (the least extent
+/// across one of its edges), a compound's smallest piece's. The size a
+/// picture's error is measured against.
+pub fn shape_width(shape: &Shape) -> f64 {
+    match shape {
+        Shape::Circle(c) => 2.0 * c.radius,
+        Shape::Polygon(p) => {
+            let v = p.vertices();
+            (0..v.len())
+                .filter_map(|i| {
+                    let edge = v[(i + 1) % v.len()] - v[i];
+                    let n = Vector2::new(-edge.y, edge.x);
+                    let len = n.norm();
+                    (len > 0.0).then(|| {
+                        let proj = v.iter().map(|p| (p - v[i]).dot(&n) / len);
+                        let (lo, hi) =
+                            proj.fold((0.0_f64, 0.0_f64), |(lo, hi), x| (lo.min(x), hi.max(x)));
+                        hi - lo
+                    })
+                })
+                .fold(f64::INFINITY, f64::min)
+        }
+        Shape::Compound(_) => shape
+            .pieces()
+            .into_iter()
+            .map(|(_, _, piece)| match piece {
+                Shape::Compound(_) => f64::INFINITY,
+                other => shape_width(other),
+            })
+            .fold(f64::INFINITY, f64::min),
+    }
+}
+
 /// The springs of `scene`, as pairs of ends (the anchor or other body's
 /// end first).
 pub fn springs(scene: &Scene) -> Vec<(SpringEnd, SpringEnd)> {

@@ -4,7 +4,7 @@
 
 use super::{Chart, Series, method_style, save_svg};
 use crate::cases::FigureOutput;
-use crate::row::{Comparison, Row};
+use crate::row::{Comparison, Row, RowKind};
 use crate::scenes;
 use crate::tolerance::{ROUND_OFF_RELATIVE, half_unit};
 use anyhow::Result;
@@ -33,7 +33,10 @@ pub fn write(dir: &Path, id: &str) -> Result<FigureOutput> {
                    tol: f64,
                    cmp: Comparison,
                    reason: &str| {
+        // The bands and the decay are docs/cases.md's and linear
+        // stability theory's, independent of the engine.
         rows.push(Row::new(
+            RowKind::Validation,
             id,
             check,
             method.id(),

@@ -1,13 +1,15 @@
 //! The replay's data as the page reads it: compact JSON, each moving
-//! body's channels quantised and delta-encoded.
+//! body's channels quantised and encoded as second differences, at the
+//! samples that body keeps.
 //!
-//! # Format (version 1)
+//! # Format (version 2)
 //!
 //! ```text
-//! { "version": 1, "title", "subtitle", "notes": [text],
+//! { "version": 2, "title", "subtitle", "notes": [text],
 //!   "view": [x0, y0, x1, y1],          // m: the box fitted at load
 //!   "step": s,                         // s: what the step buttons move
-//!   "tolerance": m,                    // interpolation error bound
+//!   "tolerance": m,                    // the page's bound: every body, as shown,
+//!                                      // is within it of every recorded sample
 //!   "bodies": [{ "name", "colour": "#rrggbb", "kind": "dynamic" | "static" | "kinematic",
 //!                "mass": kg | null, "inertia": kg·m² | null, "radius": m,
 //!                "parts": [{ "circle": [cx, cy, r] } | { "polygon": [x0, y0, x1, y1, ...] }] }],
@@ -15,16 +17,20 @@
 //!   "grounds": [y],                    // m: levels of landing events
 //!   "runs": [{ "label", "short", "samples": n_recorded,
 //!              "q": { "t", "p", "a", "v", "w" },   // quanta: s, m, rad, m/s, rad/s
-//!              "t": [deltas],
+//!              "t": [deltas],                       // every recorded sample's time
 //!              "bodies": [{ "fixed": [x, y, angle] }
-//!                       | { "x", "y", "a", "vx", "vy", "w": [deltas] }],
-//!              "energy": [J] | null,
+//!                       | { "k": [deltas],          // the samples this body keeps (indices into t)
+//!                           "x", "y", "a", "vx", "vy", "w": [deltas] }],  // at those samples
+//!              "energy": [J] | null,                // at every recorded sample
 //!              "events": [{ "name", "t", "body": i | null, "at": [x, y] | null }] }] }
 //! ```
 //!
-//! A channel `c` with quantum `q` holds integers `d`: the value at frame
-//! `k` is `q × (d_0 + … + d_k)`. Body parts are in the body frame, centred
-//! on the centre of mass (m). A body that never moves in a run is `fixed`.
+//! A channel `c` with quantum `q` holds integers `d`, second differences:
+//! with `s_k = d_0 + … + d_k`, the value at frame `k` is
+//! `q × (s_0 + … + s_k)` (`k` with quantum 1). Between a body's kept
+//! samples the page interpolates linearly in time. Body parts are in the
+//! body frame, centred on the centre of mass (m). A body that never moves
+//! in a run is `fixed`.
 
 use super::{Replay, ReplayRun};
 use engine::{BodyState, Shape};
@@ -41,15 +47,19 @@ pub fn quantum(magnitude: f64, digits: i32) -> f64 {
     10f64.powi(m.log10().floor() as i32 - digits + 1)
 }
 
-/// `values` quantised by `q` and delta-encoded.
+/// `values` quantised by `q` and encoded as second differences of the
+/// whole numbers: smooth motion sampled evenly gives small integers (a
+/// body's acceleration × dt² / q), evenly spaced times and consecutive
+/// indices give zeros.
 fn deltas(values: impl Iterator<Item = f64>, q: f64) -> Value {
-    let mut previous = 0_i64;
+    let (mut n1, mut d1) = (0_i64, 0_i64);
     let out: Vec<i64> = values
         .map(|v| {
             let n = (v / q).round() as i64;
-            let d = n - previous;
-            previous = n;
-            d
+            let d = n - n1;
+            let dd = d - d1;
+            (n1, d1) = (n, d);
+            dd
         })
         .collect();
     json!(out)
@@ -97,17 +107,50 @@ fn parts(shape: Option<&Shape>) -> Value {
 }
 
 /// Whether body `b` keeps its pose through the whole run.
-fn fixed(states: &[Vec<BodyState>], b: usize) -> bool {
-    let first = &states[0][b];
+pub fn fixed(states: &[Vec<BodyState>], b: usize) -> bool {
+    let Some(first) = states.first().map(|s| &s[b]) else {
+        return true;
+    };
     states
         .iter()
         .all(|s| s[b].position == first.position && s[b].angle == first.angle)
 }
 
-/// The JSON of one run, keeping the samples `kept`.
-fn run_json(replay: &Replay, run: &ReplayRun, kept: &[usize]) -> Value {
-    let size = replay.view_size();
-    let q_p = quantum(size, 6);
+/// The quanta of one run's channels.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunQuanta {
+    /// Time (s).
+    pub t: f64,
+    /// Position (m).
+    pub p: f64,
+    /// Angle (rad).
+    pub a: f64,
+    /// Velocity (m/s).
+    pub v: f64,
+    /// Angular velocity (rad/s).
+    pub w: f64,
+}
+
+/// The quanta of `run` for a page whose bound is `tolerance` (m):
+/// positions ten to a hundred times finer than the bound (6 digits of the
+/// view when there is no bound), angles to 1e-5 rad (coarser only past 1e7 rad) and at least ten
+/// times finer than the bound over the largest moving radius (so rounding
+/// takes at most about a tenth of the bound; the thinning counts it),
+/// velocities to 6 digits (shown, not interpolated against the bound),
+/// times to a thousandth of the shortest sample spacing and at least 12
+/// digits of the run's length.
+pub fn quanta(replay: &Replay, run: &ReplayRun, tolerance: f64) -> RunQuanta {
+    let fine = |x: f64| {
+        if x.is_finite() && x > 0.0 {
+            quantum(x, 2)
+        } else {
+            f64::INFINITY
+        }
+    };
+    let q_p = match fine(tolerance) {
+        q if q.is_finite() => q,
+        _ => quantum(replay.view_size(), 6),
+    };
     let max_of = |f: &dyn Fn(&BodyState) -> f64| {
         run.states
             .iter()
@@ -116,8 +159,15 @@ fn run_json(replay: &Replay, run: &ReplayRun, kept: &[usize]) -> Value {
             .filter(|v| v.is_finite())
             .fold(0.0_f64, |m, v| m.max(v.abs()))
     };
-    // Angles to 1e-5 rad, coarser only past 1e7 rad (12 digits).
-    let q_a = quantum(max_of(&|s| s.angle), 12).max(1e-5);
+    let r_max = replay
+        .bodies
+        .iter()
+        .filter(|b| b.kind != "static")
+        .map(|b| b.radius)
+        .fold(0.0_f64, f64::max);
+    let q_a = quantum(max_of(&|s| s.angle), 12)
+        .max(1e-5)
+        .min(fine(tolerance / r_max));
     let v_max = max_of(&|s| s.velocity.x.abs().max(s.velocity.y.abs()));
     let q_v = quantum(if v_max > 0.0 { v_max } else { 1.0 }, 6);
     let w_max = max_of(&|s| s.angular_velocity);
@@ -129,31 +179,42 @@ fn run_json(replay: &Replay, run: &ReplayRun, kept: &[usize]) -> Value {
         .filter(|d| *d > 0.0)
         .fold(f64::INFINITY, f64::min);
     let t_max = run.times.last().copied().unwrap_or(1.0).abs().max(1e-9);
-    // Times to a thousandth of the shortest sample spacing, and at least
-    // to 12 digits of the run's length.
     let q_t = quantum(dt_min.min(t_max), 4).max(quantum(t_max, 12));
-    let frames = |f: &dyn Fn(&BodyState) -> f64, b: usize, q: f64| {
-        deltas(kept.iter().map(|&i| f(&run.states[i][b])), q)
-    };
+    RunQuanta {
+        t: q_t,
+        p: q_p,
+        a: q_a,
+        v: q_v,
+        w: q_w,
+    }
+}
+
+/// The JSON of one run, each body keeping the samples `kept[b]` (empty for
+/// a body that never moves).
+fn run_json(replay: &Replay, run: &ReplayRun, kept: &[Vec<usize>], q: &RunQuanta) -> Value {
     let bodies: Vec<Value> = (0..replay.bodies.len())
         .map(|b| {
-            if run.states.is_empty() || fixed(&run.states, b) {
+            let frames = |f: &dyn Fn(&BodyState) -> f64, q: f64| {
+                deltas(kept[b].iter().map(|&i| f(&run.states[i][b])), q)
+            };
+            if kept[b].is_empty() {
                 let s = run.states.first().map(|s| s[b]).unwrap_or_default();
                 json!({ "fixed": [s.position.x, s.position.y, s.angle] })
             } else {
                 json!({
-                    "x": frames(&|s| s.position.x, b, q_p),
-                    "y": frames(&|s| s.position.y, b, q_p),
-                    "a": frames(&|s| s.angle, b, q_a),
-                    "vx": frames(&|s| s.velocity.x, b, q_v),
-                    "vy": frames(&|s| s.velocity.y, b, q_v),
-                    "w": frames(&|s| s.angular_velocity, b, q_w),
+                    "k": deltas(kept[b].iter().map(|&i| i as f64), 1.0),
+                    "x": frames(&|s| s.position.x, q.p),
+                    "y": frames(&|s| s.position.y, q.p),
+                    "a": frames(&|s| s.angle, q.a),
+                    "vx": frames(&|s| s.velocity.x, q.v),
+                    "vy": frames(&|s| s.velocity.y, q.v),
+                    "w": frames(&|s| s.angular_velocity, q.w),
                 })
             }
         })
         .collect();
     let energy = run.energies.as_ref().map_or(Value::Null, |e| {
-        json!(kept.iter().map(|&i| short(e[i])).collect::<Vec<_>>())
+        json!(e.iter().map(|&v| short(v)).collect::<Vec<_>>())
     });
     let events: Vec<Value> = run
         .events
@@ -171,17 +232,23 @@ fn run_json(replay: &Replay, run: &ReplayRun, kept: &[usize]) -> Value {
         "label": run.label,
         "short": run.short,
         "samples": run.times.len(),
-        "q": { "t": q_t, "p": q_p, "a": q_a, "v": q_v, "w": q_w },
-        "t": deltas(kept.iter().map(|&i| run.times[i]), q_t),
+        "q": { "t": q.t, "p": q.p, "a": q.a, "v": q.v, "w": q.w },
+        "t": deltas(run.times.iter().copied(), q.t),
         "bodies": bodies,
         "energy": energy,
         "events": events,
     })
 }
 
-/// The page's data, the runs thinned to `kept` (one list per run), as
-/// JSON text.
-pub fn data_json(replay: &Replay, kept: &[Vec<usize>], tolerance: f64, notes: &[String]) -> String {
+/// The page's data, each body of each run keeping `kept[run][body]`, at
+/// the quanta `quanta[run]`, as JSON text.
+pub fn data_json(
+    replay: &Replay,
+    kept: &[Vec<Vec<usize>>],
+    quanta: &[RunQuanta],
+    tolerance: f64,
+    notes: &[String],
+) -> String {
     let (lo, hi) = replay.view;
     let bodies: Vec<Value> = replay
         .bodies
@@ -213,10 +280,11 @@ pub fn data_json(replay: &Replay, kept: &[Vec<usize>], tolerance: f64, notes: &[
         .runs
         .iter()
         .zip(kept)
-        .map(|(run, kept)| run_json(replay, run, kept))
+        .zip(quanta)
+        .map(|((run, kept), q)| run_json(replay, run, kept, q))
         .collect();
     let data = json!({
-        "version": 1,
+        "version": 2,
         "title": replay.title,
         "subtitle": replay.subtitle,
         "notes": notes,
@@ -246,13 +314,19 @@ mod tests {
 
     #[test]
     fn deltas_sum_back_to_the_quantised_values() {
-        let values = [1.23456, 1.23466, -2.0, -2.0];
+        let values = [1.23456, 1.23466, -2.0, -2.0, 7.5];
         let d = deltas(values.iter().copied(), 1e-5);
         let d: Vec<i64> = serde_json::from_value(d).unwrap();
-        let mut sum = 0;
+        // Summed twice, as the page decodes them.
+        let (mut step, mut sum) = (0, 0);
         for (v, d) in values.iter().zip(d) {
-            sum += d;
+            step += d;
+            sum += step;
             assert!((sum as f64 * 1e-5 - v).abs() <= 0.5e-5 + 1e-12, "{v}");
         }
+        // Evenly spaced values: zeros after the first two.
+        let even: Vec<i64> =
+            serde_json::from_value(deltas((0..5).map(|i| 0.5 * i as f64), 0.5)).unwrap();
+        assert_eq!(even, [0, 1, 0, 0, 0]);
     }
 }

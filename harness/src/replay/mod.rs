@@ -34,18 +34,23 @@
 //! xc), cy + dy − z s (y − yc)). The page writes the transform it uses on
 //! the canvas as `data-*` attributes.
 //!
-//! # Size
+//! # Faithfulness and size
 //!
-//! A run keeps only the samples that linear interpolation cannot replace
-//! within a tolerance ([`thin`]): first 1/2000 of the view's size (half a
-//! pixel on a 1000-pixel view), doubled until the page fits
-//! [`BUDGET_BYTES`] (2 MiB), up to 1/25 of the view; past that the page is
-//! written larger and says so. A body that never moves is stored once.
+//! Each moving body keeps only the samples that linear interpolation
+//! cannot replace within the page's bound ([`thin`], body by body): 1 % of
+//! the smallest moving body's width (`pictures::film::shape_width`), or,
+//! when no moving body has a shape (particles), 1/2000 of the view's size
+//! (half a pixel on a 1000-pixel view). The bound is on what the page
+//! shows: the stored values' rounding is inside it, and the quanta are
+//! chosen at least ten times finer than the bound. The page states its bound
+//! ("within X m of every sample") and its size; it is never coarsened to
+//! fit a size, so a scene of many moving bodies makes a large page. A body
+//! that never moves is stored once.
 
 mod encode;
-mod thin;
+pub(crate) mod thin;
 
-use crate::pictures::film::{fit_statics, grounds, shape_radius, springs};
+use crate::pictures::film::{fit_statics, grounds, shape_radius, shape_width, springs};
 use anyhow::Result;
 use engine::{Body, BodyKind, BodyState, EventRecord, Shape};
 use nalgebra::Vector2;
@@ -60,12 +65,11 @@ pub const SIDE_PX: f64 = 320.0;
 pub const FOOTER_PX: f64 = 96.0;
 /// Share of a panel the world box fills along its tighter axis.
 pub const FILL: f64 = 0.92;
-/// The size a page aims at (bytes): 2 MiB.
-pub const BUDGET_BYTES: usize = 2 << 20;
-/// First interpolation tolerance, as a share of the view's size.
-pub const FIRST_TOLERANCE: f64 = 1.0 / 2000.0;
-/// Coarsest interpolation tolerance, as a share of the view's size.
-pub const LAST_TOLERANCE: f64 = 1.0 / 25.0;
+/// The page's bound, as a share of the smallest moving body's width.
+pub const BODY_SHARE: f64 = 0.01;
+/// The page's bound when no moving body has a shape, as a share of the
+/// view's size (half a pixel on a 1000-pixel view).
+pub const VIEW_SHARE: f64 = 1.0 / 2000.0;
 /// Colour of a static body whose scene gives it none.
 pub const STATIC_GREY: Colour = Colour::rgb(0x9e, 0x9e, 0x9e);
 
@@ -89,6 +93,8 @@ pub struct ReplayBody {
     /// Largest distance from the centre of mass to the outline (m); 0 for
     /// a particle.
     pub radius: f64,
+    /// Smallest width (m, `shape_width`); `None` for a particle.
+    pub width: Option<f64>,
     /// Shape, centred on the centre of mass; `None` for a particle (a dot).
     pub shape: Option<Shape>,
 }
@@ -177,10 +183,19 @@ pub struct Replay {
 pub struct Page {
     /// The HTML text.
     pub html: String,
-    /// Frames kept per run.
+    /// Samples recorded, per run.
+    pub samples: Vec<usize>,
+    /// The most samples any one body keeps, per run.
     pub frames: Vec<usize>,
-    /// The interpolation tolerance used (m).
+    /// The page's bound (m): every body, as shown, is within it of every
+    /// recorded sample.
     pub tolerance: f64,
+    /// The largest error (m) of what the page shows against the recorded
+    /// samples, over every body and run (at most `tolerance`).
+    pub max_error: f64,
+    /// The smallest moving body's width (m), when a moving body has a
+    /// shape.
+    pub smallest_width: Option<f64>,
 }
 
 impl Replay {
@@ -217,6 +232,7 @@ impl Replay {
                     mass: dynamic.then_some(b.mass),
                     inertia: if dynamic { b.inertia } else { None },
                     radius: b.shape.as_ref().map_or(0.0, shape_radius),
+                    width: b.shape.as_ref().map(shape_width),
                     shape: b.shape.clone(),
                 }
             })
@@ -302,58 +318,108 @@ impl Replay {
         self.view = (lo, hi);
     }
 
-    /// The page: the runs thinned at the first tolerance that fits the
-    /// budget (see the module documentation).
+    /// The smallest width (m) of a moving body with a shape.
+    fn smallest_width(&self) -> Option<f64> {
+        self.bodies
+            .iter()
+            .filter(|b| b.kind != "static")
+            .filter_map(|b| b.width)
+            .filter(|w| w.is_finite() && *w > 0.0)
+            .reduce(f64::min)
+    }
+
+    /// The page: every moving body's samples thinned to the page's bound
+    /// (see the module documentation).
     pub fn page(&mut self) -> Result<Page> {
         anyhow::ensure!(!self.runs.is_empty(), "a replay needs a run");
         self.compute_view();
-        let size = self.view_size();
-        let radii: Vec<Option<f64>> = self
-            .bodies
-            .iter()
-            .map(|b| (b.kind != "static").then_some(b.radius))
-            .collect();
-        let mut share = FIRST_TOLERANCE;
-        loop {
-            let tolerance = share * size;
-            let kept: Vec<Vec<usize>> = self
-                .runs
-                .iter()
-                .map(|r| thin::keep(&r.times, &r.states, &radii, tolerance))
+        let smallest = self.smallest_width();
+        let tolerance = match smallest {
+            Some(w) => BODY_SHARE * w,
+            None => VIEW_SHARE * self.view_size(),
+        };
+        let mut notes = self.notes.clone();
+        let mut kept_all = Vec::new();
+        let mut quanta = Vec::new();
+        let mut worst = 0.0_f64;
+        for run in &self.runs {
+            let q = encode::quanta(self, run, tolerance);
+            let q_thin = thin::Quanta {
+                t: q.t,
+                p: q.p,
+                a: q.a,
+            };
+            let kept: Vec<Vec<usize>> = (0..self.bodies.len())
+                .map(|b| {
+                    if run.states.is_empty() || encode::fixed(&run.states, b) {
+                        return Vec::new();
+                    }
+                    let r = self.bodies[b].radius;
+                    let kept = thin::keep_body(&run.times, &run.states, b, r, q_thin, tolerance);
+                    // A body whose samples are not finite (a blown-up run) cannot
+                    // be shown; the bound holds for every other body.
+                    let e = thin::max_error(&run.times, &run.states, b, r, q_thin, &kept);
+                    if e.is_finite() {
+                        worst = worst.max(e);
+                    }
+                    kept
+                })
                 .collect();
-            let mut notes = self.notes.clone();
-            for (run, kept) in self.runs.iter().zip(&kept) {
-                notes.push(format!(
-                    "{}: {} of {} samples kept; between them the page interpolates linearly, \
-                     within {} m of every sample.",
-                    run.label,
-                    kept.len(),
-                    run.times.len(),
-                    crate::pictures::sig(tolerance)
-                ));
-            }
-            let data = encode::data_json(self, &kept, tolerance, &notes);
-            let fits = data.len() <= BUDGET_BYTES;
-            if fits || share * 2.0 > LAST_TOLERANCE {
-                let data = if fits {
-                    data
-                } else {
-                    notes.push(format!(
-                        "This page holds {:.1} MB of data, over the {} MB aimed at: the scene \
-                         has too many moving bodies for a coarser thinning to help.",
-                        data.len() as f64 / 1e6,
-                        BUDGET_BYTES >> 20
-                    ));
-                    encode::data_json(self, &kept, tolerance, &notes)
-                };
-                return Ok(Page {
-                    html: assemble(&self.title, &data),
-                    frames: kept.iter().map(Vec::len).collect(),
-                    tolerance,
-                });
-            }
-            share *= 2.0;
+            let most = kept.iter().map(Vec::len).max().unwrap_or(0);
+            let moving = kept.iter().filter(|k| !k.is_empty()).count();
+            let stored: usize = kept.iter().map(Vec::len).sum();
+            notes.push(format!(
+                "{}: {} samples; each of its {moving} moving bodies keeps only those the page \
+                 cannot interpolate (up to {most}, {stored} in all); between them the page \
+                 interpolates linearly, within {} m of every sample.",
+                run.label,
+                run.times.len(),
+                crate::pictures::sig(tolerance)
+            ));
+            kept_all.push(kept);
+            quanta.push(q);
         }
+        let bound_note = match smallest {
+            Some(w) => format!(
+                "The bound, {} m, is 1 % of the smallest moving body's width ({} m); the \
+                 largest error of what the page shows is {} m.",
+                crate::pictures::sig(tolerance),
+                crate::pictures::sig(w),
+                crate::pictures::sig(worst)
+            ),
+            None => format!(
+                "No moving body has a shape: the bound, {} m, is 1/2000 of the view; the largest \
+                 error of what the page shows is {} m.",
+                crate::pictures::sig(tolerance),
+                crate::pictures::sig(worst)
+            ),
+        };
+        anyhow::ensure!(
+            worst <= tolerance,
+            "the replay page would be {worst} m off a sample, over its bound {tolerance} m"
+        );
+        notes.push(bound_note);
+        // The size note states the size of the page without it; the note
+        // adds a few dozen bytes.
+        let data = encode::data_json(self, &kept_all, &quanta, tolerance, &notes);
+        let size = data.len() as f64;
+        notes.push(if size < 1e6 {
+            format!("This page holds {:.0} kB of data.", size / 1e3)
+        } else {
+            format!("This page holds {:.2} MB of data.", size / 1e6)
+        });
+        let data = encode::data_json(self, &kept_all, &quanta, tolerance, &notes);
+        Ok(Page {
+            html: assemble(&self.title, &data),
+            samples: self.runs.iter().map(|r| r.times.len()).collect(),
+            frames: kept_all
+                .iter()
+                .map(|k| k.iter().map(Vec::len).max().unwrap_or(0))
+                .collect(),
+            tolerance,
+            max_error: worst,
+            smallest_width: smallest,
+        })
     }
 }
 

@@ -12,9 +12,10 @@
   var data = JSON.parse(document.getElementById('replay-data').textContent);
   var $ = function (id) { return document.getElementById(id); };
 
+  // A channel's second differences summed twice, times its quantum.
   function cumulative(d, q) {
-    var out = new Float64Array(d.length), n = 0;
-    for (var i = 0; i < d.length; i++) { n += d[i]; out[i] = n * q; }
+    var out = new Float64Array(d.length), step = 0, n = 0;
+    for (var i = 0; i < d.length; i++) { step += d[i]; n += step; out[i] = n * q; }
     return out;
   }
   function decimals(q) { return Math.max(0, Math.round(-Math.log10(q))); }
@@ -29,6 +30,7 @@
       bodies: r.bodies.map(function (b) {
         if (b.fixed) { return { fixed: b.fixed }; }
         return {
+          k: cumulative(b.k, 1),
           x: cumulative(b.x, r.q.p), y: cumulative(b.y, r.q.p), a: cumulative(b.a, r.q.a),
           vx: cumulative(b.vx, r.q.v), vy: cumulative(b.vy, r.q.v), w: cumulative(b.w, r.q.w)
         };
@@ -58,23 +60,39 @@
   var timeDecimals = Math.max(2, Math.ceil(-Math.log10(data.step)) + 1);
 
   // ---- sampling ----------------------------------------------------------
+  // A place in a run: [sample index i, share s of the way to sample
+  // i + 1, time]. Each body keeps its own samples (indices K into the
+  // run's times); between two of them the page interpolates linearly in
+  // time.
   function locate(run, time) {
     var T = run.t, n = T.length;
-    if (time <= T[0]) { return [0, 0]; }
-    if (time >= T[n - 1]) { return [n - 1, 0]; }
+    if (time <= T[0]) { return [0, 0, T[0]]; }
+    if (time >= T[n - 1]) { return [n - 1, 0, T[n - 1]]; }
     var lo = 0, hi = n - 1;
     while (hi - lo > 1) {
       var m = (lo + hi) >> 1;
       if (T[m] <= time) { lo = m; } else { hi = m; }
     }
     var span = T[hi] - T[lo];
-    return [lo, span > 0 ? (time - T[lo]) / span : 0];
+    return [lo, span > 0 ? (time - T[lo]) / span : 0, time];
+  }
+  // The last of body B's kept samples at or before sample i.
+  function keptBefore(B, i) {
+    var K = B.k, lo = 0, hi = K.length - 1;
+    if (K[hi] <= i) { return hi; }
+    while (hi - lo > 1) {
+      var m = (lo + hi) >> 1;
+      if (K[m] <= i) { lo = m; } else { hi = m; }
+    }
+    return lo;
   }
   function stateOf(run, b, loc) {
     var B = run.bodies[b];
     if (B.fixed) { return { x: B.fixed[0], y: B.fixed[1], a: B.fixed[2], vx: 0, vy: 0, w: 0 }; }
-    var i = loc[0], s = loc[1], j = Math.min(i + 1, run.t.length - 1);
-    var lerp = function (c) { return c[i] + (c[j] - c[i]) * s; };
+    var m = keptBefore(B, loc[0]), j = Math.min(m + 1, B.k.length - 1);
+    var ta = run.t[B.k[m]], tb = run.t[B.k[j]];
+    var s = tb > ta ? Math.min(1, Math.max(0, (loc[2] - ta) / (tb - ta))) : 0;
+    var lerp = function (c) { return c[m] + (c[j] - c[m]) * s; };
     return { x: lerp(B.x), y: lerp(B.y), a: lerp(B.a), vx: lerp(B.vx), vy: lerp(B.vy), w: lerp(B.w) };
   }
   function energyOf(run, loc) {
@@ -182,7 +200,8 @@
     var st = stateOf(run, b, loc);
     ctx.beginPath();
     ctx.moveTo(tr.X(B.x[0]), tr.Y(B.y[0]));
-    for (var i = 1; i <= loc[0]; i++) { ctx.lineTo(tr.X(B.x[i]), tr.Y(B.y[i])); }
+    var last = keptBefore(B, loc[0]);
+    for (var i = 1; i <= last; i++) { ctx.lineTo(tr.X(B.x[i]), tr.Y(B.y[i])); }
     ctx.lineTo(tr.X(st.x), tr.Y(st.y));
     ctx.strokeStyle = bodies[b].colour; ctx.globalAlpha = 0.55; ctx.lineWidth = 1.5;
     ctx.setLineDash(dashed ? [4, 4] : []);

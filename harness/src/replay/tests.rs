@@ -61,7 +61,7 @@ fn a_page_is_self_contained_and_its_data_reads_back() {
         assert!(!html.contains(absent), "the page holds {absent:?}");
     }
     let data = data_of(html);
-    assert_eq!(data["version"], 1);
+    assert_eq!(data["version"], 2);
     let bodies = data["bodies"].as_array().unwrap();
     assert_eq!(bodies[0]["name"], "ground");
     // A static body without a colour of its own is grey; the ball, the
@@ -108,9 +108,10 @@ fn a_name_cannot_close_the_data_element() {
 }
 
 #[test]
-fn a_page_of_many_bodies_stays_within_its_budget() {
-    // 400 particles falling side by side for 2 s: every one moves, so the
-    // thinning must coarsen to fit (or say it could not).
+fn a_page_of_many_particles_keeps_its_bound_and_states_it() {
+    // 400 particles falling side by side for 2 s: every one moves. The page
+    // is never coarsened to fit a size: with no shaped body its bound is
+    // 1/2000 of the view, what it shows stays within it, and it says so.
     let mut text = String::from("[simulation]\nmethod = \"rk4\"\ndt = 0.01\nduration = 2.0\n");
     for i in 0..400 {
         text.push_str(&format!(
@@ -123,12 +124,41 @@ fn a_page_of_many_bodies_stays_within_its_budget() {
     let scene = scene(&text);
     let mut replay = replay_of(&scene);
     let page = replay.page().unwrap();
+    assert_eq!(page.smallest_width, None);
+    assert!((page.tolerance - VIEW_SHARE * replay.view_size()).abs() < 1e-15);
+    assert!(page.max_error <= page.tolerance, "{page:?}");
+    // A parabola sampled every 10 ms over 2 s: thinned, not kept whole.
     assert!(
-        page.html.len() <= BUDGET_BYTES + 64 * 1024,
-        "{} bytes",
-        page.html.len()
+        page.frames[0] >= 3 && page.frames[0] < 201,
+        "{:?}",
+        page.frames
     );
-    assert!(page.frames[0] >= 3, "{:?}", page.frames);
+    let data = data_of(&page.html);
+    let notes = data["notes"].as_array().unwrap();
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.as_str().unwrap().contains("B of data."))
+    );
+}
+
+#[test]
+fn the_bound_is_a_hundredth_of_the_smallest_moving_body() {
+    // The ball of radius 0.1 m: its width 0.2 m, the bound 2 mm; the
+    // 20 m static floor does not count.
+    let scene = scene(BALL);
+    let mut replay = replay_of(&scene);
+    let page = replay.page().unwrap();
+    assert_eq!(page.smallest_width, Some(0.2));
+    assert!((page.tolerance - 0.002).abs() < 1e-15);
+    assert!(page.max_error <= page.tolerance);
+    let html = &page.html;
+    let data = data_of(html);
+    let notes = data["notes"].to_string();
+    assert!(
+        notes.contains("within 0.002000 m of every sample"),
+        "{notes}"
+    );
 }
 
 #[test]

@@ -104,7 +104,16 @@ mod tests {
 
     fn row(value: f64, expected: f64, tolerance: f64, comparison: Comparison) -> Row {
         Row::new(
-            "c", "x", "rk4", 0.1, value, expected, tolerance, comparison, "why",
+            crate::row::RowKind::Validation,
+            "c",
+            "x",
+            "rk4",
+            0.1,
+            value,
+            expected,
+            tolerance,
+            comparison,
+            "why",
         )
     }
 

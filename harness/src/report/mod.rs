@@ -20,7 +20,7 @@ pub mod table;
 pub use format::{fmt_dt, fmt_num};
 
 use crate::cases::{CASES, CaseReport, find};
-use crate::row::Row;
+use crate::row::{Row, RowKind, count_kinds};
 use crate::study::StudyResults;
 use anyhow::{Context, Result};
 use format::{cell, condition, wrap};
@@ -32,6 +32,75 @@ use std::path::Path;
 /// whose verdict is not obvious from their numbers.
 pub fn console_table(title: &str, rows: &[Row], all_reasons: bool) -> String {
     table::console(title, rows, all_reasons)
+}
+
+/// The count of each kind of row, one line each, for the console.
+pub fn console_kinds(rows: &[&Row]) -> String {
+    let owned: Vec<Row> = rows.iter().map(|r| (*r).clone()).collect();
+    let mut out = String::from("By kind of evidence:\n");
+    for (kind, n, passed) in count_kinds(&owned) {
+        let _ = writeln!(
+            out,
+            "  {:<17} {n:>4} rows, {passed:>4} passed: {}",
+            kind.id(),
+            kind.meaning()
+        );
+    }
+    out
+}
+
+/// The Markdown table counting each kind of row (and how many pass).
+fn kinds_table(rows: &[&Row]) -> String {
+    let owned: Vec<Row> = rows.iter().map(|r| (*r).clone()).collect();
+    let mut out =
+        String::from("| kind | rows | passed | what the rows are checked |\n|---|---|---|---|\n");
+    for (kind, n, passed) in count_kinds(&owned) {
+        let passed = if passed == n {
+            passed.to_string()
+        } else {
+            format!("**{passed}**")
+        };
+        let _ = writeln!(
+            out,
+            "| `{}` | {n} | {passed} | {} |",
+            kind.id(),
+            kind.meaning()
+        );
+    }
+    out
+}
+
+/// The sentence that says what the validation rows of `rows` cover: how
+/// many, and how many of each case.
+pub fn validation_cover(rows: &[&Row]) -> String {
+    let validation: Vec<&&Row> = rows
+        .iter()
+        .filter(|r| r.kind == RowKind::Validation)
+        .collect();
+    let mut cases: Vec<(&str, usize)> = Vec::new();
+    for r in &validation {
+        match cases.iter_mut().find(|(c, _)| *c == r.case) {
+            Some((_, n)) => *n += 1,
+            None => cases.push((&r.case, 1)),
+        }
+    }
+    let by_case: Vec<String> = cases.iter().map(|(c, n)| format!("{c} {n}")).collect();
+    let owned: Vec<Row> = rows.iter().map(|r| (*r).clone()).collect();
+    let others: Vec<String> = count_kinds(&owned)
+        .into_iter()
+        .filter(|(k, _, _)| *k != RowKind::Validation)
+        .map(|(k, n, _)| format!("{n} {}", k.id()))
+        .collect();
+    format!(
+        "{} of the {} rows are validation rows, checked against an independent closed form or \
+         high-precision reference (DOP853, parry2d, exact solutions), in {} cases: {}. The others \
+         are {} (what each kind means: reports/README.md).",
+        validation.len(),
+        rows.len(),
+        cases.len(),
+        by_case.join(", "),
+        others.join(", ")
+    )
 }
 
 /// Writes a file of the report, creating its folder.
@@ -88,12 +157,23 @@ pub fn write(
     md.push_str(&wrap(
         &format!(
             "**{passed} of {} rows pass.** Every row compares one number the engine produced \
-             with a closed form, a high-precision reference or the prediction of stability \
-             theory, under a condition whose source is listed under every table. A method that \
-             fails the way theory predicts passes its row: the expected value is the failure \
-             theory predicts.",
+             with an expected value, under a condition whose source is listed under every table. \
+             The rows are of five kinds, by what they are checked against (the `kind` column of \
+             every table and of `summary.json`):",
             rows.len()
         ),
+        "",
+        "",
+    ));
+    md.push('\n');
+    md.push_str(&kinds_table(&rows));
+    md.push('\n');
+    md.push_str(&wrap(
+        "Only `validation` rows show the engine right to a known bound. A method that fails \
+         the way theory predicts passes its `predicted_failure` row: the expected value is the \
+         failure theory predicts. `consistency` rows show the error behaving as the method's \
+         order says; `regression` rows, that nothing changed; `criterion` rows, that a bound \
+         chosen by hand holds.",
         "",
         "",
     ));
@@ -212,8 +292,8 @@ pub fn write(
     }
     md.push_str("\n## Files\n\n");
     let mut files = vec![
-        "`summary.json`: every row, with `case, check, method, variant, dt, value, expected, \
-         tolerance, pass, comparison, reason`.",
+        "`summary.json`: every row, with `case, check, method, kind, variant, dt, value, \
+         expected, tolerance, pass, comparison, reason`.",
     ];
     if study.is_some() {
         files.push("`sweeps.json`: every point of every sweep.");
@@ -240,7 +320,8 @@ pub fn write(
 pub const README_MARKERS: (&str, &str) = ("<!-- headline:start -->", "<!-- headline:end -->");
 
 /// Rewrites the headline table between [`README_MARKERS`] in `readme`, when
-/// the file exists and has them: the rows each case declares
+/// the file exists and has them: what the validation rows cover
+/// ([`validation_cover`]), then the rows each case declares
 /// (`Case::headline`), in registry order, with where their conditions come
 /// from. Returns whether it did.
 pub fn update_readme(readme: &Path, all_rows: &[&Row]) -> Result<bool> {
@@ -260,7 +341,8 @@ pub fn update_readme(readme: &Path, all_rows: &[&Row]) -> Result<bool> {
         })
         .collect();
     let table = table::markdown(&rows, true);
-    let new = format!("{}{start}\n{table}{}", &text[..a], &text[b..]);
+    let cover = format::wrap(&validation_cover(all_rows), "", "");
+    let new = format!("{}{start}\n{cover}\n{table}{}", &text[..a], &text[b..]);
     if new != text {
         crate::simulate::write_atomically(readme, new.as_bytes())?;
     }
@@ -270,6 +352,42 @@ pub fn update_readme(readme: &Path, all_rows: &[&Row]) -> Result<bool> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_validation_cover_counts_validation_rows_by_case_and_the_other_kinds() {
+        let row = |kind, case: &str| {
+            Row::new(
+                kind,
+                case,
+                "x",
+                "m",
+                0.1,
+                0.0,
+                0.0,
+                1.0,
+                crate::row::Comparison::Within,
+                "r",
+            )
+        };
+        let rows = [
+            row(RowKind::Validation, "spring"),
+            row(RowKind::Validation, "spring"),
+            row(RowKind::Validation, "pyramid"),
+            row(RowKind::Criterion, "pyramid"),
+            row(RowKind::Regression, "falling_hinges"),
+        ];
+        let refs: Vec<&Row> = rows.iter().collect();
+        let text = validation_cover(&refs);
+        assert!(
+            text.starts_with("3 of the 5 rows are validation rows"),
+            "{text}"
+        );
+        assert!(text.contains("in 2 cases: spring 2, pyramid 1."), "{text}");
+        assert!(
+            text.contains("0 predicted_failure, 0 consistency, 1 regression, 1 criterion"),
+            "{text}"
+        );
+    }
     use crate::cases::CaseFigure;
     use crate::plots::{Chart, Series};
     use crate::row::Comparison;
@@ -281,6 +399,7 @@ mod tests {
         let long = "a long reason that goes on ".repeat(12);
         let rows = vec![
             Row::new(
+                crate::row::RowKind::Validation,
                 "collision_parry",
                 "verdict_agreement_rate",
                 "engine_vs_parry2d",
@@ -292,6 +411,7 @@ mod tests {
                 long.clone(),
             ),
             Row::new(
+                crate::row::RowKind::Validation,
                 "collision_parry",
                 "max_depth_difference",
                 "engine_vs_parry2d",

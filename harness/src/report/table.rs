@@ -25,8 +25,8 @@ fn reason_keys(rows: &[&Row]) -> (Vec<String>, Vec<usize>) {
 }
 
 /// The Markdown table of `rows` (with a leading `case` column when asked,
-/// and a `variant` column when a row has one), then the list of the
-/// reasons its `why` column refers to.
+/// a `variant` column when a row has one, and each row's kind of
+/// evidence), then the list of the reasons its `why` column refers to.
 pub fn markdown(rows: &[&Row], with_case: bool) -> String {
     if rows.is_empty() {
         return "No rows.\n".into();
@@ -47,6 +47,7 @@ pub fn markdown(rows: &[&Row], with_case: bool) -> String {
         "value",
         "expected",
         "condition",
+        "kind",
         "pass",
         "why",
     ]);
@@ -67,6 +68,7 @@ pub fn markdown(rows: &[&Row], with_case: bool) -> String {
             fmt_num(r.value),
             fmt_num(r.expected),
             condition(r),
+            r.kind.id().to_string(),
             if r.pass { "yes" } else { "**NO**" }.to_string(),
             format!("R{}", key + 1),
         ]);
@@ -165,6 +167,7 @@ mod tests {
     fn rows() -> Vec<Row> {
         vec![
             Row::new(
+                crate::row::RowKind::Validation,
                 "spring",
                 "x_end",
                 "explicit_euler",
@@ -176,6 +179,7 @@ mod tests {
                 "tolerance = the error linear stability theory predicts | M(h)^286",
             ),
             Row::new(
+                crate::row::RowKind::Validation,
                 "spring",
                 "order",
                 "velocity_verlet",
@@ -224,6 +228,7 @@ mod tests {
         let md = markdown(&refs, true);
         assert!(md.contains("| case | check | variant | method |"), "{md}");
         assert!(md.contains("| R1 |") && md.contains("| R2 |"), "{md}");
+        assert!(md.contains("| validation | yes | R1 |"), "{md}");
         assert!(md.contains("- **R1**: tolerance"), "{md}");
         // The reason's `|` stays out of the table: it is below it.
         let table_lines = md.lines().take_while(|l| l.starts_with('|'));
