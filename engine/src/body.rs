@@ -22,6 +22,7 @@ pub type BodyId = usize;
 
 /// How a body takes part in the simulation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum BodyKind {
     /// Moves under forces; integrated.
     #[default]
@@ -36,6 +37,7 @@ pub enum BodyKind {
 
 /// The kinematic state of a body at one time.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BodyState {
     /// Position of the centre of mass (m).
     pub position: Vector2<f64>,
@@ -189,6 +191,7 @@ impl BodyDef {
 
 /// A validated body inside a world.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Body {
     /// Name, for errors and reports.
     pub name: String,

@@ -96,7 +96,7 @@ pub use contact_model::ContactModel;
 pub use error::{EngineError, Result};
 pub use events::{Crossing, EventRecord, EventSpec, Quantity};
 pub use filter::{Filter, QueryFilter};
-pub use forces::{Force, ForceContext, TimeWindow, Wrench};
+pub use forces::{BuiltinForce, Force, ForceContext, TimeWindow, Wrench};
 pub use integrators::{
     Integrator, Method, Solution, Stats, Tolerance, integrate_fixed, integrate_to,
 };
@@ -110,3 +110,4 @@ pub use soft_step::joints::{
 pub use time_grid::{MAX_RUN_STEPS, step_count};
 pub use trace::{Sample, Trace};
 pub use world::World;
+pub use world_core::ForceId;
