@@ -29,9 +29,11 @@ pub enum BodyKind {
     Dynamic,
     /// Never moves; not integrated (an anchor, the ground).
     Static,
-    /// Moves at its initial velocity and angular velocity forever, pushed
-    /// by nothing (infinite mass and inertia); pushes what it touches.
-    /// Supported by the soft-step contact model.
+    /// Moves at its velocity and angular velocity (its initial ones, until
+    /// a program sets them: [`crate::World::set_velocity`],
+    /// [`crate::World::set_target_pose`]), pushed by nothing (infinite
+    /// mass and inertia); pushes what it touches. Supported by the
+    /// soft-step contact model.
     Kinematic,
 }
 

@@ -48,10 +48,11 @@ const EDGE_RESOLUTION_ULPS: f64 = 16.0;
 /// A clone is a snapshot in memory: it holds everything the next step
 /// reads (states, contacts with their warm-starting impulses, the broad
 /// phase's trees, islands and sleep timers, joint impulses), so stepping
-/// the clone and the original alike gives the same bits (see
-/// [`World::state_hash`]; bytes: the `serde` feature, module docs of
-/// `world/snapshot.rs` in [`World::check_serializable`]). The forces are
-/// shared between clones (they are immutable once added).
+/// the clone and the original alike gives the same bits
+/// ([`World::state_hash`]). The forces are shared between clones (they
+/// are immutable once added). With the `serde` feature (default) a world
+/// is also `Serialize` and `Deserialize`, with the same guarantee; what
+/// cannot be written is listed at [`World::check_serializable`].
 #[derive(Debug, Clone)]
 pub struct World {
     core: WorldCore,

@@ -134,6 +134,7 @@ impl SoftStep {
 
     /// Whether the per-body tables are those of a world of `n` bodies
     /// (read back from bytes).
+    #[cfg(feature = "serde")]
     pub(crate) fn consistent_with(&self, n: usize) -> bool {
         self.sims.len() == n && self.bodies.len() == n + 1
     }

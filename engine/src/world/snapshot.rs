@@ -30,7 +30,9 @@
 //! Bytes from another version of the engine are refused by a format
 //! number; bytes that are not a world are refused by the format or by the
 //! consistency checks of [`World`]'s `Deserialize` (lengths of the per-body
-//! tables).
+//! tables). Those checks do not prove that every index inside (a contact's
+//! bodies, a proxy's node) is in range: read only bytes this engine
+//! wrote, as with any in-memory image.
 //!
 //! The state hash ([`World::state_hash`], Box2D's `b2World_GetStateHash`)
 //! is FNV-1a over the bits of every body's x, y and angle, in id order: two
