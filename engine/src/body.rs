@@ -22,20 +22,24 @@ pub type BodyId = usize;
 
 /// How a body takes part in the simulation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum BodyKind {
     /// Moves under forces; integrated.
     #[default]
     Dynamic,
     /// Never moves; not integrated (an anchor, the ground).
     Static,
-    /// Moves at its initial velocity and angular velocity forever, pushed
-    /// by nothing (infinite mass and inertia); pushes what it touches.
-    /// Supported by the soft-step contact model.
+    /// Moves at its velocity and angular velocity (its initial ones, until
+    /// a program sets them: [`crate::World::set_velocity`],
+    /// [`crate::World::set_target_pose`]), pushed by nothing (infinite
+    /// mass and inertia); pushes what it touches. Supported by the
+    /// soft-step contact model.
     Kinematic,
 }
 
 /// The kinematic state of a body at one time.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BodyState {
     /// Position of the centre of mass (m).
     pub position: Vector2<f64>,
@@ -189,6 +193,7 @@ impl BodyDef {
 
 /// A validated body inside a world.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Body {
     /// Name, for errors and reports.
     pub name: String,

@@ -64,7 +64,7 @@ pub(crate) const JOINTS_NEED_SOFT_STEP: &str = "joints are solved by the soft_st
      \"soft_step\", the default)";
 
 /// The model a world runs, with its state.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub(crate) enum Dynamics {
     /// The exact model; also a world without contacts.
     Exact(Box<ExactModel>),
@@ -94,6 +94,50 @@ impl Dynamics {
         match self {
             Dynamics::Exact(m) => m.bodies_changed(),
             Dynamics::SoftStep(s) => s.body_removed(core, id),
+        }
+    }
+
+    /// Body `id`'s [`Body`] in `core` changed (kind, mass, inertia,
+    /// shape set or cleared).
+    pub(crate) fn body_changed(&mut self, core: &WorldCore, id: BodyId) {
+        match self {
+            Dynamics::Exact(m) => m.bodies_changed(),
+            Dynamics::SoftStep(s) => s.body_changed(core, id),
+        }
+    }
+
+    /// Body `id` was moved to the pose in `core.states[id]`.
+    pub(crate) fn pose_changed(&mut self, core: &WorldCore, id: BodyId) {
+        match self {
+            Dynamics::Exact(m) => m.bodies_changed(),
+            Dynamics::SoftStep(s) => s.pose_changed(core, id),
+        }
+    }
+
+    /// Body `id`'s velocity was set or kicked: the exact model drops its
+    /// resting pairs (they are chosen again at the next step from the new
+    /// velocities), the soft step wakes the body.
+    pub(crate) fn velocity_changed(&mut self, id: BodyId) {
+        match self {
+            Dynamics::Exact(m) => m.bodies_changed(),
+            Dynamics::SoftStep(s) => s.velocity_changed(id),
+        }
+    }
+
+    /// Wakes body `id` (the soft step; nothing sleeps under the exact
+    /// model).
+    pub(crate) fn wake(&mut self, id: BodyId) {
+        if let Dynamics::SoftStep(s) = self {
+            s.velocity_changed(id);
+        }
+    }
+
+    /// The joints of body `id` that are not removed, with the other body
+    /// of each (`None`: the world).
+    pub(crate) fn joints_of(&self, id: BodyId) -> Vec<(JointId, Option<BodyId>)> {
+        match self {
+            Dynamics::Exact(_) => Vec::new(),
+            Dynamics::SoftStep(s) => s.joints_of(id),
         }
     }
 

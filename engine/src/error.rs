@@ -117,6 +117,31 @@ pub enum EngineError {
         /// Why, and what to use instead.
         reason: &'static str,
     },
+    /// A body that was removed from the world ([`crate::World::remove_body`])
+    /// was asked to change.
+    #[error("body {index} ('{name}') was removed from the world")]
+    RemovedBody {
+        /// Its id.
+        index: usize,
+        /// Its name.
+        name: String,
+    },
+    /// A force id that is not in the world (never returned by it, or
+    /// already removed).
+    #[error("unknown force id {id} (never added to this world, or already removed)")]
+    UnknownForce {
+        /// The id's number.
+        id: u64,
+    },
+    /// A world that cannot be written as bytes: it holds a force of the
+    /// program's own type, which the engine cannot serialize (clone the
+    /// world in memory instead, or rebuild that force after restoring).
+    #[error("the world cannot be serialized: {what}")]
+    NotSerializable {
+        /// What stands in the way, e.g. `"user force 'wind' (not one of
+        /// the engine's forces)"`.
+        what: String,
+    },
     /// The Jacobian of the implicit step is singular.
     #[error("singular Newton matrix at t = {} s", readable(*.t))]
     SingularJacobian {

@@ -12,6 +12,7 @@ use crate::body::{BodyId, BodyState};
 
 /// A scalar read off one body's state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Quantity {
     /// x of the centre of mass (m).
     X,
@@ -43,6 +44,7 @@ impl Quantity {
 
 /// Which sign changes count.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Crossing {
     /// From below the level to at-or-above it.
     Rising,
@@ -67,6 +69,7 @@ impl Crossing {
 
 /// An event to locate.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct EventSpec {
     /// Name used in the records (e.g. `"landing"`).
     pub name: String,

@@ -57,7 +57,7 @@ const EVENT_TIME_TOLERANCE: f64 = 1e-15;
 
 /// The exact model's state: the integrator, the state-vector layout, and
 /// the contact pipeline when contacts are on.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub(crate) struct ExactModel {
     integrator: Integrator,
     layout: Layout,

@@ -65,6 +65,18 @@
 //!   friction), seed §7, and the event root finder;
 //! - [`joints`]: revolute, prismatic, distance, weld and target joints
 //!   under the soft step ([`World::add_joint`]).
+//!
+//! Between steps a program drives the world: [`World::set_pose`],
+//! [`World::set_velocity`], [`World::apply_force`],
+//! [`World::apply_linear_impulse`], [`World::set_target_pose`],
+//! [`World::set_body_kind`], [`World::set_enabled`],
+//! [`World::set_gravity_scale`], [`World::set_damping`],
+//! [`World::set_fixed_rotation`], [`World::set_mass_properties`],
+//! [`World::set_user_value`], [`World::remove_force`]; each refuses bad
+//! input with an [`EngineError`] and leaves the world as it was. A
+//! [`World`] is `Clone` (a snapshot in memory) and, with the default
+//! `serde` feature, serializable: restored, it steps to the same bits
+//! ([`World::state_hash`], [`World::check_serializable`]).
 
 #![warn(missing_docs)]
 
@@ -96,7 +108,7 @@ pub use contact_model::ContactModel;
 pub use error::{EngineError, Result};
 pub use events::{Crossing, EventRecord, EventSpec, Quantity};
 pub use filter::{Filter, QueryFilter};
-pub use forces::{Force, ForceContext, TimeWindow, Wrench};
+pub use forces::{BuiltinForce, Force, ForceContext, TimeWindow, Wrench};
 pub use integrators::{
     Integrator, Method, Solution, Stats, Tolerance, integrate_fixed, integrate_to,
 };
@@ -110,3 +122,4 @@ pub use soft_step::joints::{
 pub use time_grid::{MAX_RUN_STEPS, step_count};
 pub use trace::{Sample, Trace};
 pub use world::World;
+pub use world_core::ForceId;

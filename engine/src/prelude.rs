@@ -31,4 +31,5 @@ pub use crate::soft_step::joints::{
 };
 pub use crate::trace::{Sample, Trace};
 pub use crate::world::World;
+pub use crate::world_core::ForceId;
 pub use nalgebra::{Isometry2, Vector2};

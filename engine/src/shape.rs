@@ -30,6 +30,7 @@ const TURN_ROUNDING: f64 = 4.0 * f64::EPSILON;
 
 /// A convex polygon, counter-clockwise, in its body's frame (m).
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ConvexPolygon {
     vertices: Vec<Vector2<f64>>,
 }
@@ -243,6 +244,7 @@ fn rescaled(vertices: &[Vector2<f64>]) -> Vec<Vector2<f64>> {
 
 /// A circle of given radius (m) centred on its body's origin.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Circle {
     /// Radius (m), > 0.
     pub radius: f64,
@@ -260,6 +262,7 @@ impl Circle {
 /// One part of a [`Compound`]: a polygon or a circle placed in the body
 /// frame.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CompoundPart {
     /// Where the part's own origin sits in the body frame (m).
     pub offset: Vector2<f64>,
@@ -289,6 +292,7 @@ impl CompoundPart {
 /// shapes, of uniform density. Supported by the soft-step contact model;
 /// the exact model refuses it.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Compound {
     parts: Vec<CompoundPart>,
 }
@@ -381,6 +385,7 @@ impl Compound {
 
 /// The shapes a body can carry.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Shape {
     /// A convex polygon (a box is a polygon built by [`ConvexPolygon::rectangle`]).
     Polygon(ConvexPolygon),

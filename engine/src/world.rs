@@ -29,15 +29,31 @@ use crate::soft_step::SoftStep;
 use crate::soft_step::joints::{JointDef, JointId, JointState};
 use crate::time_grid::{grid_time, step_count};
 use crate::trace::{Sample, Trace};
-use crate::world_core::{ForceEntry, WorldCore};
+use crate::world_core::{BodyControl, ForceEntry, ForceId, WorldCore};
 use nalgebra::Vector2;
+use std::sync::Arc;
+
+mod control;
+mod snapshot;
+
+#[cfg(feature = "serde")]
+pub(crate) use snapshot::{deserialize_forces, serialize_forces};
 
 /// How many ulps of the current time separate a force-window edge from a
 /// step end before the step is split there.
 const EDGE_RESOLUTION_ULPS: f64 = 16.0;
 
 /// A simulated world.
-#[derive(Debug)]
+///
+/// A clone is a snapshot in memory: it holds everything the next step
+/// reads (states, contacts with their warm-starting impulses, the broad
+/// phase's trees, islands and sleep timers, joint impulses), so stepping
+/// the clone and the original alike gives the same bits
+/// ([`World::state_hash`]). The forces are shared between clones (they
+/// are immutable once added). With the `serde` feature (default) a world
+/// is also `Serialize` and `Deserialize`, with the same guarantee; what
+/// cannot be written is listed at [`World::check_serializable`].
+#[derive(Debug, Clone)]
 pub struct World {
     core: WorldCore,
     model: Dynamics,
@@ -77,6 +93,7 @@ impl World {
         match model {
             ContactModel::Exact(settings) => {
                 self.refuse_joints_leaving_soft_step()?;
+                self.refuse_controls_leaving_soft_step()?;
                 if let Dynamics::SoftStep(_) = self.model {
                     self.model =
                         Dynamics::Exact(Box::new(ExactModel::new(Method::SemiImplicitEuler)?));
@@ -153,6 +170,7 @@ impl World {
     /// which it refuses while it holds joints (they need the soft step).
     pub fn disable_contacts(&mut self) -> Result<()> {
         self.refuse_joints_leaving_soft_step()?;
+        self.refuse_controls_leaving_soft_step()?;
         match &mut self.model {
             Dynamics::Exact(exact) => exact.disable_contacts(),
             Dynamics::SoftStep(_) => {
@@ -215,12 +233,14 @@ impl World {
         gravity.validate()?;
         self.core.forces.retain(|f| !f.world_gravity);
         if g != Vector2::zeros() {
+            let id = self.next_force_id();
             self.core.forces.insert(
                 0,
                 ForceEntry {
-                    force: Box::new(gravity),
+                    force: Arc::new(gravity),
                     window: TimeWindow::ALWAYS,
                     world_gravity: true,
+                    id,
                 },
             );
         }
@@ -245,6 +265,9 @@ impl World {
         self.core.bodies.push(body);
         self.core.states.push(state);
         self.core.removed.push(false);
+        self.core.controls.push(BodyControl::of(
+            self.core.bodies.last().expect("just pushed"),
+        ));
         let id = self.core.bodies.len() - 1;
         self.model.body_added(&self.core, id);
         Ok(id)
@@ -270,6 +293,10 @@ impl World {
         state.velocity = Vector2::zeros();
         state.angular_velocity = 0.0;
         self.core.forces.retain(|f| !f.force.bodies().contains(&id));
+        self.core.controls[id].disabled = None;
+        if let Some(w) = self.core.applied.get_mut(id) {
+            *w = crate::forces::Wrench::default();
+        }
         self.core.events.retain(|e| e.body != id);
         self.model.body_removed(&self.core, id);
         Ok(())
@@ -328,14 +355,19 @@ impl World {
         id < self.core.bodies.len() && self.model.is_asleep(id)
     }
 
-    /// Adds a force active at all times.
-    pub fn add_force(&mut self, force: impl Force + 'static) -> Result<()> {
+    /// Adds a force active at all times; returns its id, for
+    /// [`World::remove_force`].
+    pub fn add_force(&mut self, force: impl Force + 'static) -> Result<ForceId> {
         self.add_force_during(Box::new(force), TimeWindow::ALWAYS)
     }
 
-    /// Adds a force active during `window` only. Refuses a force naming a
-    /// body that does not exist.
-    pub fn add_force_during(&mut self, force: Box<dyn Force>, window: TimeWindow) -> Result<()> {
+    /// Adds a force active during `window` only; returns its id. Refuses a
+    /// force naming a body that does not exist.
+    pub fn add_force_during(
+        &mut self,
+        force: Box<dyn Force>,
+        window: TimeWindow,
+    ) -> Result<ForceId> {
         force.validate()?;
         for body in force.bodies() {
             self.check_body(body)?;
@@ -346,12 +378,36 @@ impl World {
                 force: force.name().into(),
             });
         }
+        let id = self.next_force_id();
         self.core.forces.push(ForceEntry {
-            force,
+            force: Arc::from(force),
             window,
             world_gravity: false,
+            id,
         });
+        Ok(id)
+    }
+
+    /// Removes the force `id` that [`World::add_force`] or
+    /// [`World::add_force_during`] returned; it acts no more from the next
+    /// step. An id never returned by this world is refused with
+    /// [`EngineError::UnknownForce`]; so is one already removed, or one
+    /// dropped with its body by [`World::remove_body`].
+    pub fn remove_force(&mut self, id: ForceId) -> Result<()> {
+        let index = self
+            .core
+            .forces
+            .iter()
+            .position(|f| f.id == id && !f.world_gravity)
+            .ok_or(EngineError::UnknownForce { id: id.0 })?;
+        self.core.forces.remove(index);
         Ok(())
+    }
+
+    fn next_force_id(&mut self) -> ForceId {
+        let id = ForceId(self.core.next_force_id);
+        self.core.next_force_id += 1;
+        id
     }
 
     /// Adds an event to locate.
@@ -457,7 +513,22 @@ impl World {
         edges.sort_by(f64::total_cmp);
         edges.dedup();
         edges.push(t_end);
+        // The forces applied for this step act through it, then go.
+        let applied = !self.core.applied.is_empty();
+        if applied {
+            let wrenches = std::mem::take(&mut self.core.applied);
+            let id = self.next_force_id();
+            self.core.forces.push(ForceEntry {
+                force: Arc::new(control::AppliedWrenches(wrenches)),
+                window: TimeWindow::ALWAYS,
+                world_gravity: false,
+                id,
+            });
+        }
         let result = self.model.advance(&mut self.core, &edges, &mut found);
+        if applied {
+            self.core.forces.pop();
+        }
         self.scratch_edges = edges;
         result.map(|()| found)
     }

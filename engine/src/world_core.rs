@@ -8,15 +8,76 @@ use crate::body::{Body, BodyState};
 use crate::contact::pipeline::Profiler;
 use crate::error::{EngineError, Result};
 use crate::events::EventSpec;
-use crate::forces::{Force, ForceContext, TimeWindow};
+use crate::forces::{Force, ForceContext, TimeWindow, Wrench};
+use nalgebra::Vector2;
+use std::sync::Arc;
 
-/// A force generator with the window in which it acts.
+/// The id [`crate::World::add_force`] returns, for
+/// [`crate::World::remove_force`]. Ids are never reused within a world.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ForceId(pub(crate) u64);
+
+/// A force generator with the window in which it acts. Forces are
+/// immutable once added (every [`Force`] method takes `&self`), so a
+/// cloned world shares them.
+#[derive(Clone)]
 pub(crate) struct ForceEntry {
-    pub force: Box<dyn Force>,
+    pub force: Arc<dyn Force>,
     pub window: TimeWindow,
     /// Whether this entry is the world's gravity setting
     /// ([`crate::World::set_gravity`]) rather than a force the user added.
     pub world_gravity: bool,
+    /// Its id (the world's gravity setting has one too, never returned).
+    pub id: ForceId,
+}
+
+/// What a program sets on a body after creating it
+/// ([`crate::World::set_gravity_scale`] and its neighbours), beside its
+/// [`Body`]: the defaults change nothing.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct BodyControl {
+    /// Factor on the world's uniform gravity for this body (1 by default).
+    pub gravity_scale: f64,
+    /// Linear damping rate c (1/s): v ← v / (1 + h c) per substep.
+    pub linear_damping: f64,
+    /// Angular damping rate (1/s): ω ← ω / (1 + h c) per substep.
+    pub angular_damping: f64,
+    /// The program's own value for this body.
+    pub user_value: u64,
+    /// Whether its rotation is locked (its inertia is then `None`).
+    pub fixed_rotation: bool,
+    /// Its mass (kg) and inertia (kg·m²) as a dynamic body, kept while it
+    /// is static or kinematic (whose mass is infinite) or its rotation is
+    /// locked; `None` for a body created static or kinematic and never
+    /// given any.
+    pub dynamic_mass: Option<(f64, Option<f64>)>,
+    /// While the body is disabled: the body itself, its velocity (m/s) and
+    /// angular velocity (rad/s) (the world holds an inert static body
+    /// without a shape, at rest, in its place).
+    pub disabled: Option<(Body, Vector2<f64>, f64)>,
+}
+
+impl BodyControl {
+    /// The control of a body just created as `body`.
+    pub(crate) fn of(body: &Body) -> Self {
+        Self {
+            gravity_scale: 1.0,
+            linear_damping: 0.0,
+            angular_damping: 0.0,
+            user_value: 0,
+            fixed_rotation: false,
+            dynamic_mass: body.is_dynamic().then_some((body.mass, body.inertia)),
+            disabled: None,
+        }
+    }
+
+    /// Whether the soft step's velocity stage must read this control
+    /// (gravity scaled or velocities damped).
+    pub(crate) fn acts(&self) -> bool {
+        self.gravity_scale != 1.0 || self.linear_damping != 0.0 || self.angular_damping != 0.0
+    }
 }
 
 impl std::fmt::Debug for ForceEntry {
@@ -26,10 +87,18 @@ impl std::fmt::Debug for ForceEntry {
 }
 
 /// The state a contact model advances.
-#[derive(Debug, Default)]
+#[derive(Debug, Default, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct WorldCore {
     pub bodies: Vec<Body>,
     pub states: Vec<BodyState>,
+    #[cfg_attr(
+        feature = "serde",
+        serde(
+            serialize_with = "crate::world::serialize_forces",
+            deserialize_with = "crate::world::deserialize_forces"
+        )
+    )]
     pub forces: Vec<ForceEntry>,
     pub events: Vec<EventSpec>,
     /// Current time (s).
@@ -38,9 +107,23 @@ pub(crate) struct WorldCore {
     pub stopped: bool,
     /// Bound on |total energy| (J) past which a step is a blow-up.
     pub energy_limit: Option<f64>,
+    /// Not written as bytes: a restored world's profile starts at zero.
+    #[cfg_attr(feature = "serde", serde(skip))]
     pub profiler: Profiler,
     /// Per body: whether it was removed ([`crate::World::remove_body`]).
     pub removed: Vec<bool>,
+    /// Per body: what the program set on it after creating it.
+    pub controls: Vec<BodyControl>,
+    /// Whether some body's control scales its gravity or damps it (the
+    /// soft step's velocity stage then reads the controls).
+    pub controls_act: bool,
+    /// The id the next force added gets.
+    pub next_force_id: u64,
+    /// Per body: the force and torque a program applied for the next step
+    /// ([`crate::World::apply_force`]); empty when none is pending.
+    pub applied: Vec<Wrench>,
+    /// Per joint: the program's own value (grown when one is set).
+    pub joint_user_values: Vec<u64>,
 }
 
 impl WorldCore {

@@ -9,8 +9,8 @@
 //! instead of its rounded ones (radius 0.025 m): debug builds run it in
 //! about a second.
 //!
-//! The hash of every box's final pose bits and the step at which all came
-//! to rest is asserted against constants (in `falling_hinges/expected.rs`,
+//! The world's state hash at rest ([`World::state_hash`]: every body's
+//! final pose bits) and the step at which all came to rest are asserted against constants (in `falling_hinges/expected.rs`,
 //! shared with the scene crate's test of `scenes/falling_hinges.toml` and
 //! the harness's main run), so that any change to the soft step's results
 //! (joints or contacts) is seen.
@@ -83,7 +83,7 @@ fn falling_hinges() -> World {
 fn run_to_rest_hashed() -> (usize, u64) {
     let mut world = falling_hinges();
     let step = run_to_rest(&mut world).expect("the falling hinges come to rest within 2000 steps");
-    (step, pose_hash(world.states()))
+    (step, world.state_hash())
 }
 
 #[test]

@@ -87,7 +87,7 @@ fn the_ragdolls_hold_together_as_they_fall() {
     }
 }
 
-// REST_STEP, HINGES_HASH, run_to_rest and pose_hash, shared with the
+// REST_STEP, HINGES_HASH and run_to_rest, shared with the
 // engine's test and the harness.
 include!("../../engine/tests/falling_hinges/expected.rs");
 
@@ -99,7 +99,7 @@ fn the_falling_hinges_scene_gives_the_engine_tests_bits() {
     let scene = Scene::load(scenes().join("falling_hinges.toml")).unwrap();
     let mut world = scene.build_world(None).unwrap();
     let rest = run_to_rest(&mut world);
-    let h = pose_hash(world.states());
+    let h = world.state_hash();
     assert_eq!(
         (rest, h),
         (Some(REST_STEP), HINGES_HASH),

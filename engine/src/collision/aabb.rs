@@ -10,6 +10,7 @@ use nalgebra::{Isometry2, Point2, Vector2};
 
 /// An axis-aligned box in the world frame (m).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Aabb {
     /// Lower-left corner (m).
     pub min: Vector2<f64>,

@@ -87,6 +87,7 @@ const NULL: u32 = u32::MAX;
 /// until the proxy is destroyed; after that the tree may hand out the same
 /// id to a new proxy.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ProxyId(u32);
 
 impl ProxyId {
@@ -99,6 +100,7 @@ impl ProxyId {
 
 /// One node of the tree: a leaf (a proxy), an internal node, or a free slot.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Node {
     /// Leaf: the proxy's fat box; internal node: the union of its two
     /// children's boxes (m).
@@ -132,6 +134,7 @@ impl Node {
 /// A dynamic bounding-volume tree over fat boxes (m); see the [module
 /// documentation](self) for the method.
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DynamicTree {
     /// The node pool: leaves, internal nodes and free slots.
     nodes: Vec<Node>,
@@ -142,8 +145,10 @@ pub struct DynamicTree {
     /// The number of leaves.
     proxy_count: usize,
     /// Reused buffers of [`DynamicTree::rebuild`].
+    #[cfg_attr(feature = "serde", serde(skip))]
     scratch: rebuild::Scratch,
     /// Reused buffers of [`DynamicTree::moved_pairs`].
+    #[cfg_attr(feature = "serde", serde(skip))]
     pair_scratch: pairs::Scratch,
 }
 

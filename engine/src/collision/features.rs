@@ -31,6 +31,7 @@ use nalgebra::{Isometry2, Point2, Vector2};
 
 /// The features of one contact manifold, in the shapes' frames (m).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) enum ContactFeatures {
     /// Points of the incident shape against a face of the reference one.
     Face {

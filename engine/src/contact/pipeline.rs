@@ -167,7 +167,7 @@ struct Found {
 
 /// The contact machinery of a world that has at least two collidable
 /// shapes (docs/design.md: a scene without them runs none of it).
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub(crate) struct ContactPipeline {
     pub settings: ContactSettings,
     pub events: Vec<ContactEvent>,

@@ -212,7 +212,7 @@ pub(crate) fn islands(views: &[BodyView], pairs: &[(usize, usize)]) -> Vec<usize
 
 /// Scratch buffers of the contact-force computation, kept between
 /// evaluations so that the right-hand side allocates nothing in steady state.
-#[derive(Debug, Default)]
+#[derive(Debug, Clone, Default)]
 pub(crate) struct Scratch {
     pub views: Vec<BodyView>,
     pub rows: Vec<Row>,
@@ -228,7 +228,7 @@ pub(crate) struct Scratch {
 
 /// The resting pairs of a world and what their forces need: the contact
 /// term of the world's right-hand side.
-#[derive(Debug, Default)]
+#[derive(Debug, Clone, Default)]
 pub(crate) struct RestingContacts {
     /// The pairs held by contact forces, sorted by (a, b).
     pub pairs: Vec<RestingPair>,

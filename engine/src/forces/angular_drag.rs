@@ -8,6 +8,7 @@ use crate::error::{Result, require_non_negative};
 /// Angular drag torque `−D ω |ω|` (N·m) on one rotating body; D in
 /// kg·m²/rad² (N·m·s²). On a particle it does nothing.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct AngularDrag {
     /// The body.
     pub body: BodyId,
@@ -16,6 +17,10 @@ pub struct AngularDrag {
 }
 
 impl Force for AngularDrag {
+    fn builtin(&self) -> Option<super::BuiltinForce> {
+        Some(super::BuiltinForce::AngularDrag(*self))
+    }
+
     fn name(&self) -> &str {
         "angular drag"
     }

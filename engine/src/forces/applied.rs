@@ -11,6 +11,7 @@ use nalgebra::Vector2;
 /// body (m, body frame): it pushes the centre of mass and adds the torque
 /// `r × F`, where `r` turns with the body.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PointForce {
     /// The body.
     pub body: BodyId,
@@ -21,6 +22,10 @@ pub struct PointForce {
 }
 
 impl Force for PointForce {
+    fn builtin(&self) -> Option<super::BuiltinForce> {
+        Some(super::BuiltinForce::PointForce(*self))
+    }
+
     fn name(&self) -> &str {
         "point force"
     }
@@ -49,6 +54,7 @@ impl Force for PointForce {
 /// seed's case II uses τ = R × F with R = (0.05, 0.05) m, F = (0.3, 0.4) N,
 /// so τ = 0.005 N·m.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Torque {
     /// The body.
     pub body: BodyId,
@@ -67,6 +73,10 @@ impl Torque {
 }
 
 impl Force for Torque {
+    fn builtin(&self) -> Option<super::BuiltinForce> {
+        Some(super::BuiltinForce::Torque(*self))
+    }
+
     fn name(&self) -> &str {
         "torque"
     }

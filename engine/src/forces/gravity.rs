@@ -9,12 +9,17 @@ use nalgebra::Vector2;
 /// The seed's cases use |g| = 9.80655 m/s² (its value; standard gravity is
 /// 9.80665).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Gravity {
     /// Acceleration (m/s²), e.g. `(0, −9.80655)`.
     pub g: Vector2<f64>,
 }
 
 impl Force for Gravity {
+    fn builtin(&self) -> Option<super::BuiltinForce> {
+        Some(super::BuiltinForce::Gravity(*self))
+    }
+
     fn name(&self) -> &str {
         "gravity"
     }

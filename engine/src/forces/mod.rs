@@ -26,6 +26,7 @@ use nalgebra::Vector2;
 
 /// A force (N) and a torque about the centre of mass (N·m) on one body.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Wrench {
     /// Force through the centre of mass (N).
     pub force: Vector2<f64>,
@@ -42,6 +43,40 @@ pub struct ForceContext<'a> {
     pub bodies: &'a [Body],
     /// Their current states, same indexing.
     pub states: &'a [BodyState],
+}
+
+/// A copy of one of the engine's own forces: what a world written as
+/// bytes stores for each force ([`Force::builtin`]).
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
+pub enum BuiltinForce {
+    /// [`Gravity`].
+    Gravity(Gravity),
+    /// [`Spring`].
+    Spring(Spring),
+    /// [`QuadraticDrag`].
+    QuadraticDrag(QuadraticDrag),
+    /// [`AngularDrag`].
+    AngularDrag(AngularDrag),
+    /// [`PointForce`].
+    PointForce(PointForce),
+    /// [`Torque`].
+    Torque(Torque),
+}
+
+impl BuiltinForce {
+    /// The force itself, to put back into a world.
+    pub fn into_force(self) -> std::sync::Arc<dyn Force> {
+        match self {
+            BuiltinForce::Gravity(f) => std::sync::Arc::new(f),
+            BuiltinForce::Spring(f) => std::sync::Arc::new(f),
+            BuiltinForce::QuadraticDrag(f) => std::sync::Arc::new(f),
+            BuiltinForce::AngularDrag(f) => std::sync::Arc::new(f),
+            BuiltinForce::PointForce(f) => std::sync::Arc::new(f),
+            BuiltinForce::Torque(f) => std::sync::Arc::new(f),
+        }
+    }
 }
 
 /// A force generator. Implement it to add your own forces to a world.
@@ -66,6 +101,16 @@ pub trait Force: std::fmt::Debug + Send + Sync {
     /// whatever its state, when it is such a uniform field (gravity); `None`
     /// otherwise. A solver may apply it without evaluating [`Force::apply`].
     fn uniform_acceleration(&self) -> Option<Vector2<f64>> {
+        None
+    }
+
+    /// A copy of this force when it is one of the engine's own, `None`
+    /// (the default) for a force of the program's own type: a world
+    /// holding such a force can be cloned ([`crate::World`] is `Clone`)
+    /// but not written as bytes (serializing it fails with
+    /// [`crate::EngineError::NotSerializable`] naming the force; see
+    /// [`crate::World::check_serializable`]).
+    fn builtin(&self) -> Option<BuiltinForce> {
         None
     }
 

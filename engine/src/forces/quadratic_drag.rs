@@ -8,6 +8,7 @@ use crate::error::{Result, require_non_negative};
 /// Quadratic drag `F = −D |v| v` (N) on one body. The seed's box has
 /// D = 1.2 · 0.5 · 0.01 / 2 = 0.003 kg/m.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct QuadraticDrag {
     /// The body.
     pub body: BodyId,
@@ -16,6 +17,10 @@ pub struct QuadraticDrag {
 }
 
 impl Force for QuadraticDrag {
+    fn builtin(&self) -> Option<super::BuiltinForce> {
+        Some(super::BuiltinForce::QuadraticDrag(*self))
+    }
+
     fn name(&self) -> &str {
         "quadratic drag"
     }

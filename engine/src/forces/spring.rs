@@ -9,6 +9,7 @@ use nalgebra::Vector2;
 
 /// Where a spring end is attached.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Attachment {
     /// A fixed point of the world (m).
     World(Vector2<f64>),
@@ -54,6 +55,7 @@ impl Attachment {
 ///   to x = 0, the anchor itself: a distance spring would flip its direction
 ///   there, the axial one is the seed's model.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Spring {
     /// First end.
     pub a: Attachment,
@@ -104,6 +106,10 @@ fn add_at(
 }
 
 impl Force for Spring {
+    fn builtin(&self) -> Option<super::BuiltinForce> {
+        Some(super::BuiltinForce::Spring(*self))
+    }
+
     fn name(&self) -> &str {
         "spring"
     }

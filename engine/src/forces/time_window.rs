@@ -7,6 +7,7 @@ use crate::error::{EngineError, Result};
 /// at both edges, so a window edge never falls inside a step and the
 /// integrator never differentiates across a discontinuity.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TimeWindow {
     /// Start of activity (s).
     pub start: f64,

@@ -121,6 +121,7 @@ impl Method {
 
 /// Work counters: machine-independent measures of cost.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Stats {
     /// Evaluations of the right-hand side `f(t, y)`.
     pub evaluations: u64,

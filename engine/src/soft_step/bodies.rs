@@ -19,6 +19,7 @@ use std::ops::Range;
 /// [`SolverBody::rows`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C, align(64))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct SolverBody {
     /// Linear velocity of the centre of mass (m/s).
     pub v: Vector2<f64>,
@@ -149,6 +150,7 @@ impl BodyMass {
 
 /// What the soft step keeps about a body besides its velocity.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct BodySim {
     pub kind: BodyKind,
     /// 1/m (1/kg); 0 for static and kinematic bodies.

@@ -36,6 +36,7 @@ use crate::collision::{Aabb, DynamicTree, ProxyId};
 
 /// Which tree a proxy lives in: its body's kind.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 enum Tree {
     Static,
     Kinematic,
@@ -44,7 +45,8 @@ enum Tree {
 
 /// The trees, the proxies of the bodies that have a shape, and the move
 /// buffer.
-#[derive(Debug, Default)]
+#[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct BroadPhase {
     static_tree: DynamicTree,
     kinematic_tree: DynamicTree,
@@ -63,9 +65,13 @@ pub(crate) struct BroadPhase {
     /// the pairs found as (position in `moved` of the body reporting it,
     /// other body), the start of each position's pairs, and the other
     /// bodies in reporting order.
+    #[cfg_attr(feature = "serde", serde(skip))]
     moved_dynamic: Vec<ProxyId>,
+    #[cfg_attr(feature = "serde", serde(skip))]
     found: Vec<(u32, u32)>,
+    #[cfg_attr(feature = "serde", serde(skip))]
     starts: Vec<u32>,
+    #[cfg_attr(feature = "serde", serde(skip))]
     ordered: Vec<u32>,
 }
 
@@ -112,6 +118,24 @@ impl BroadPhase {
             for (k, &b) in self.moved.iter().enumerate() {
                 self.move_position[b] = k as u32;
             }
+        }
+    }
+
+    /// Gives registered proxy `id` the fat box `fat` in the tree of
+    /// `kind` (its body's kind changed, or it got its shape back), or none,
+    /// and puts it in the move buffer so that its pairs are found again.
+    pub(crate) fn replace(&mut self, id: BodyId, fat: Option<Aabb>, kind: BodyKind) {
+        self.remove(id);
+        if let Some(fat) = fat {
+            let tree = match kind {
+                BodyKind::Static => Tree::Static,
+                BodyKind::Kinematic => Tree::Kinematic,
+                BodyKind::Dynamic => Tree::Dynamic,
+            };
+            let proxy = self.tree_mut(tree).create_proxy(fat, id as u32);
+            self.proxies[id] = Some((tree, proxy));
+            self.fat[id] = fat;
+            self.buffer_move(id);
         }
     }
 

@@ -56,7 +56,7 @@ pub(crate) enum Slot {
 /// `first_record[c + 1]` (excluded), its k-th constraint in lane k mod 4
 /// of record `first_record[c] + k / 4`: the records are colour after
 /// colour, the solve order.
-#[derive(Debug, Default)]
+#[derive(Debug, Clone, Default)]
 pub(crate) struct Colouring {
     /// Per world body, a bit per colour: set when a constraint of that
     /// colour holds the body (dynamic bodies only).

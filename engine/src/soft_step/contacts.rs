@@ -24,6 +24,7 @@ const RECYCLE_COS_ANGLE: f64 = 0.98;
 /// A point of a contact's manifold, in the world frame at the time the
 /// manifold was computed.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct ContactPoint {
     /// From A's centre of mass to the point (m).
     pub anchor_a: Vector2<f64>,
@@ -49,6 +50,7 @@ pub(crate) struct ContactPoint {
 
 /// What a recycled manifold is compared against.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Computed {
     /// Collider B's pose in collider A's frame when the manifold was
     /// computed.
@@ -60,6 +62,7 @@ struct Computed {
 
 /// A pair of colliders whose enlarged boxes overlap.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Contact {
     /// The reference collider (the polygon of a polygon–circle pair, else
     /// the lower id).
@@ -100,12 +103,15 @@ pub(crate) enum TouchChange {
 }
 
 /// Every contact of the world, with the pair index.
-#[derive(Debug, Default)]
+#[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct ContactSet {
     pub contacts: Vec<Contact>,
     pairs: FxHashMap<(BodyId, BodyId), usize>,
+    #[cfg_attr(feature = "serde", serde(skip))]
     scratch: Scratch,
     /// Reused list of touching changes of the last update.
+    #[cfg_attr(feature = "serde", serde(skip))]
     pub changes: Vec<TouchChange>,
 }
 

@@ -30,6 +30,7 @@ pub(crate) type Points = SmallVec<[Vector2<f64>; INLINE_VERTICES]>;
 /// A convex polygon with its outward unit edge normals: `normals[i]` is the
 /// normal of the edge from `vertices[i]` to `vertices[i + 1]`.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Polygon {
     pub vertices: Points,
     pub normals: Points,
@@ -41,6 +42,7 @@ pub(crate) struct Polygon {
     clippy::large_enum_variant,
     reason = "the polygon's points are inline on purpose (see INLINE_VERTICES)"
 )]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) enum SolverShape {
     Polygon(Polygon),
     Circle { radius: f64 },
@@ -48,6 +50,7 @@ pub(crate) enum SolverShape {
 
 /// A convex shape fixed to a body.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Collider {
     pub body: BodyId,
     /// The shape's frame in the body frame; `None` when it is the body

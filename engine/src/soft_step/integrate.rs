@@ -10,7 +10,9 @@ use crate::world_core::WorldCore;
 use nalgebra::Vector2;
 
 impl SoftStep {
-    /// v += h (g + F/m), ω += h τ/I for every awake dynamic body; the force
+    /// v += h (g + F/m), ω += h τ/I for every awake dynamic body (with its
+    /// gravity scale s and damping rates c, c_ω when a program set them:
+    /// v ← v/(1 + h c) + h (s g + F/m), ω ← ω/(1 + h c_ω) + h τ/I); the force
     /// generators (other than uniform fields) see the state at the
     /// substep's start, at time `t_sub`, active as at `middle`.
     #[inline(never)]
@@ -46,12 +48,23 @@ impl SoftStep {
                 }
             }
         }
+        let controls = core.controls_act.then_some(core.controls.as_slice());
         for (id, sim) in self.sims.iter().enumerate() {
             if sim.kind != BodyKind::Dynamic || sim.asleep {
                 continue;
             }
             let r = &mut self.bodies[id + 1];
-            r.v += h * gravity;
+            if let Some(controls) = controls {
+                // Box2D's implicit damping, v ← v / (1 + h c), on the
+                // velocity before this substep's forces; then the body's
+                // share of gravity.
+                let c = &controls[id];
+                r.v *= 1.0 / (1.0 + h * c.linear_damping);
+                r.w *= 1.0 / (1.0 + h * c.angular_damping);
+                r.v += h * (c.gravity_scale * gravity);
+            } else {
+                r.v += h * gravity;
+            }
             if general.is_some() {
                 let w = &self.wrenches[id];
                 r.v += (h * sim.inv_mass) * w.force;

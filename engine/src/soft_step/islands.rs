@@ -19,6 +19,7 @@ use crate::body::BodyId;
 const NONE: u32 = u32::MAX;
 
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Island {
     bodies: Vec<BodyId>,
     /// Contacts inside it that stopped touching since it was built.
@@ -27,12 +28,14 @@ struct Island {
 }
 
 /// The islands of a world's dynamic bodies.
-#[derive(Debug, Default)]
+#[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Islands {
     island_of: Vec<u32>,
     islands: Vec<Island>,
     free: Vec<u32>,
     // Scratch for splitting.
+    #[cfg_attr(feature = "serde", serde(skip))]
     parent: Vec<usize>,
 }
 
@@ -110,6 +113,17 @@ impl Islands {
             self.islands[i].bodies.retain(|&b| b != id);
             self.islands[i].removals += 1;
             self.island_of[id] = NONE;
+        }
+    }
+
+    /// Body `id`'s kind changed: out of its island, and into one of its
+    /// own if it is now `dynamic`.
+    pub(crate) fn reset_body(&mut self, id: BodyId, dynamic: bool) {
+        self.remove_body(id);
+        if dynamic {
+            let island = self.new_island();
+            self.islands[island].bodies.push(id);
+            self.island_of[id] = island as u32;
         }
     }
 

@@ -36,6 +36,7 @@ pub(crate) const LINEAR_SLOP: f64 = 0.005;
 
 /// A point of a [`LocalManifold`], in A's frame.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct LocalPoint {
     /// Midway between the surfaces (m), A's frame, from A's origin.
     pub point: Vector2<f64>,
@@ -47,6 +48,7 @@ pub(crate) struct LocalPoint {
 
 /// A manifold in A's frame: 0, 1 or 2 points sharing a normal.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct LocalManifold {
     /// Unit normal from A to B, A's frame.
     pub normal: Vector2<f64>,

@@ -170,6 +170,7 @@ mod colouring;
 mod contact_solver;
 mod contacts;
 mod continuous;
+mod control;
 mod events;
 mod geometry;
 mod integrate;
@@ -209,11 +210,13 @@ use wide_solver::{WideConstraint, WideExtra};
 
 /// The soft step's state: per-body solver records, broad phase, contacts,
 /// constraints, islands.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SoftStep {
     settings: SoftStepSettings,
     sims: Vec<BodySim>,
     /// The prepare stage's copy of the bodies' masses (see [`BodyMass`]).
+    #[cfg_attr(feature = "serde", serde(skip))]
     masses: Vec<BodyMass>,
     /// One per convex shape; a body's are contiguous.
     colliders: Vec<Collider>,
@@ -223,26 +226,37 @@ pub struct SoftStep {
     contacts: ContactSet,
     /// The constraints of the step's colours, four per record, colour
     /// after colour.
+    #[cfg_attr(feature = "serde", serde(skip))]
     wide: Vec<WideConstraint>,
+    #[cfg_attr(feature = "serde", serde(skip))]
     wide_extra: Vec<WideExtra>,
     /// The overflow constraints (no free colour), solved one at a time.
+    #[cfg_attr(feature = "serde", serde(skip))]
     constraints: Vec<ContactConstraint>,
+    #[cfg_attr(feature = "serde", serde(skip))]
     colouring: Colouring,
     /// The contact of each constraint, in contact order (the colouring's
     /// order).
+    #[cfg_attr(feature = "serde", serde(skip))]
     constrained: Vec<usize>,
     /// Per world body, the push-out speed (m/s) its contacts with other
     /// dynamic bodies ask for this step (prepare's sum, for sharing the
     /// push-out speed among them).
+    #[cfg_attr(feature = "serde", serde(skip))]
     push_demand: Vec<f64>,
     islands: islands::Islands,
     joints: joints::JointSet,
     stats: Stats,
     // Scratch reused by every step.
+    #[cfg_attr(feature = "serde", serde(skip))]
     wrenches: Vec<Wrench>,
+    #[cfg_attr(feature = "serde", serde(skip))]
     force_states: Vec<BodyState>,
+    #[cfg_attr(feature = "serde", serde(skip))]
     substep_start: Vec<SolverBody>,
+    #[cfg_attr(feature = "serde", serde(skip))]
     touching_pairs: Vec<(BodyId, BodyId)>,
+    #[cfg_attr(feature = "serde", serde(skip))]
     resting: Vec<usize>,
 }
 

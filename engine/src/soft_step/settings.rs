@@ -6,6 +6,7 @@ use crate::error::{EngineError, Result, require_non_negative, require_positive};
 /// Settings of the soft-step contact model. `Default` gives Box2D v3's
 /// defaults with sleeping off.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SoftStepSettings {
     /// Substeps per step (≥ 1). Each substep integrates velocities, warm
     /// starts, solves the contacts with their soft bias, integrates

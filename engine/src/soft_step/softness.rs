@@ -21,6 +21,7 @@
 
 /// The three coefficients of a soft constraint for one substep length.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Softness {
     /// Fraction of the constraint error removed per unit time (1/s).
     pub bias_rate: f64,

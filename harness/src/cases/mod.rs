@@ -78,6 +78,7 @@ registry! {
     joint_motor_limit,
     fuzz_scenes,
     falling_hinges,
+    snapshot_restore,
 }
 
 /// The case with this id.

@@ -35,6 +35,7 @@ const MIN_LENGTH: f64 = 1e-12;
 
 /// The parameters of a distance joint ([`super::JointDef::distance`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Distance {
     /// The length held at `length` (m, > 0); `None`: the anchors'
     /// distance when the joint is added. The default, with `None`.
@@ -158,6 +159,7 @@ impl Distance {
 
 /// What a distance joint solves.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 enum Mode {
     Rigid,
     Spring,
@@ -166,6 +168,7 @@ enum Mode {
 
 /// A distance joint's parameters, per-step values and impulses (N·s).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct DistanceRows {
     mode: Mode,
     /// Rest or rigid length (m).

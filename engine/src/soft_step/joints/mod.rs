@@ -154,6 +154,7 @@ pub const DEFAULT_CONSTRAINT_DAMPING_RATIO: f64 = 2.0;
 
 /// Where a joint attaches to one of its bodies.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Anchor {
     /// A point in world coordinates (m), taken at the bodies' poses when
     /// the joint is added.
@@ -167,6 +168,7 @@ pub enum Anchor {
 /// moves (Box2D's convention): it oscillates at `hertz` whatever it
 /// carries.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct JointSpring {
     /// Natural frequency f (Hz), > 0.
     pub hertz: f64,
@@ -191,6 +193,7 @@ impl JointSpring {
 
 /// The type of a joint and its own parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum JointKind {
     /// A shared point.
     Revolute(Revolute),
@@ -206,6 +209,7 @@ pub enum JointKind {
 
 /// The type of a joint, without its parameters.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum JointType {
     /// [`Revolute`].
     Revolute,
@@ -248,6 +252,7 @@ impl JointKind {
 /// The description of a joint, with Box2D's defaults: build one (the
 /// constructors below), then [`crate::World::add_joint`] validates it.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct JointDef {
     /// Name used in errors and reports.
     pub name: String,

@@ -38,6 +38,7 @@ use nalgebra::Vector2;
 
 /// A prismatic joint's motor.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PrismaticMotor {
     /// Target speed of B along the axis relative to A (m/s), any sign.
     pub speed: f64,
@@ -47,6 +48,7 @@ pub struct PrismaticMotor {
 
 /// The parameters of a prismatic joint ([`super::JointDef::prismatic`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Prismatic {
     /// The sliding direction in the world frame when the joint is added
     /// (normalized; finite and not zero), then fixed in A's frame. Default
@@ -114,6 +116,7 @@ impl Prismatic {
 
 /// A prismatic joint's parameters, per-step values and impulses.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct PrismaticRows {
     pub joint: Prismatic,
     /// The unit axis in A's frame.
@@ -130,6 +133,7 @@ pub(crate) struct PrismaticRows {
 }
 
 /// The axis and arms of a prismatic joint in a substep.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Geometry {
     anchors: (Vector2<f64>, Vector2<f64>),
     d: Vector2<f64>,

@@ -36,6 +36,7 @@ pub const MAX_LIMIT_ANGLE: f64 = 0.99 * std::f64::consts::PI;
 
 /// A revolute joint's motor.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RevoluteMotor {
     /// Target relative angular velocity ω_B − ω_A (rad/s), any sign.
     pub speed: f64,
@@ -46,6 +47,7 @@ pub struct RevoluteMotor {
 /// The parameters of a revolute joint ([`super::JointDef::revolute`]).
 /// `Default`: free rotation, no limits, no motor, no spring.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Revolute {
     /// `[lower, upper]` joint angle (rad), lower ≤ upper, each within
     /// ±0.99π ([`MAX_LIMIT_ANGLE`]). Default none.
@@ -91,6 +93,7 @@ impl Revolute {
 /// A revolute joint's parameters, per-step values and impulses (N·m·s and
 /// N·s, accumulated over a substep and warm-started).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct RevoluteRows {
     pub joint: Revolute,
     pub(super) spring_softness: Softness,

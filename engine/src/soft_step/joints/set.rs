@@ -37,6 +37,7 @@ use smallvec::SmallVec;
 
 /// The rows of one joint, by type.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) enum JointRows {
     Revolute(RevoluteRows),
     Prismatic(PrismaticRows),
@@ -48,6 +49,7 @@ pub(crate) enum JointRows {
 /// A joint's solver record (its frame for the step is in the scalar list
 /// or its lane).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct JointSim {
     /// Whether it is solved this step (not removed, an awake body).
     pub active: bool,
@@ -56,6 +58,7 @@ pub(crate) struct JointSim {
 
 /// A joint's definition as resolved when it was added.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct JointInfo {
     pub name: String,
     pub body_a: Option<BodyId>,
@@ -76,6 +79,7 @@ pub(crate) struct JointInfo {
 /// other end, and whether it keeps the two from colliding (what the pair
 /// filter reads, without touching the joint itself).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct JointEdge {
     joint: u32,
     /// The other body, [`WORLD`] for the world.
@@ -87,7 +91,8 @@ struct JointEdge {
 const WORLD: u32 = u32::MAX;
 
 /// The joints of a world.
-#[derive(Debug, Default)]
+#[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct JointSet {
     pub sims: Vec<JointSim>,
     pub infos: Vec<JointInfo>,
@@ -97,16 +102,21 @@ pub(crate) struct JointSet {
     inv_h: f64,
     /// The step's colouring of the active revolute joints, in the order
     /// added.
+    #[cfg_attr(feature = "serde", serde(skip))]
     colouring: Colouring,
     /// The joints coloured, in the order added (the colouring's order).
+    #[cfg_attr(feature = "serde", serde(skip))]
     coloured: Vec<u32>,
     /// The joints solved one at a time, in the order added, with their
     /// frames for the step: every active joint but the revolute joints in
     /// a lane.
+    #[cfg_attr(feature = "serde", serde(skip))]
     scalar: Vec<(u32, JointFrame)>,
     /// The revolute joints of the step's colours, four per record, colour
     /// after colour, and their angle rows.
+    #[cfg_attr(feature = "serde", serde(skip))]
     wide: Vec<WideRevolute>,
+    #[cfg_attr(feature = "serde", serde(skip))]
     axial: Vec<WideAxial>,
 }
 

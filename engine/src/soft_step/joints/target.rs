@@ -25,6 +25,7 @@ use nalgebra::Vector2;
 
 /// The parameters of a target joint ([`super::JointDef::target`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Target {
     /// Largest force on the body (N), finite and > 0.
     pub max_force: f64,
@@ -63,6 +64,7 @@ impl Target {
 
 /// A target joint's parameters, per-step values and impulse (N·s).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct TargetRows {
     pub joint: Target,
     softness: Softness,

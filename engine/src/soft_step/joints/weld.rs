@@ -24,6 +24,7 @@ use nalgebra::Vector2;
 
 /// The parameters of a weld ([`super::JointDef::weld`]). `Default`: rigid.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Weld {
     /// A spring on the anchors' separation instead of the rigid point rows.
     /// Default none.
@@ -47,6 +48,7 @@ impl Weld {
 
 /// A weld's parameters, per-step values and impulses.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct WeldRows {
     pub joint: Weld,
     linear_softness: Softness,
