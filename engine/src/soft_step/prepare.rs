@@ -88,7 +88,7 @@ impl SoftStep {
         self.push_demand.resize(self.sims.len(), 0.0);
         let mut points = 0;
         for (index, c) in self.contacts.contacts.iter().enumerate() {
-            if c.count == 0 {
+            if c.count == 0 || c.sensor {
                 continue;
             }
             let (sa, sb) = (&self.masses[c.body_a], &self.masses[c.body_b]);

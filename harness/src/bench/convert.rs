@@ -90,7 +90,7 @@ pub fn neutral_scene(scene: &Scene, defaults: Defaults) -> Result<ManyBodyScene>
                 density,
                 friction: body.friction.unwrap_or(defaults.friction),
                 restitution: body.restitution.unwrap_or(defaults.restitution),
-                collision_group: def.collision_group,
+                collision_group: def.collision_group(),
             })
         })
         .collect::<Result<Vec<_>>>()?;
