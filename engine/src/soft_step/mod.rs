@@ -763,6 +763,16 @@ impl SoftStep {
                     })
                     .reduce(|a, b| a.merged(&b))
                     .expect("a body with colliders");
+                let (colliders, data) = (&self.colliders, &self.shape_data);
+                let own = self.sims[id].colliders.clone();
+                let blocks = |other: usize| {
+                    let d = &data[other];
+                    let stops = !d.sensor
+                        && own
+                            .clone()
+                            .any(|c| !data[c].sensor && data[c].filter.should_collide(&d.filter));
+                    stops.then_some(colliders[other].body)
+                };
                 if let Some(toi) = continuous::first_impact(
                     &core.bodies[id],
                     &sweep,
@@ -771,6 +781,7 @@ impl SoftStep {
                     &self.broad,
                     &core.bodies,
                     &core.states,
+                    blocks,
                 ) {
                     let f = toi / dt;
                     let state = &mut core.states[id];

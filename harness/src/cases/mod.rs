@@ -78,6 +78,11 @@ registry! {
     joint_motor_limit,
     fuzz_scenes,
     falling_hinges,
+    contact_forces,
+    sensor_gate,
+    conveyor,
+    rolling_resistance,
+    filters,
 }
 
 /// The case with this id.
