@@ -296,7 +296,7 @@ fn events_hooks_and_contact_data_step_without_allocating() {
         .unwrap();
     let dt = 1.0 / 60.0;
     let mut seen = [0usize; 5];
-    let mut read = |world: &World, seen: &mut [usize; 5]| {
+    let read = |world: &World, seen: &mut [usize; 5]| {
         let e = world.step_events().unwrap();
         seen[0] += e.touch_began.len();
         seen[1] += e.touch_ended.len();
