@@ -174,7 +174,12 @@ pub(crate) fn prepare(
         push_out,
         tangent_speed: contact.tangent_speed,
         rolling_resistance: contact.rolling_resistance,
-        rolling_mass: if ia + ib > 0.0 { 1.0 / (ia + ib) } else { 0.0 },
+        // Only read with rolling resistance: no division otherwise.
+        rolling_mass: if contact.rolling_resistance > 0.0 && ia + ib > 0.0 {
+            1.0 / (ia + ib)
+        } else {
+            0.0
+        },
         rolling_impulse: warm * contact.rolling_impulse,
         count: contact.count,
         points,

@@ -232,6 +232,9 @@ pub struct SoftStep {
     events: StepEvents,
     /// The program's filter and pre-solve hooks.
     hooks: Hooks,
+    /// Whether a constraint of this step has rolling resistance (prepare's;
+    /// the wide passes skip its rows otherwise).
+    rolling: bool,
     /// Solver records; index 0 is the static dummy, body `i` is `i + 1`.
     bodies: Vec<SolverBody>,
     broad: BroadPhase,
@@ -272,6 +275,7 @@ impl SoftStep {
             shape_data: Vec::new(),
             events: StepEvents::default(),
             hooks: Hooks::default(),
+            rolling: false,
             bodies: vec![SolverBody::AT_REST],
             broad: BroadPhase::default(),
             contacts: ContactSet::default(),
@@ -309,6 +313,14 @@ impl SoftStep {
         self.settings = settings;
         for (c, data) in self.colliders.iter().zip(&mut self.shape_data) {
             data.resolve(&core.bodies[c.body], &settings);
+        }
+        // Pairs mix their materials when created; again now.
+        for c in &mut self.contacts.contacts {
+            let m = PairMaterial::mix(&self.shape_data[c.a], &self.shape_data[c.b], &settings);
+            c.friction = m.friction;
+            c.restitution = m.restitution;
+            c.rolling_resistance = m.rolling_resistance;
+            c.tangent_speed = m.tangent_speed;
         }
         if settings.sleeping && !was_sleeping {
             self.rebuild_islands();
@@ -440,7 +452,7 @@ impl SoftStep {
             let started = core.profiler.start();
             self.joints.warm_start(&mut self.bodies);
             contact_solver::warm_start(&mut self.constraints, &mut self.bodies);
-            wide_solver::warm_start(&mut self.wide, &mut self.bodies);
+            wide_solver::warm_start(&mut self.wide, &mut self.bodies, self.rolling);
             core.profiler.stop(Phase::WarmStart, started);
 
             let started = core.profiler.start();
@@ -456,7 +468,7 @@ impl SoftStep {
             let started = core.profiler.start();
             self.joints.solve(&mut self.bodies, h, false);
             contact_solver::solve(&mut self.constraints, &mut self.bodies, inv_h, false);
-            wide_solver::relax(&mut self.wide, &mut self.bodies, inv_h);
+            wide_solver::relax(&mut self.wide, &mut self.bodies, inv_h, self.rolling);
             core.profiler.stop(Phase::Relax, started);
             self.stats.evaluations += 1;
 
@@ -603,12 +615,6 @@ impl SoftStep {
                 }
             };
             let max_extent = extent(ca, sa).max(extent(cb, sb));
-            let material = PairMaterial::mix(&self.shape_data[a], &self.shape_data[b], &settings);
-            let contact = &mut self.contacts.contacts[i];
-            contact.friction = material.friction;
-            contact.restitution = material.restitution;
-            contact.rolling_resistance = material.rolling_resistance;
-            contact.tangent_speed = material.tangent_speed;
             let side_a = Side {
                 shape: &ca.shape,
                 collider: ca.pose(&pose_a),

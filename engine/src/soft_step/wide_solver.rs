@@ -333,12 +333,22 @@ fn apply<L: Lanes>(
 
 /// Applies every constraint's accumulated impulses.
 #[inline(never)]
-pub(crate) fn warm_start(constraints: &mut [WideConstraint], bodies: &mut [SolverBody]) {
-    dispatch!(warm_start_with, warm_start_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody]));
+/// `rolling`: whether any constraint has rolling resistance (else its
+/// rows are skipped without being looked at).
+pub(crate) fn warm_start(
+    constraints: &mut [WideConstraint],
+    bodies: &mut [SolverBody],
+    rolling: bool,
+) {
+    dispatch!(warm_start_with, warm_start_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody], rolling: bool));
 }
 
 #[inline(always)]
-fn warm_start_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: &mut [SolverBody]) {
+fn warm_start_with<L: Lanes>(
+    constraints: &mut [WideConstraint],
+    bodies: &mut [SolverBody],
+    rolling: bool,
+) {
     for c in constraints.iter_mut() {
         let (mut a, mut b) = (gather::<L>(bodies, &c.a), gather::<L>(bodies, &c.b));
         let m = Masses::of(c);
@@ -352,10 +362,12 @@ fn warm_start_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: &mut [S
             (L::load(&p.total_normal_impulse) + normal_impulse).store(&mut p.total_normal_impulse);
             apply(&m, (&mut a, &mut b), &Anchors::of(p), (px, py));
         }
-        let rolling = L::load(&c.rolling_impulse);
-        if !L::all(rolling.eq(L::splat(0.0))) {
-            a.w -= m.ia * rolling;
-            b.w += m.ib * rolling;
+        if rolling {
+            let impulse = L::load(&c.rolling_impulse);
+            if !L::all(impulse.eq(L::splat(0.0))) {
+                a.w -= m.ia * impulse;
+                b.w += m.ib * impulse;
+            }
         }
         scatter(bodies, &c.a, &a);
         scatter(bodies, &c.b, &b);
@@ -370,18 +382,29 @@ pub(crate) fn solve(constraints: &mut [WideConstraint], bodies: &mut [SolverBody
 
 #[inline(always)]
 fn solve_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
-    pass::<L, true>(constraints, bodies, inv_h);
+    pass::<L, true>(constraints, bodies, inv_h, false);
 }
 
-/// The relax pass: without bias, with friction.
+/// The relax pass: without bias, with friction (and rolling resistance
+/// when `rolling`, see [`warm_start`]).
 #[inline(never)]
-pub(crate) fn relax(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
-    dispatch!(relax_with, relax_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64));
+pub(crate) fn relax(
+    constraints: &mut [WideConstraint],
+    bodies: &mut [SolverBody],
+    inv_h: f64,
+    rolling: bool,
+) {
+    dispatch!(relax_with, relax_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64, rolling: bool));
 }
 
 #[inline(always)]
-fn relax_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
-    pass::<L, false>(constraints, bodies, inv_h);
+fn relax_with<L: Lanes>(
+    constraints: &mut [WideConstraint],
+    bodies: &mut [SolverBody],
+    inv_h: f64,
+    rolling: bool,
+) {
+    pass::<L, false>(constraints, bodies, inv_h, rolling);
 }
 
 /// One pass of sequential impulses over four lanes at a time.
@@ -390,6 +413,7 @@ fn pass<L: Lanes, const BIAS: bool>(
     constraints: &mut [WideConstraint],
     bodies: &mut [SolverBody],
     inv_h: f64,
+    rolling: bool,
 ) {
     let inv_h = L::splat(inv_h);
     let (zero, one) = (L::splat(0.0), L::splat(1.0));
@@ -444,7 +468,7 @@ fn pass<L: Lanes, const BIAS: bool>(
                 apply(&m, (&mut a, &mut b), &r, (impulse * tx, impulse * ty));
             }
             let rolling_resistance = L::load(&c.rolling_resistance);
-            if !L::all(rolling_resistance.eq(zero)) {
+            if rolling && !L::all(rolling_resistance.eq(zero)) {
                 let normal =
                     L::load(&c.points[0].normal_impulse) + L::load(&c.points[1].normal_impulse);
                 let max = rolling_resistance * normal;
@@ -667,13 +691,13 @@ mod tests {
             let (mut wide, mut wide_bodies) = (wide.clone(), bodies.clone());
             for _ in 0..3 {
                 if sse2 {
-                    warm_start_with::<F64x4>(&mut wide, &mut wide_bodies);
+                    warm_start_with::<F64x4>(&mut wide, &mut wide_bodies, true);
                     solve_with::<F64x4>(&mut wide, &mut wide_bodies, inv_h);
-                    relax_with::<F64x4>(&mut wide, &mut wide_bodies, inv_h);
+                    relax_with::<F64x4>(&mut wide, &mut wide_bodies, inv_h, true);
                 } else {
-                    warm_start(&mut wide, &mut wide_bodies);
+                    warm_start(&mut wide, &mut wide_bodies, true);
                     solve(&mut wide, &mut wide_bodies, inv_h);
-                    relax(&mut wide, &mut wide_bodies, inv_h);
+                    relax(&mut wide, &mut wide_bodies, inv_h, true);
                 }
             }
             if sse2 {
