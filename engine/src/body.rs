@@ -14,6 +14,8 @@ use crate::error::{
     EngineError, Result, require_finite, require_non_negative, require_positive,
     require_unit_interval,
 };
+use crate::filter::Filter;
+use crate::material::{validate_filter, validate_material};
 use crate::shape::Shape;
 use nalgebra::Vector2;
 
@@ -88,11 +90,20 @@ pub struct BodyDef {
     /// Default: the world's contact settings. A pair takes the larger of
     /// its two values under the soft step.
     pub restitution: Option<f64>,
-    /// Collision group: bodies that share a group never collide with each
-    /// other (Box2D's negative group index; a ragdoll's bones). Default
-    /// none: the body collides with every other. Soft-step contact model
-    /// only.
-    pub collision_group: Option<u32>,
+    /// Collision filter of this body's shapes (Box2D's category, mask and
+    /// group: [`Filter`]); a compound part may override it. Default: collides
+    /// with everything. Soft-step contact model only.
+    pub filter: Filter,
+    /// Whether this body's shapes are sensors: they detect overlaps
+    /// (reported as sensor events) and never push or get pushed. Soft-step
+    /// contact model only.
+    pub sensor: bool,
+    /// Rolling resistance coefficient (≥ 0, dimensionless) of this body's
+    /// shapes; see [`crate::material`]. Default: the world's settings.
+    pub rolling_resistance: Option<f64>,
+    /// Tangent speed (m/s) of this body's shapes' surface, a conveyor
+    /// belt's; see [`crate::material`]. Default 0.
+    pub tangent_speed: Option<f64>,
 }
 
 impl BodyDef {
@@ -111,7 +122,10 @@ impl BodyDef {
             },
             friction: None,
             restitution: None,
-            collision_group: None,
+            filter: Filter::DEFAULT,
+            sensor: false,
+            rolling_resistance: None,
+            tangent_speed: None,
         }
     }
 
@@ -164,10 +178,24 @@ impl BodyDef {
         self
     }
 
-    /// Puts this body in collision group `group`: it no longer collides
-    /// with the other bodies of that group.
+    /// Puts this body in "never collide" group `group`: it no longer
+    /// collides with the other bodies of that group. This is the negative
+    /// filter group −(group + 1) ([`Filter::group`]), the mapping the
+    /// reference adapters use.
     pub fn with_collision_group(mut self, group: u32) -> Self {
-        self.collision_group = Some(group);
+        self.filter.group = -(i64::from(group) + 1);
+        self
+    }
+
+    /// Sets this body's collision filter.
+    pub fn with_filter(mut self, filter: Filter) -> Self {
+        self.filter = filter;
+        self
+    }
+
+    /// Makes this body's shapes sensors.
+    pub fn as_sensor(mut self) -> Self {
+        self.sensor = true;
         self
     }
 
@@ -210,8 +238,47 @@ pub struct Body {
     pub friction: Option<f64>,
     /// Restitution of its shape, if it has its own.
     pub restitution: Option<f64>,
-    /// Its collision group, if any ([`BodyDef::collision_group`]).
-    pub collision_group: Option<u32>,
+    /// Its shapes' collision filter ([`BodyDef::filter`]).
+    pub filter: Filter,
+    /// Whether its shapes are sensors ([`BodyDef::sensor`]).
+    pub sensor: bool,
+    /// Rolling resistance of its shapes, if it has its own.
+    pub rolling_resistance: Option<f64>,
+    /// Tangent speed of its shapes (m/s), if it has its own.
+    pub tangent_speed: Option<f64>,
+}
+
+/// The "never collide" group of [`BodyDef::with_collision_group`] in
+/// `filter`, if its group is negative: `g` for group −(g + 1).
+fn never_collide_group(filter: &Filter) -> Option<u32> {
+    (filter.group < 0)
+        .then(|| u32::try_from(-(filter.group + 1)).ok())
+        .flatten()
+}
+
+impl BodyDef {
+    /// The "never collide" group set by [`BodyDef::with_collision_group`]
+    /// (read from the filter's negative group), if any.
+    pub fn collision_group(&self) -> Option<u32> {
+        never_collide_group(&self.filter)
+    }
+}
+
+impl Body {
+    /// The "never collide" group of [`BodyDef::with_collision_group`], if
+    /// the filter has a negative group: `g` for group −(g + 1).
+    pub fn collision_group(&self) -> Option<u32> {
+        never_collide_group(&self.filter)
+    }
+
+    /// Whether the body uses anything only the soft step supports: a
+    /// filter other than the default, a sensor, or its own material.
+    pub(crate) fn has_soft_step_only_shape_data(&self) -> bool {
+        self.filter != Filter::DEFAULT
+            || self.sensor
+            || self.rolling_resistance.is_some()
+            || self.tangent_speed.is_some()
+    }
 }
 
 impl Body {
@@ -239,6 +306,18 @@ impl Body {
             .restitution
             .map(|e| require_unit_interval(format!("restitution of body '{name}'"), e))
             .transpose()?;
+        let what = format!("body '{name}'");
+        validate_material(&what, None, None, def.rolling_resistance, def.tangent_speed)?;
+        validate_filter(&what, &def.filter)?;
+        if let Some(Shape::Compound(c)) = &shape {
+            for (k, part) in c.parts().iter().enumerate() {
+                let what = format!("part {k} of body '{name}'");
+                part.overrides.validate(&what)?;
+                if let Some(filter) = &part.overrides.filter {
+                    validate_filter(&what, filter)?;
+                }
+            }
+        }
         if def.kind != BodyKind::Dynamic {
             let body = Body {
                 name: name.clone(),
@@ -248,7 +327,10 @@ impl Body {
                 shape,
                 friction,
                 restitution,
-                collision_group: def.collision_group,
+                filter: def.filter,
+                sensor: def.sensor,
+                rolling_resistance: def.rolling_resistance,
+                tangent_speed: def.tangent_speed,
             };
             let state = if def.kind == BodyKind::Static {
                 BodyState {
@@ -297,7 +379,10 @@ impl Body {
                 shape,
                 friction,
                 restitution,
-                collision_group: def.collision_group,
+                filter: def.filter,
+                sensor: def.sensor,
+                rolling_resistance: def.rolling_resistance,
+                tangent_speed: def.tangent_speed,
             },
             state,
         ))

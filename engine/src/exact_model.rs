@@ -127,11 +127,14 @@ impl ExactModel {
                  per-body materials",
             );
         }
-        if body.collision_group.is_some() {
+        if body.has_soft_step_only_shape_data() {
             return refuse(
-                format!("the collision group of body '{}'", body.name),
-                "the exact contact model collides every pair of shapes; use the soft_step \
-                 contact model for collision groups",
+                format!(
+                    "the filter, sensor flag, rolling resistance or tangent speed of body '{}'",
+                    body.name
+                ),
+                "the exact contact model collides every pair of shapes with one material; \
+                 use the soft_step contact model for filters, sensors and per-shape materials",
             );
         }
         Ok(())

@@ -16,6 +16,7 @@
 /// Which shapes a shape collides with. The default collides with
 /// everything: category bit 1, every mask bit, group 0.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Filter {
     /// The categories this shape belongs to (usually one bit).
     pub category: u64,

@@ -88,6 +88,7 @@ mod exact_model;
 pub mod filter;
 pub mod forces;
 pub mod integrators;
+pub mod material;
 pub mod ode;
 pub mod prelude;
 pub mod shape;
@@ -112,12 +113,17 @@ pub use forces::{BuiltinForce, Force, ForceContext, TimeWindow, Wrench};
 pub use integrators::{
     Integrator, Method, Solution, Stats, Tolerance, integrate_fixed, integrate_to,
 };
+pub use material::{MixingRule, ShapeOverrides};
 pub use ode::{FnSystem, OdeSystem, Structure};
 pub use shape::{Circle, Compound, CompoundPart, ConvexPolygon, Shape};
 pub use soft_step::SoftStepSettings;
 pub use soft_step::joints::{
     self as joints, Anchor, Distance, JointDef, JointId, JointKind, JointSpring, JointState,
     JointType, Prismatic, PrismaticMotor, Revolute, RevoluteMotor, Target, Weld,
+};
+pub use soft_step::{
+    ContactData, ContactHooks, ContactPointData, HitEvent, PreSolveContact, SensorEvent, ShapeId,
+    StepEvents, TouchEvent,
 };
 pub use time_grid::{MAX_RUN_STEPS, step_count};
 pub use trace::{Sample, Trace};

@@ -23,11 +23,16 @@ pub use crate::forces::{
     AngularDrag, Attachment, Force, Gravity, PointForce, QuadraticDrag, Spring, TimeWindow, Torque,
 };
 pub use crate::integrators::Method;
+pub use crate::material::{MixingRule, ShapeOverrides};
 pub use crate::shape::{Circle, Compound, CompoundPart, ConvexPolygon, Shape};
 pub use crate::soft_step::SoftStepSettings;
 pub use crate::soft_step::joints::{
     Distance, JointDef, JointId, JointSpring, Prismatic, PrismaticMotor, Revolute, RevoluteMotor,
     Target, Weld,
+};
+pub use crate::soft_step::{
+    ContactData, ContactHooks, HitEvent, PreSolveContact, SensorEvent, ShapeId, StepEvents,
+    TouchEvent,
 };
 pub use crate::trace::{Sample, Trace};
 pub use crate::world::World;

@@ -7,6 +7,7 @@
 //! its centre of mass: a polygon is re-centred on its centroid.
 
 use crate::error::{EngineError, Result, require_positive};
+use crate::material::ShapeOverrides;
 use nalgebra::Vector2;
 
 /// 2D cross product `a × b = a.x b.y − a.y b.x` (a scalar in 2D).
@@ -270,9 +271,29 @@ pub struct CompoundPart {
     pub angle: f64,
     /// The part, in its own frame: a polygon or a circle, not a compound.
     pub shape: Shape,
+    /// What the part sets for itself instead of taking its body's (filter,
+    /// sensor flag, material); the default inherits everything.
+    pub overrides: ShapeOverrides,
 }
 
 impl CompoundPart {
+    /// A part `shape` placed at `offset` (m) and turned by `angle` (rad) in
+    /// the body frame, inheriting its body's filter and material.
+    pub fn new(offset: Vector2<f64>, angle: f64, shape: Shape) -> Self {
+        Self {
+            offset,
+            angle,
+            shape,
+            overrides: ShapeOverrides::default(),
+        }
+    }
+
+    /// Sets what the part overrides of its body's filter and material.
+    pub fn with_overrides(mut self, overrides: ShapeOverrides) -> Self {
+        self.overrides = overrides;
+        self
+    }
+
     /// Maps a point of the part's frame into the body frame (m).
     pub fn to_body(&self, p: Vector2<f64>) -> Vector2<f64> {
         let (s, c) = self.angle.sin_cos();
@@ -335,11 +356,11 @@ impl Compound {
             require_positive("hollow box wall", wall)?,
         );
         let part = |x: f64, y: f64, pw: f64, ph: f64| -> Result<CompoundPart> {
-            Ok(CompoundPart {
-                offset: Vector2::new(x, y),
-                angle: 0.0,
-                shape: Shape::rectangle(pw, ph)?,
-            })
+            Ok(CompoundPart::new(
+                Vector2::new(x, y),
+                0.0,
+                Shape::rectangle(pw, ph)?,
+            ))
         };
         Self::new(vec![
             part(0.0, -0.5 * (h + t), w + 2.0 * t, t)?,
@@ -532,11 +553,7 @@ mod tests {
         let shape = Shape::Compound(c);
         assert!((shape.inertia_per_unit_mass() - 40.0 / 12.0).abs() < 1e-12);
         // Off-centre, it re-centres on its centroid.
-        let part = CompoundPart {
-            offset: Vector2::new(3.0, 1.0),
-            angle: 0.4,
-            shape: Shape::circle(0.5).unwrap(),
-        };
+        let part = CompoundPart::new(Vector2::new(3.0, 1.0), 0.4, Shape::circle(0.5).unwrap());
         let moved = Shape::Compound(Compound::new(vec![part]).unwrap()).centered();
         let Shape::Compound(m) = &moved else { panic!() };
         assert!(m.centroid().norm() < 1e-15);

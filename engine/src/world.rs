@@ -25,8 +25,8 @@ use crate::events::{EventRecord, EventSpec};
 use crate::exact_model::ExactModel;
 use crate::forces::{Force, Gravity, TimeWindow};
 use crate::integrators::{Method, Stats};
-use crate::soft_step::SoftStep;
 use crate::soft_step::joints::{JointDef, JointId, JointState};
+use crate::soft_step::{ContactData, ContactHooks, SoftStep, StepEvents};
 use crate::time_grid::{grid_time, step_count};
 use crate::trace::{Sample, Trace};
 use crate::world_core::{BodyControl, ForceEntry, ForceId, WorldCore};
@@ -42,6 +42,15 @@ pub(crate) use snapshot::{deserialize_forces, serialize_forces};
 /// How many ulps of the current time separate a force-window edge from a
 /// step end before the step is split there.
 const EDGE_RESOLUTION_ULPS: f64 = 16.0;
+
+/// The error of a soft-step-only call under the exact model.
+fn exact_refuses(what: &str) -> EngineError {
+    EngineError::Unsupported {
+        what: format!("{what} under the exact contact model"),
+        reason: "the soft_step contact model collects them; the exact model reports its \
+                 contact events through contact_events()",
+    }
+}
 
 /// A simulated world.
 ///
@@ -204,6 +213,44 @@ impl World {
     /// none.
     pub fn contact_events(&self) -> Vec<ContactEvent> {
         self.model.contact_events()
+    }
+
+    /// The touch, hit and sensor events of the last [`World::step`] (see
+    /// [`crate::soft_step::contact_events`]). The soft-step contact model
+    /// only: the exact model reports its own through
+    /// [`World::contact_events`] and refuses this with
+    /// [`EngineError::Unsupported`].
+    pub fn step_events(&self) -> Result<&StepEvents> {
+        Ok(self.soft_step("step events")?.step_events())
+    }
+
+    /// Every touching pair of shapes with its normal, points and the
+    /// impulses of the last step ([`ContactData`]; a point's
+    /// `total_normal_impulse` / dt is its mean normal force). Soft-step
+    /// contact model only, as [`World::step_events`].
+    pub fn contact_data(&self) -> Result<impl Iterator<Item = ContactData> + '_> {
+        Ok(self.soft_step("contact data")?.contact_data())
+    }
+
+    /// Gives the soft step the program's pair filter and pre-solve hook
+    /// ([`ContactHooks`]), replacing any set before. Soft-step contact
+    /// model only, as [`World::step_events`].
+    pub fn set_contact_hooks(&mut self, hooks: impl ContactHooks + 'static) -> Result<()> {
+        match &mut self.model {
+            Dynamics::SoftStep(s) => {
+                s.set_hooks(Some(Box::new(hooks)));
+                Ok(())
+            }
+            Dynamics::Exact(_) => Err(exact_refuses("contact hooks")),
+        }
+    }
+
+    /// The soft-step model, or the error naming the exact model for `what`.
+    fn soft_step(&self, what: &str) -> Result<&SoftStep> {
+        match &self.model {
+            Dynamics::SoftStep(s) => Ok(s),
+            Dynamics::Exact(_) => Err(exact_refuses(what)),
+        }
     }
 
     /// Turns per-phase timing on or off (off by default: reading the clock

@@ -440,11 +440,12 @@ fn hub_with_spokes() -> (f64, Vec<BodyState>) {
         let (rim, bob) = (0.5, 0.8);
         let at = |r: f64| Vector2::new(r * a.cos(), r * a.sin());
         let id = world
-            .add_body(BodyDef {
+            .add_body(
                 // The bobs pass through each other: only the joints act.
-                collision_group: Some(1),
-                ..BodyDef::rigid("bob", 0.1, Shape::circle(0.05).unwrap()).with_position(at(bob))
-            })
+                BodyDef::rigid("bob", 0.1, Shape::circle(0.05).unwrap())
+                    .with_position(at(bob))
+                    .with_collision_group(1),
+            )
             .unwrap();
         joints.push(
             world

@@ -228,3 +228,110 @@ fn jointed_bodies_step_without_allocating() {
     assert!(swing > 1e-3, "the chain stopped ({swing} m/s)");
     assert!(!world.is_asleep(last));
 }
+
+#[test]
+fn events_hooks_and_contact_data_step_without_allocating() {
+    // Balls bouncing (restitution 0.9) on a ground, each through a static
+    // sensor band above it: every bounce begins and ends touching, hits,
+    // and enters and leaves the sensor; a pre-solve hook sees every
+    // touching pair and a pair filter every new one; the contact data is
+    // read after every step. Once the event lists have grown (the first
+    // 240 steps), 240 more steps allocate nothing.
+    use engine::{ContactHooks, Filter, PreSolveContact, ShapeId};
+    #[derive(Clone)]
+    struct Counter {
+        pre_solved: usize,
+        filtered: usize,
+    }
+    impl ContactHooks for Counter {
+        fn should_collide(&mut self, _: ShapeId, _: ShapeId) -> bool {
+            self.filtered += 1;
+            true
+        }
+        fn pre_solve(&mut self, _: &PreSolveContact) -> bool {
+            self.pre_solved += 1;
+            true
+        }
+    }
+    let mut world = World::with_model(
+        Method::SemiImplicitEuler,
+        ContactModel::SoftStep(SoftStepSettings::default()),
+    )
+    .unwrap();
+    world.set_gravity(Vector2::new(0.0, -10.0)).unwrap();
+    world
+        .add_body(BodyDef::fixed(
+            "ground",
+            Vector2::new(0.0, -0.5),
+            Some(Shape::rectangle(40.0, 1.0).unwrap()),
+        ))
+        .unwrap();
+    world
+        .add_body(
+            BodyDef::fixed(
+                "band",
+                Vector2::new(0.0, 1.0),
+                Some(Shape::rectangle(40.0, 0.5).unwrap()),
+            )
+            .as_sensor(),
+        )
+        .unwrap();
+    for k in 0..10 {
+        world
+            .add_body(
+                BodyDef::rigid("ball", 1.0, Shape::circle(0.25).unwrap())
+                    .with_position(Vector2::new(2.0 * k as f64 - 9.0, 2.0 + 0.1 * k as f64))
+                    .with_material(0.6, 0.9)
+                    .with_filter(Filter {
+                        category: 2,
+                        ..Filter::DEFAULT
+                    }),
+            )
+            .unwrap();
+    }
+    world
+        .set_contact_hooks(Counter {
+            pre_solved: 0,
+            filtered: 0,
+        })
+        .unwrap();
+    let dt = 1.0 / 60.0;
+    let mut seen = [0usize; 5];
+    let read = |world: &World, seen: &mut [usize; 5]| {
+        let e = world.step_events().unwrap();
+        seen[0] += e.touch_began.len();
+        seen[1] += e.touch_ended.len();
+        seen[2] += e.hits.len();
+        seen[3] += e.sensor_began.len();
+        seen[4] += e.sensor_ended.len();
+        world
+            .contact_data()
+            .unwrap()
+            .map(|c| {
+                c.points()
+                    .iter()
+                    .map(|p| p.total_normal_impulse)
+                    .sum::<f64>()
+            })
+            .sum::<f64>()
+    };
+    for _ in 0..240 {
+        world.step(dt).unwrap();
+        read(&world, &mut seen);
+    }
+    let warm = seen;
+    let before = ALLOCATIONS.with(Cell::get);
+    let mut impulse = 0.0;
+    for _ in 0..240 {
+        world.step(dt).unwrap();
+        impulse += read(&world, &mut seen);
+    }
+    let made = ALLOCATIONS.with(Cell::get) - before;
+    assert_eq!(made, 0, "{made} allocations in 240 steps with events");
+    // Events did happen while counting: the balls still bounce through
+    // the band and push on the ground.
+    for k in 0..5 {
+        assert!(seen[k] > warm[k], "event kind {k}: {seen:?} after {warm:?}");
+    }
+    assert!(impulse > 0.0);
+}

@@ -23,7 +23,7 @@ use crate::colour::Colour;
 use crate::error::{ErrorKind, FieldPath, Problem};
 use crate::format::{
     BodyKindSpec, BodySpec, ContactModelSpec, ContactSpec, DEFAULT_METHOD, DEFAULT_TOLERANCE,
-    LinearTestSpec, SceneFile, ShapeSpec, ToiMethodSpec, Window, Xy,
+    FilterSpec, LinearTestSpec, MixingSpec, SceneFile, ShapeSpec, ToiMethodSpec, Window, Xy,
 };
 use crate::linear_test::LinearTest;
 use engine::error::readable;
@@ -516,6 +516,24 @@ fn model_allows_body(
             model,
         ));
     }
+    for (field, given, what) in [
+        (
+            "rolling_resistance",
+            spec.rolling_resistance.is_some(),
+            "rolling resistance",
+        ),
+        (
+            "tangent_speed",
+            spec.tangent_speed.is_some(),
+            "a tangent speed",
+        ),
+        ("filter", spec.filter.is_some(), "a collision filter"),
+        ("sensor", spec.sensor.is_some(), "a sensor"),
+    ] {
+        if given {
+            return Err(needs_soft_step(&path.key(field), what, model));
+        }
+    }
     Ok(())
 }
 
@@ -609,6 +627,54 @@ fn with_unit(value: f64, unit: &str) -> String {
         readable(value)
     } else {
         format!("{} {unit}", readable(value))
+    }
+}
+
+/// A body's `filter = { category, mask, group }`: category > 0, mask ≥ 0
+/// (TOML integers are signed), any group.
+fn filter_of(path: &FieldPath, spec: &FilterSpec) -> Checked<engine::Filter> {
+    let d = engine::Filter::DEFAULT;
+    let category = match spec.category {
+        None => d.category,
+        Some(c) if c > 0 => c as u64,
+        Some(c) => {
+            return Err(Problem::new(
+                &path.key("category"),
+                ErrorKind::InvalidValue,
+                format!(
+                    "filter category is a bit set and must be > 0 (a shape belongs to at least one category), got {c}"
+                ),
+            ));
+        }
+    };
+    let mask = match spec.mask {
+        None => d.mask,
+        Some(m) if m >= 0 => m as u64,
+        Some(m) => {
+            return Err(Problem::new(
+                &path.key("mask"),
+                ErrorKind::InvalidValue,
+                format!(
+                    "filter mask is a bit set and must be >= 0 (leave it out for every bit), got {m}"
+                ),
+            ));
+        }
+    };
+    Ok(engine::Filter {
+        category,
+        mask,
+        group: spec.group.unwrap_or(d.group),
+    })
+}
+
+/// The engine's mixing rule for a scene's.
+fn mixing_rule(spec: MixingSpec) -> engine::MixingRule {
+    match spec {
+        MixingSpec::GeometricMean => engine::MixingRule::GeometricMean,
+        MixingSpec::Max => engine::MixingRule::Max,
+        MixingSpec::Min => engine::MixingRule::Min,
+        MixingSpec::Average => engine::MixingRule::Average,
+        MixingSpec::Product => engine::MixingRule::Product,
     }
 }
 
@@ -758,6 +824,26 @@ fn body(path: &FieldPath, spec: &BodySpec) -> Checked<BodyDef> {
             )
         })
         .transpose()?;
+    let rolling_resistance = spec
+        .rolling_resistance
+        .map(|r| {
+            non_negative(
+                &path.key("rolling_resistance"),
+                r,
+                &format!("rolling resistance of body '{name}'"),
+                "",
+            )
+        })
+        .transpose()?;
+    let tangent_speed = spec
+        .tangent_speed
+        .map(|u| finite(&path.key("tangent_speed"), u))
+        .transpose()?;
+    let filter = spec
+        .filter
+        .map(|f| filter_of(&path.key("filter"), &f))
+        .transpose()?
+        .unwrap_or(engine::Filter::DEFAULT);
     let def = BodyDef {
         name: name.clone(),
         kind,
@@ -768,7 +854,10 @@ fn body(path: &FieldPath, spec: &BodySpec) -> Checked<BodyDef> {
         state,
         friction,
         restitution,
-        collision_group: None,
+        filter,
+        sensor: spec.sensor.unwrap_or(false),
+        rolling_resistance,
+        tangent_speed,
     };
     // The engine's own check, so that building the world cannot fail.
     let (built, _) = engine::Body::from_def(&def).map_err(|e| Problem::engine(path, e))?;
@@ -1042,6 +1131,10 @@ fn contact(spec: &ContactSpec) -> Checked<ContactModel> {
         ("recycle_distance", spec.recycle_distance.is_some()),
         ("continuous", spec.continuous.is_some()),
         ("sleeping", spec.sleeping.is_some()),
+        ("friction_mixing", spec.friction_mixing.is_some()),
+        ("restitution_mixing", spec.restitution_mixing.is_some()),
+        ("rolling_resistance", spec.rolling_resistance.is_some()),
+        ("hit_event_threshold", spec.hit_event_threshold.is_some()),
     ];
     match spec.model {
         ContactModelSpec::Exact => {
@@ -1133,6 +1226,22 @@ fn contact(spec: &ContactSpec) -> Checked<ContactModel> {
                 sleeping: spec.sleeping.unwrap_or(d.sleeping),
                 friction: friction.unwrap_or(d.friction),
                 restitution: restitution.unwrap_or(d.restitution),
+                friction_mixing: spec.friction_mixing.map_or(d.friction_mixing, mixing_rule),
+                restitution_mixing: spec
+                    .restitution_mixing
+                    .map_or(d.restitution_mixing, mixing_rule),
+                rolling_resistance: nonneg(
+                    "rolling_resistance",
+                    spec.rolling_resistance,
+                    d.rolling_resistance,
+                    "",
+                )?,
+                hit_event_threshold: nonneg(
+                    "hit_event_threshold",
+                    spec.hit_event_threshold,
+                    d.hit_event_threshold,
+                    "m/s",
+                )?,
                 ..d
             }))
         }

@@ -146,6 +146,27 @@ pub struct BodySpec {
     /// larger of its two. Default: `[contact] restitution`. Soft-step
     /// contact model only.
     pub restitution: Option<f64>,
+    /// Rolling resistance coefficient of this body's shape (≥ 0,
+    /// dimensionless; Box2D v3's: the largest rolling torque is this times
+    /// the larger circle radius of the pair times the normal force; a
+    /// polygon has radius 0). Default: `[contact] rolling_resistance`.
+    /// Soft-step contact model only.
+    pub rolling_resistance: Option<f64>,
+    /// Speed (m/s, finite) of this body's surface along the contact
+    /// tangent, a conveyor belt's: friction drives what touches it toward
+    /// this relative speed (Box2D v3's tangent speed). Default 0. Soft-step
+    /// contact model only.
+    pub tangent_speed: Option<f64>,
+    /// Collision filter `{ category, mask, group }` (Box2D's): shapes
+    /// collide when each one's category meets the other's mask, except that
+    /// a shared positive group always collides and a shared negative group
+    /// never does. Default `{ category = 1, mask = all bits, group = 0 }`.
+    /// Soft-step contact model only.
+    pub filter: Option<FilterSpec>,
+    /// Whether this body's shape is a sensor: it reports overlaps as
+    /// sensor events and neither pushes nor is pushed. Default false.
+    /// Soft-step contact model only.
+    pub sensor: Option<bool>,
     /// Colour for pictures, `"#rrggbb"` (also accepted as `color`).
     /// Default: grey ([`crate::Colour::STATIC`]) for a static body; for the
     /// others the next colour of the matplotlib "tab10" cycle without its
@@ -358,6 +379,19 @@ pub struct ContactSpec {
     pub continuous: Option<bool>,
     /// Soft step: islands at rest fall asleep. Default false.
     pub sleeping: Option<bool>,
+    /// Soft step: how a pair mixes its bodies' friction. Default
+    /// `"geometric_mean"` (Box2D's); also `"max"`, `"min"`, `"average"`,
+    /// `"product"`.
+    pub friction_mixing: Option<MixingSpec>,
+    /// Soft step: how a pair mixes its bodies' restitution. Default
+    /// `"max"` (Box2D's); the same choices.
+    pub restitution_mixing: Option<MixingSpec>,
+    /// Soft step: rolling resistance of bodies without their own (≥ 0).
+    /// Default 0.
+    pub rolling_resistance: Option<f64>,
+    /// Soft step: approach speed above which a pair that begins touching
+    /// reports a hit event (m/s, ≥ 0). Default 1.
+    pub hit_event_threshold: Option<f64>,
     /// Exact model: how the first contact inside a step is found:
     /// `"swept"` (the default: the seed's bisection where a pair overlaps at
     /// the step's end, conservative advancement where its motion could have
@@ -366,6 +400,39 @@ pub struct ContactSpec {
     /// only) or `"conservative_advancement"` (for every pair apart at the
     /// step's start).
     pub toi_method: Option<ToiMethodSpec>,
+}
+
+/// `filter = { category = 2, mask = 0xFFFF, group = -1 }` on a body: each
+/// key optional. TOML integers are signed 64-bit, so a mask written as a
+/// number holds bits 0 to 62; leave `mask` out for every bit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FilterSpec {
+    /// The categories the shape belongs to, a bit set (> 0). Default 1.
+    pub category: Option<i64>,
+    /// The categories it collides with, a bit set (≥ 0). Default every
+    /// bit.
+    pub mask: Option<i64>,
+    /// Group index: shapes sharing a positive group always collide, a
+    /// negative one never; 0 (default) none.
+    pub group: Option<i64>,
+}
+
+/// `[contact] friction_mixing` and `restitution_mixing`: how a pair
+/// combines its two bodies' values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MixingSpec {
+    /// √(a b) (Box2D's friction rule).
+    GeometricMean,
+    /// max(a, b) (Box2D's restitution rule).
+    Max,
+    /// min(a, b).
+    Min,
+    /// (a + b) / 2.
+    Average,
+    /// a b.
+    Product,
 }
 
 /// `[contact] model`.

@@ -999,7 +999,10 @@ pub(crate) fn generated_body(
         state,
         friction: None,
         restitution: None,
-        collision_group: None,
+        filter: engine::Filter::DEFAULT,
+        sensor: false,
+        rolling_resistance: None,
+        tangent_speed: None,
     }
 }
 

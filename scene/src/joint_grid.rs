@@ -173,7 +173,7 @@ mod tests {
                 (Some(2 + 1), Vector2::new(0.5, -1.0))
             ]
         );
-        assert!(bodies.iter().all(|b| b.collision_group == Some(2)));
+        assert!(bodies.iter().all(|b| b.collision_group() == Some(2)));
         // A narrow grid hangs from its whole top row by default; more
         // static circles than columns is refused at `fixed`.
         let (bodies, _) = expand(&path, &spec(3, 2, None), ("g", 0), 1.0).unwrap();

@@ -199,11 +199,7 @@ fn bone_shape(b: &Bone, k: f64) -> engine::Result<Shape> {
         Vector2::new(0.11 * k, -0.16 * k),
         Vector2::new(-0.03 * k, -0.14 * k),
     ])?;
-    let part = |p: ConvexPolygon| CompoundPart {
-        offset: Vector2::zeros(),
-        angle: 0.0,
-        shape: Shape::Polygon(p),
-    };
+    let part = |p: ConvexPolygon| CompoundPart::new(Vector2::zeros(), 0.0, Shape::Polygon(p));
     Ok(Shape::Compound(Compound::new(vec![part(leg), part(foot)])?))
 }
 

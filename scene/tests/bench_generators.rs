@@ -108,7 +108,7 @@ fn ragdolls_share_their_collision_groups_without_neighbours_in_one() {
         ),
     )
     .unwrap();
-    let group = |c: usize, r: usize| scene.bodies()[11 * (6 * r + c)].collision_group;
+    let group = |c: usize, r: usize| scene.bodies()[11 * (6 * r + c)].collision_group();
     let mut groups: Vec<_> = (0..6)
         .flat_map(|c| (0..3).map(move |r| (c, r)))
         .map(|(c, r)| group(c, r))
@@ -120,7 +120,7 @@ fn ragdolls_share_their_collision_groups_without_neighbours_in_one() {
             assert!(
                 scene.bodies()[first..first + 11]
                     .iter()
-                    .all(|b| b.collision_group == group(c, r))
+                    .all(|b| b.collision_group() == group(c, r))
             );
             // No neighbour (side by side, above, diagonal) in the same one.
             for (dc, dr) in [(1, 0), (0, 1), (1, 1), (-1, 1)] {

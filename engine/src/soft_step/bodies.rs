@@ -169,12 +169,6 @@ pub(crate) struct BodySim {
     pub min_extent: f64,
     /// Its rotation at the end of the last step (cos θ, sin θ).
     pub rotation: UnitComplex<f64>,
-    /// Friction coefficient (its own, or the settings' default).
-    pub friction: f64,
-    /// Restitution (its own, or the settings' default).
-    pub restitution: f64,
-    /// Collision group ([`crate::BodyDef::collision_group`]).
-    pub group: Option<u32>,
     /// Whether the body sleeps (its island is at rest).
     pub asleep: bool,
     /// How long (s) the body has been slower than the sleep threshold.
@@ -183,13 +177,11 @@ pub(crate) struct BodySim {
 
 impl BodySim {
     /// The solver's view of `body` at angle `angle` (rad), whose colliders
-    /// are `colliders` (at indices `range`), with the materials' defaults.
+    /// are `colliders` (at indices `range`).
     pub(crate) fn new(
         body: &Body,
         angle: f64,
         (colliders, range): (&[Collider], Range<usize>),
-        friction: f64,
-        restitution: f64,
     ) -> Self {
         let max_extent = colliders
             .iter()
@@ -216,9 +208,6 @@ impl BodySim {
             max_extent,
             min_extent,
             rotation: UnitComplex::new(angle),
-            friction: body.friction.unwrap_or(friction),
-            restitution: body.restitution.unwrap_or(restitution),
-            group: body.collision_group,
             asleep: false,
             sleep_time: 0.0,
         }

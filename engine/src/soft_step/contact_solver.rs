@@ -82,6 +82,17 @@ pub(crate) struct ContactConstraint {
     /// among the deep contacts of a body that has several
     /// ([`super::prepare`]).
     pub push_out: f64,
+    /// Speed of the surfaces along the tangent (m/s): friction drives the
+    /// relative tangential velocity to it instead of 0 (a conveyor belt).
+    pub tangent_speed: f64,
+    /// Rolling resistance (m): the largest rolling torque impulse is this
+    /// times the normal impulse.
+    pub rolling_resistance: f64,
+    /// 1/(1/I_A + 1/I_B) (kg·m²), the effective mass of the relative
+    /// rotation.
+    pub rolling_mass: f64,
+    /// Accumulated rolling-resistance angular impulse (N·m·s).
+    pub rolling_impulse: f64,
     pub count: usize,
     pub points: [ConstraintPoint; 2],
 }
@@ -161,6 +172,15 @@ pub(crate) fn prepare(
         inv_inertia_b: ib,
         softness,
         push_out,
+        tangent_speed: contact.tangent_speed,
+        rolling_resistance: contact.rolling_resistance,
+        // Only read with rolling resistance: no division otherwise.
+        rolling_mass: if contact.rolling_resistance > 0.0 && ia + ib > 0.0 {
+            1.0 / (ia + ib)
+        } else {
+            0.0
+        },
+        rolling_impulse: warm * contact.rolling_impulse,
         count: contact.count,
         points,
     }
@@ -196,6 +216,10 @@ pub(crate) fn warm_start(constraints: &mut [ContactConstraint], bodies: &mut [So
             a.v -= c.inv_mass_a * p;
             b.w += c.inv_inertia_b * cross(cp.rb, p);
             b.v += c.inv_mass_b * p;
+        }
+        if c.rolling_impulse != 0.0 {
+            a.w -= c.inv_inertia_a * c.rolling_impulse;
+            b.w += c.inv_inertia_b * c.rolling_impulse;
         }
         store(bodies, c, a, b);
     }
@@ -253,7 +277,8 @@ pub(crate) fn solve(
             for cp in &mut c.points[..c.count] {
                 let vra = a.v + cross_sv(a.w, cp.ra);
                 let vrb = b.v + cross_sv(b.w, cp.rb);
-                let vt = (vrb - vra).dot(&tangent);
+                // Relative to the surfaces' own tangent speed (Box2D's).
+                let vt = (vrb - vra).dot(&tangent) - c.tangent_speed;
                 let max_friction = c.friction * cp.normal_impulse;
                 let accumulated =
                     (cp.tangent_impulse - cp.tangent_mass * vt).clamp(-max_friction, max_friction);
@@ -264,6 +289,18 @@ pub(crate) fn solve(
                 a.w -= ia * cross(cp.ra, p);
                 b.v += mb * p;
                 b.w += ib * cross(cp.rb, p);
+            }
+            if c.rolling_resistance > 0.0 {
+                // Box2D v3's rolling resistance: a torque impulse opposing
+                // the relative rotation, at most the rolling resistance
+                // times the pair's normal impulse.
+                let normal: f64 = c.points[..c.count].iter().map(|p| p.normal_impulse).sum();
+                let max = c.rolling_resistance * normal;
+                let old = c.rolling_impulse;
+                c.rolling_impulse = (old - c.rolling_mass * (b.w - a.w)).clamp(-max, max);
+                let delta = c.rolling_impulse - old;
+                a.w -= ia * delta;
+                b.w += ib * delta;
             }
         }
         store(bodies, c, a, b);
@@ -319,6 +356,7 @@ pub(crate) fn store_impulses(constraints: &[ContactConstraint], contacts: &mut [
             p.total_normal_impulse = cp.total_normal_impulse;
             p.normal_velocity = cp.normal_velocity;
         }
+        contact.rolling_impulse = c.rolling_impulse;
     }
 }
 
@@ -339,7 +377,9 @@ mod tests {
 
     fn contact_with(separation: f64) -> Contact {
         let mut set = super::super::contacts::ContactSet::default();
-        set.create((0, 1), (0, 1), 0.0, 0.0);
+        let mut material = super::super::contacts::tests::material();
+        material.friction = 0.0;
+        set.create((0, 1), (0, 1), material, false);
         let mut c = set.contacts.pop().unwrap();
         c.normal = Vector2::y();
         c.count = 1;

@@ -13,6 +13,7 @@
 
 use super::geometry::SolverShape;
 use super::manifold::{self, LocalManifold, Scratch};
+use super::shape_data::PairMaterial;
 use crate::body::BodyId;
 use nalgebra::{Isometry2, UnitComplex, Vector2};
 use rustc_hash::FxHashMap;
@@ -46,6 +47,8 @@ pub(crate) struct ContactPoint {
     pub total_normal_impulse: f64,
     /// Relative normal velocity before the last step's solve (m/s).
     pub normal_velocity: f64,
+    /// The point in the world frame when the manifold was computed (m).
+    pub point: Vector2<f64>,
 }
 
 /// What a recycled manifold is compared against.
@@ -78,10 +81,20 @@ pub(crate) struct Contact {
     pub points: [ContactPoint; 2],
     /// Mixed friction coefficient √(μa μb).
     pub friction: f64,
-    /// Mixed restitution max(ea, eb).
+    /// Mixed restitution (by default max(ea, eb)).
     pub restitution: f64,
+    /// Mixed rolling resistance (m: coefficient × radius).
+    pub rolling_resistance: f64,
+    /// Mixed tangent speed (m/s).
+    pub tangent_speed: f64,
+    /// Rolling-resistance angular impulse accumulated over the last step
+    /// (N·m·s).
+    pub rolling_impulse: f64,
+    /// Whether one of the two colliders is a sensor: the pair is never
+    /// solved, and "touching" means overlapping.
+    pub sensor: bool,
     /// Whether the manifold has points (touching or within the
-    /// speculative distance).
+    /// speculative distance); for a sensor pair, whether a point overlaps.
     pub touching: bool,
     computed: Option<Computed>,
 }
@@ -140,13 +153,14 @@ impl ContactSet {
     }
 
     /// Creates the contact of an ordered pair of colliders (see
-    /// [`ordered`]) on `bodies`, with its mixed material.
+    /// [`ordered`]) on `bodies`, with its mixed material; `sensor` when
+    /// one of them is a sensor.
     pub(crate) fn create(
         &mut self,
         (a, b): (usize, usize),
         bodies: (BodyId, BodyId),
-        friction: f64,
-        restitution: f64,
+        material: PairMaterial,
+        sensor: bool,
     ) {
         let index = self.contacts.len();
         self.pairs.insert(key(a, b), index);
@@ -158,8 +172,12 @@ impl ContactSet {
             normal: Vector2::zeros(),
             count: 0,
             points: [ContactPoint::default(); 2],
-            friction,
-            restitution,
+            friction: material.friction,
+            restitution: material.restitution,
+            rolling_resistance: material.rolling_resistance,
+            tangent_speed: material.tangent_speed,
+            rolling_impulse: 0.0,
+            sensor,
             touching: false,
             computed: None,
         });
@@ -214,6 +232,9 @@ impl ContactSet {
                 recycle_distance,
             )
         {
+            if contact.sensor {
+                self.set_touching(index, was_touching);
+            }
             return;
         }
         let local = manifold::collide(a.shape, b.shape, &relative, speculative, &mut self.scratch);
@@ -223,10 +244,43 @@ impl ContactSet {
             rotation_a: a.body.rotation,
             rotation_b: b.body.rotation,
         });
-        contact.touching = contact.count > 0;
+        self.set_touching(index, was_touching);
+    }
+
+    /// Sets contact `index`'s touching flag from its manifold (any point
+    /// for a solved pair, an overlapping one for a sensor pair), recording
+    /// the change from `was_touching`.
+    fn set_touching(&mut self, index: usize, was_touching: bool) {
+        let contact = &mut self.contacts[index];
+        contact.touching = if contact.sensor {
+            contact.points[..contact.count]
+                .iter()
+                .any(|p| p.separation <= 0.0)
+        } else {
+            contact.count > 0
+        };
         if contact.touching && !was_touching {
             self.changes.push(TouchChange::Began(index));
         } else if !contact.touching && was_touching {
+            self.changes.push(TouchChange::Ended(index));
+        }
+    }
+
+    /// Disables contact `index` for this step (the pre-solve hook said
+    /// so), right after its [`ContactSet::update`]: no points, not
+    /// touching, its touching change corrected (a beginning undone, or an
+    /// end recorded).
+    pub(crate) fn disable(&mut self, index: usize) {
+        let contact = &mut self.contacts[index];
+        if !contact.touching {
+            return;
+        }
+        contact.count = 0;
+        contact.touching = false;
+        contact.computed = None;
+        if self.changes.last() == Some(&TouchChange::Began(index)) {
+            self.changes.pop();
+        } else {
             self.changes.push(TouchChange::Ended(index));
         }
     }
@@ -307,14 +361,24 @@ fn store_manifold(
             tangent_impulse: matched.map_or(0.0, |o| o.tangent_impulse),
             total_normal_impulse: 0.0,
             normal_velocity: 0.0,
+            point: body_a.translation.vector + anchor_a,
         };
     }
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::shape::Shape;
+
+    pub(crate) fn material() -> PairMaterial {
+        PairMaterial {
+            friction: 0.6,
+            restitution: 0.0,
+            rolling_resistance: 0.0,
+            tangent_speed: 0.0,
+        }
+    }
 
     fn boxes() -> (SolverShape, SolverShape) {
         let s = SolverShape::new(&Shape::rectangle(1.0, 1.0).unwrap());
@@ -345,7 +409,7 @@ mod tests {
     fn impulses_follow_their_feature_ids_across_updates() {
         let (a, b) = boxes();
         let mut set = ContactSet::default();
-        set.create((0, 1), (0, 1), 0.6, 0.0);
+        set.create((0, 1), (0, 1), material(), false);
         update(
             &mut set,
             (&a, &b),
@@ -392,7 +456,7 @@ mod tests {
         let mut recycled = ContactSet::default();
         let mut fresh = ContactSet::default();
         for set in [&mut recycled, &mut fresh] {
-            set.create((0, 1), (0, 1), 0.6, 0.0);
+            set.create((0, 1), (0, 1), material(), false);
             update(
                 set,
                 (&a, &b),
@@ -431,7 +495,7 @@ mod tests {
     fn destroy_keeps_the_pair_index_consistent() {
         let mut set = ContactSet::default();
         for (a, b) in [(0, 1), (1, 2), (2, 3)] {
-            set.create((a, b), (a, b), 0.5, 0.0);
+            set.create((a, b), (a, b), material(), false);
         }
         set.destroy(0);
         assert!(!set.contains(0, 1));

@@ -10,7 +10,11 @@
 //!
 //! Pairs already within the linear slop at the start of the step are left
 //! to the speculative contacts (sweeping them would freeze the body where
-//! it is); moving bodies are not swept against each other.
+//! it is); moving bodies are not swept against each other. Static sensor
+//! shapes and static shapes the body's filters refuse are not swept
+//! against; the pre-solve hook is not asked (a one-way platform lets
+//! through only bodies slower than half their size per step, or runs with
+//! `continuous` off).
 
 use super::broad_phase::BroadPhase;
 use super::manifold::LINEAR_SLOP;
@@ -37,7 +41,13 @@ pub(crate) struct Sweep {
 /// The earliest time of impact in [0, dt] (s) of `body` moving along
 /// `sweep` (whose start pose is `start`, the caller's
 /// `Isometry2::new(sweep.start.0, sweep.start.1)`) with any static shape
-/// its swept box overlaps, if any.
+/// its swept box overlaps, if any. `blocks` maps a static collider to its
+/// body when it can stop this one (not a sensor, not refused by the
+/// filters), else `None`.
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the sweep's inputs, each from a different part of the model"
+)]
 pub(crate) fn first_impact(
     body: &Body,
     sweep: &Sweep,
@@ -46,6 +56,7 @@ pub(crate) fn first_impact(
     broad: &BroadPhase,
     bodies: &[Body],
     states: &[BodyState],
+    blocks: impl Fn(usize) -> Option<usize>,
 ) -> Option<f64> {
     let shape = body.shape.as_ref()?;
     let motion = Motion::new(
@@ -58,7 +69,11 @@ pub(crate) fn first_impact(
         max_iterations: MAX_ITERATIONS,
     };
     let mut first: Option<f64> = None;
-    broad.query_static(swept_box, |other| {
+    broad.query_static(swept_box, |collider| {
+        // The static body of that collider, if it can stop this one.
+        let Some(other) = blocks(collider) else {
+            return;
+        };
         let Some(other_shape) = bodies[other].shape.as_ref() else {
             return;
         };

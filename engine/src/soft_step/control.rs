@@ -8,6 +8,7 @@
 use super::SoftStep;
 use super::bodies::{BodySim, solver_body};
 use super::geometry::Collider;
+use super::shape_data::ShapeData;
 use crate::body::{BodyId, BodyKind};
 use crate::world_core::WorldCore;
 use nalgebra::{Isometry2, Translation2, UnitComplex};
@@ -67,6 +68,7 @@ impl SoftStep {
             Some(shape) => {
                 let first = self.colliders.len();
                 self.colliders.extend(Collider::of(id, shape));
+                self.shape_data.extend(ShapeData::of(body, &self.settings));
                 for c in first..self.colliders.len() {
                     self.broad.add(c, None, body.kind);
                 }
@@ -77,8 +79,6 @@ impl SoftStep {
             body,
             state.angle,
             (&self.colliders[range.clone()], range.clone()),
-            self.settings.friction,
-            self.settings.restitution,
         );
         let margin = if body.kind == BodyKind::Static {
             0.0

@@ -167,6 +167,7 @@
 mod bodies;
 mod broad_phase;
 mod colouring;
+pub mod contact_events;
 mod contact_solver;
 mod contacts;
 mod continuous;
@@ -181,7 +182,9 @@ mod lanes;
 mod lanes_avx;
 mod manifold;
 mod prepare;
+mod report;
 mod settings;
+mod shape_data;
 mod sleep;
 mod softness;
 #[cfg(test)]
@@ -189,6 +192,10 @@ mod test_numbers;
 mod wide_solver;
 mod world_joints;
 
+pub use contact_events::{
+    ContactData, ContactHooks, ContactPointData, HitEvent, PreSolveContact, SensorEvent, ShapeId,
+    StepEvents, TouchEvent,
+};
 pub use settings::SoftStepSettings;
 pub use softness::Softness;
 
@@ -202,10 +209,12 @@ use crate::world_core::{WorldCore, check_energy_value};
 use bodies::{BodyMass, BodySim, SolverBody, solver_body};
 use broad_phase::BroadPhase;
 use colouring::Colouring;
+use contact_events::Hooks;
 use contact_solver::ContactConstraint;
 use contacts::{ContactSet, Side, TouchChange};
 use geometry::Collider;
 use nalgebra::{Isometry2, Translation2, UnitComplex, Vector2};
+use shape_data::{PairMaterial, ShapeData};
 use wide_solver::{WideConstraint, WideExtra};
 
 /// The soft step's state: per-body solver records, broad phase, contacts,
@@ -220,6 +229,17 @@ pub struct SoftStep {
     masses: Vec<BodyMass>,
     /// One per convex shape; a body's are contiguous.
     colliders: Vec<Collider>,
+    /// Each collider's filter, sensor flag and material.
+    shape_data: Vec<ShapeData>,
+    /// The events of the last world step.
+    events: StepEvents,
+    /// The program's filter and pre-solve hooks (code, not state: not
+    /// written to bytes).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    hooks: Hooks,
+    /// Whether a constraint of this step has rolling resistance (prepare's;
+    /// the wide passes skip its rows otherwise).
+    rolling: bool,
     /// Solver records; index 0 is the static dummy, body `i` is `i + 1`.
     bodies: Vec<SolverBody>,
     broad: BroadPhase,
@@ -268,6 +288,10 @@ impl SoftStep {
             sims: Vec::new(),
             masses: Vec::new(),
             colliders: Vec::new(),
+            shape_data: Vec::new(),
+            events: StepEvents::default(),
+            hooks: Hooks::default(),
+            rolling: false,
             bodies: vec![SolverBody::AT_REST],
             broad: BroadPhase::default(),
             contacts: ContactSet::default(),
@@ -303,9 +327,16 @@ impl SoftStep {
     pub(crate) fn set_settings(&mut self, core: &WorldCore, settings: SoftStepSettings) {
         let was_sleeping = self.settings.sleeping;
         self.settings = settings;
-        for (sim, body) in self.sims.iter_mut().zip(&core.bodies) {
-            sim.friction = body.friction.unwrap_or(settings.friction);
-            sim.restitution = body.restitution.unwrap_or(settings.restitution);
+        for (c, data) in self.colliders.iter().zip(&mut self.shape_data) {
+            data.resolve(&core.bodies[c.body], &settings);
+        }
+        // Pairs mix their materials when created; again now.
+        for c in &mut self.contacts.contacts {
+            let m = PairMaterial::mix(&self.shape_data[c.a], &self.shape_data[c.b], &settings);
+            c.friction = m.friction;
+            c.restitution = m.restitution;
+            c.rolling_resistance = m.rolling_resistance;
+            c.tangent_speed = m.tangent_speed;
         }
         if settings.sleeping && !was_sleeping {
             self.rebuild_islands();
@@ -332,13 +363,12 @@ impl SoftStep {
         if let Some(shape) = &body.shape {
             self.colliders.extend(Collider::of(id, shape));
         }
+        self.shape_data.extend(ShapeData::of(body, &self.settings));
         let range = first..self.colliders.len();
         let sim = BodySim::new(
             body,
             state.angle,
             (&self.colliders[range.clone()], range.clone()),
-            self.settings.friction,
-            self.settings.restitution,
         );
         let is_static = body.kind == BodyKind::Static;
         let margin = if is_static {
@@ -369,6 +399,7 @@ impl SoftStep {
         edges: &[f64],
         found: &mut Vec<EventRecord>,
     ) -> Result<()> {
+        self.events.clear();
         let mut t = core.time;
         for &end in edges {
             self.step(core, t, end, found)?;
@@ -437,7 +468,7 @@ impl SoftStep {
             let started = core.profiler.start();
             self.joints.warm_start(&mut self.bodies);
             contact_solver::warm_start(&mut self.constraints, &mut self.bodies);
-            wide_solver::warm_start(&mut self.wide, &mut self.bodies);
+            wide_solver::warm_start(&mut self.wide, &mut self.bodies, self.rolling);
             core.profiler.stop(Phase::WarmStart, started);
 
             let started = core.profiler.start();
@@ -453,7 +484,7 @@ impl SoftStep {
             let started = core.profiler.start();
             self.joints.solve(&mut self.bodies, h, false);
             contact_solver::solve(&mut self.constraints, &mut self.bodies, inv_h, false);
-            wide_solver::relax(&mut self.wide, &mut self.bodies, inv_h);
+            wide_solver::relax(&mut self.wide, &mut self.bodies, inv_h, self.rolling);
             core.profiler.stop(Phase::Relax, started);
             self.stats.evaluations += 1;
 
@@ -461,6 +492,7 @@ impl SoftStep {
                 let t_end = if k + 1 == n { t1 } else { t_sub + h };
                 if self.locate_events(core, (t_sub, t_end), found) {
                     self.joints.store_impulses();
+                    self.report_touches();
                     return Ok(());
                 }
             }
@@ -483,6 +515,7 @@ impl SoftStep {
         let started = core.profiler.start();
         self.store_impulses();
         self.joints.store_impulses();
+        self.report_touches();
         let step = self.stats.steps;
         self.write_states(core, t0, step)?;
         core.profiler.stop(Phase::Store, started);
@@ -512,19 +545,29 @@ impl SoftStep {
     fn update_pairs(&mut self) {
         let sims = &self.sims;
         let colliders = &self.colliders;
+        let data = &self.shape_data;
         let contacts = &mut self.contacts;
         let joints = &self.joints;
+        let settings = &self.settings;
+        let hooks = &mut self.hooks.0;
         self.broad.find_pairs(|a, b| {
             let (ca, cb) = (&colliders[a], &colliders[b]);
             if ca.body == cb.body {
                 return;
             }
             let (sa, sb) = (&sims[ca.body], &sims[cb.body]);
+            let (da, db) = (&data[a], &data[b]);
+            let sensor = da.sensor || db.sensor;
             // At least one dynamic body: static and kinematic bodies do not
-            // push each other. Bodies of one collision group, or held by a
-            // joint that does not let them collide, do not either.
-            if (sa.kind != BodyKind::Dynamic && sb.kind != BodyKind::Dynamic)
-                || (sa.group.is_some() && sa.group == sb.group)
+            // push each other (a sensor needs one moving body). Sensors do
+            // not detect sensors. Shapes whose filters refuse each other,
+            // or held by a joint that does not let them collide, do not
+            // either.
+            let pushing = sa.kind == BodyKind::Dynamic || sb.kind == BodyKind::Dynamic;
+            let moving = sa.kind != BodyKind::Static || sb.kind != BodyKind::Static;
+            if !(pushing || (sensor && moving))
+                || (da.sensor && db.sensor)
+                || !da.filter.should_collide(&db.filter)
                 || joints.keeps_apart(ca.body, cb.body)
             {
                 return;
@@ -532,11 +575,19 @@ impl SoftStep {
             if contacts.contains(a, b) {
                 return;
             }
+            if let Some(hooks) = hooks.as_mut() {
+                let id = |c: &Collider, d: &ShapeData| ShapeId {
+                    body: c.body,
+                    part: d.part,
+                };
+                if !hooks.should_collide(id(ca, da), id(cb, db)) {
+                    return;
+                }
+            }
             let (first, second) = contacts::ordered((a, &ca.shape), (b, &cb.shape));
             let bodies = (colliders[first].body, colliders[second].body);
-            let friction = (sa.friction * sb.friction).sqrt();
-            let restitution = sa.restitution.max(sb.restitution);
-            contacts.create((first, second), bodies, friction, restitution);
+            let material = PairMaterial::mix(da, db, settings);
+            contacts.create((first, second), bodies, material, sensor);
         });
     }
 
@@ -558,8 +609,11 @@ impl SoftStep {
                 continue;
             }
             if !self.broad.fat_overlap(a, b) {
-                if touching && settings.sleeping {
-                    self.islands.unlink(body_a);
+                if touching {
+                    self.contact_ended(i);
+                    if settings.sleeping && !self.contacts.contacts[i].sensor {
+                        self.islands.unlink(body_a);
+                    }
                 }
                 self.contacts.destroy(i);
                 continue;
@@ -577,11 +631,6 @@ impl SoftStep {
                 }
             };
             let max_extent = extent(ca, sa).max(extent(cb, sb));
-            let friction = (sa.friction * sb.friction).sqrt();
-            let restitution = sa.restitution.max(sb.restitution);
-            let contact = &mut self.contacts.contacts[i];
-            contact.friction = friction;
-            contact.restitution = restitution;
             let side_a = Side {
                 shape: &ca.shape,
                 collider: ca.pose(&pose_a),
@@ -599,8 +648,20 @@ impl SoftStep {
                 settings.speculative_distance,
                 settings.recycle_distance,
             );
-            // A body touching an awake moving one cannot sleep through it.
-            if self.contacts.contacts[i].touching && (sa.asleep || sb.asleep) {
+            let contact = &self.contacts.contacts[i];
+            if contact.touching
+                && !contact.sensor
+                && let Some(hooks) = self.hooks.0.as_mut()
+            {
+                let view = report::pre_solve_view(contact, (&self.colliders, &self.shape_data));
+                if !hooks.pre_solve(&view) {
+                    self.contacts.disable(i);
+                }
+            }
+            let contact = &self.contacts.contacts[i];
+            // A body touching an awake moving one cannot sleep through it
+            // (a sensor does not wake what it detects).
+            if contact.touching && !contact.sensor && (sa.asleep || sb.asleep) {
                 self.wake_body(body_a);
                 self.wake_body(body_b);
             }
@@ -609,6 +670,12 @@ impl SoftStep {
         if settings.sleeping {
             for k in 0..self.contacts.changes.len() {
                 let change = self.contacts.changes[k];
+                let index = match change {
+                    TouchChange::Began(index) | TouchChange::Ended(index) => index,
+                };
+                if self.contacts.contacts[index].sensor {
+                    continue;
+                }
                 match change {
                     TouchChange::Began(index) => {
                         let c = &self.contacts.contacts[index];
@@ -718,6 +785,16 @@ impl SoftStep {
                     })
                     .reduce(|a, b| a.merged(&b))
                     .expect("a body with colliders");
+                let (colliders, data) = (&self.colliders, &self.shape_data);
+                let own = self.sims[id].colliders.clone();
+                let blocks = |other: usize| {
+                    let d = &data[other];
+                    let stops = !d.sensor
+                        && own
+                            .clone()
+                            .any(|c| !data[c].sensor && data[c].filter.should_collide(&d.filter));
+                    stops.then_some(colliders[other].body)
+                };
                 if let Some(toi) = continuous::first_impact(
                     &core.bodies[id],
                     &sweep,
@@ -726,6 +803,7 @@ impl SoftStep {
                     &self.broad,
                     &core.bodies,
                     &core.states,
+                    blocks,
                 ) {
                     let f = toi / dt;
                     let state = &mut core.states[id];
@@ -756,16 +834,16 @@ impl SoftStep {
         for c in self.sims[id].colliders.clone() {
             self.broad.remove(c);
         }
+        for i in 0..self.contacts.contacts.len() {
+            let c = &self.contacts.contacts[i];
+            if c.touching && (c.body_a == id || c.body_b == id) {
+                self.contact_ended(i);
+            }
+        }
         self.contacts.destroy_body(id);
         self.islands.remove_body(id);
         let empty = self.colliders.len();
-        self.sims[id] = BodySim::new(
-            &core.bodies[id],
-            core.states[id].angle,
-            (&[], empty..empty),
-            0.0,
-            0.0,
-        );
+        self.sims[id] = BodySim::new(&core.bodies[id], core.states[id].angle, (&[], empty..empty));
         self.bodies[id + 1] = SolverBody::AT_REST;
     }
 }

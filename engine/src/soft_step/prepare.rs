@@ -87,10 +87,12 @@ impl SoftStep {
         self.push_demand.clear();
         self.push_demand.resize(self.sims.len(), 0.0);
         let mut points = 0;
+        let mut rolling = false;
         for (index, c) in self.contacts.contacts.iter().enumerate() {
-            if c.count == 0 {
+            if c.count == 0 || c.sensor {
                 continue;
             }
+            rolling |= c.rolling_resistance > 0.0;
             let (sa, sb) = (&self.masses[c.body_a], &self.masses[c.body_b]);
             if !sa.moving && !sb.moving {
                 continue;
@@ -115,6 +117,7 @@ impl SoftStep {
                 }
             }
         }
+        self.rolling = rolling;
         let touching = self.constrained.len();
         let records = self.colouring.finish();
         // The records of the last step are overwritten lane by lane, every

@@ -2,6 +2,7 @@
 //! v3's `b2WorldDef` defaults unless said otherwise).
 
 use crate::error::{EngineError, Result, require_non_negative, require_positive};
+use crate::material::MixingRule;
 
 /// Settings of the soft-step contact model. `Default` gives Box2D v3's
 /// defaults with sleeping off.
@@ -81,6 +82,19 @@ pub struct SoftStepSettings {
     /// Whether each point starts a step with the impulses it ended the last
     /// one with (warm starting). Default on; off only to study the solver.
     pub warm_starting: bool,
+    /// How a pair mixes its two shapes' friction coefficients. Default the
+    /// geometric mean √(μa μb) (Box2D's).
+    pub friction_mixing: MixingRule,
+    /// How a pair mixes its two shapes' restitutions. Default the larger
+    /// (Box2D's).
+    pub restitution_mixing: MixingRule,
+    /// Rolling resistance coefficient (≥ 0, dimensionless) of a shape that
+    /// does not give its own ([`crate::material`]). Default 0 (Box2D's).
+    pub rolling_resistance: f64,
+    /// Approach speed (m/s, ≥ 0) above which a pair that begins touching
+    /// reports a hit event ([`super::ContactEvents::hits`]). Default 1 m/s
+    /// (Box2D's `hitEventThreshold`).
+    pub hit_event_threshold: f64,
 }
 
 impl Default for SoftStepSettings {
@@ -101,6 +115,10 @@ impl Default for SoftStepSettings {
             sleep_threshold: 0.05,
             time_to_sleep: 0.5,
             warm_starting: true,
+            friction_mixing: MixingRule::GeometricMean,
+            restitution_mixing: MixingRule::Max,
+            rolling_resistance: 0.0,
+            hit_event_threshold: 1.0,
         }
     }
 }
@@ -126,6 +144,8 @@ impl SoftStepSettings {
         require_non_negative("recycle distance", self.recycle_distance)?;
         require_positive("sleep threshold", self.sleep_threshold)?;
         require_positive("time to sleep", self.time_to_sleep)?;
+        require_non_negative("rolling resistance", self.rolling_resistance)?;
+        require_non_negative("hit event threshold", self.hit_event_threshold)?;
         Ok(())
     }
 }

@@ -19,7 +19,7 @@ impl SoftStep {
             self.islands.add_body(id, sim.kind == BodyKind::Dynamic);
         }
         for c in &self.contacts.contacts {
-            if c.touching {
+            if c.touching && !c.sensor {
                 self.islands.link(c.body_a, c.body_b);
             }
         }
@@ -41,6 +41,7 @@ impl SoftStep {
         self.touching_pairs.clear();
         for c in &self.contacts.contacts {
             if c.touching
+                && !c.sensor
                 && self.sims[c.body_a].kind == BodyKind::Dynamic
                 && self.sims[c.body_b].kind == BodyKind::Dynamic
             {
@@ -53,7 +54,7 @@ impl SoftStep {
         // A moving kinematic body keeps the bodies it touches or holds
         // awake.
         for c in &self.contacts.contacts {
-            if !c.touching {
+            if !c.touching || c.sensor {
                 continue;
             }
             for (k, other) in [(c.body_a, c.body_b), (c.body_b, c.body_a)] {

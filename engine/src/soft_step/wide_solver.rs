@@ -65,6 +65,13 @@ pub(crate) struct WideConstraint {
     pub impulse_scale: F64x4,
     /// Minus each lane's push-out bound (m/s): the bias is at least this.
     pub min_bias: F64x4,
+    /// Tangent speed of the surfaces (m/s).
+    pub tangent_speed: F64x4,
+    /// Rolling resistance (m), its effective mass (kg·m²) and accumulated
+    /// angular impulse (N·m·s).
+    pub rolling_resistance: F64x4,
+    pub rolling_mass: F64x4,
+    pub rolling_impulse: F64x4,
     pub points: [WidePoint; 2],
 }
 
@@ -98,6 +105,10 @@ pub(crate) fn set_lane(
     w.mass_scale.set_lane(l, c.softness.mass_scale);
     w.impulse_scale.set_lane(l, c.softness.impulse_scale);
     w.min_bias.set_lane(l, -c.push_out);
+    w.tangent_speed.set_lane(l, c.tangent_speed);
+    w.rolling_resistance.set_lane(l, c.rolling_resistance);
+    w.rolling_mass.set_lane(l, c.rolling_mass);
+    w.rolling_impulse.set_lane(l, c.rolling_impulse);
     e.restitution.set_lane(l, c.restitution);
     for k in 0..2 {
         let cp = if k < c.count {
@@ -136,6 +147,10 @@ pub(crate) fn set_padding_lane((w, e): (&mut WideConstraint, &mut WideExtra), l:
         inv_inertia_b: 0.0,
         softness: super::Softness::RIGID,
         push_out: 0.0,
+        tangent_speed: 0.0,
+        rolling_resistance: 0.0,
+        rolling_mass: 0.0,
+        rolling_impulse: 0.0,
         count: 0,
         points: [ConstraintPoint::default(); 2],
     };
@@ -318,12 +333,22 @@ fn apply<L: Lanes>(
 
 /// Applies every constraint's accumulated impulses.
 #[inline(never)]
-pub(crate) fn warm_start(constraints: &mut [WideConstraint], bodies: &mut [SolverBody]) {
-    dispatch!(warm_start_with, warm_start_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody]));
+/// `rolling`: whether any constraint has rolling resistance (else its
+/// rows are skipped without being looked at).
+pub(crate) fn warm_start(
+    constraints: &mut [WideConstraint],
+    bodies: &mut [SolverBody],
+    rolling: bool,
+) {
+    dispatch!(warm_start_with, warm_start_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody], rolling: bool));
 }
 
 #[inline(always)]
-fn warm_start_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: &mut [SolverBody]) {
+fn warm_start_with<L: Lanes>(
+    constraints: &mut [WideConstraint],
+    bodies: &mut [SolverBody],
+    rolling: bool,
+) {
     for c in constraints.iter_mut() {
         let (mut a, mut b) = (gather::<L>(bodies, &c.a), gather::<L>(bodies, &c.b));
         let m = Masses::of(c);
@@ -336,6 +361,13 @@ fn warm_start_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: &mut [S
             let py = normal_impulse * ny + tangent_impulse * ty;
             (L::load(&p.total_normal_impulse) + normal_impulse).store(&mut p.total_normal_impulse);
             apply(&m, (&mut a, &mut b), &Anchors::of(p), (px, py));
+        }
+        if rolling {
+            let impulse = L::load(&c.rolling_impulse);
+            if !L::all(impulse.eq(L::splat(0.0))) {
+                a.w -= m.ia * impulse;
+                b.w += m.ib * impulse;
+            }
         }
         scatter(bodies, &c.a, &a);
         scatter(bodies, &c.b, &b);
@@ -350,18 +382,29 @@ pub(crate) fn solve(constraints: &mut [WideConstraint], bodies: &mut [SolverBody
 
 #[inline(always)]
 fn solve_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
-    pass::<L, true>(constraints, bodies, inv_h);
+    pass::<L, true>(constraints, bodies, inv_h, false);
 }
 
-/// The relax pass: without bias, with friction.
+/// The relax pass: without bias, with friction (and rolling resistance
+/// when `rolling`, see [`warm_start`]).
 #[inline(never)]
-pub(crate) fn relax(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
-    dispatch!(relax_with, relax_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64));
+pub(crate) fn relax(
+    constraints: &mut [WideConstraint],
+    bodies: &mut [SolverBody],
+    inv_h: f64,
+    rolling: bool,
+) {
+    dispatch!(relax_with, relax_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64, rolling: bool));
 }
 
 #[inline(always)]
-fn relax_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
-    pass::<L, false>(constraints, bodies, inv_h);
+fn relax_with<L: Lanes>(
+    constraints: &mut [WideConstraint],
+    bodies: &mut [SolverBody],
+    inv_h: f64,
+    rolling: bool,
+) {
+    pass::<L, false>(constraints, bodies, inv_h, rolling);
 }
 
 /// One pass of sequential impulses over four lanes at a time.
@@ -370,6 +413,7 @@ fn pass<L: Lanes, const BIAS: bool>(
     constraints: &mut [WideConstraint],
     bodies: &mut [SolverBody],
     inv_h: f64,
+    rolling: bool,
 ) {
     let inv_h = L::splat(inv_h);
     let (zero, one) = (L::splat(0.0), L::splat(1.0));
@@ -409,11 +453,12 @@ fn pass<L: Lanes, const BIAS: bool>(
         }
         if !BIAS {
             let friction = L::load(&c.friction);
+            let tangent_speed = L::load(&c.tangent_speed);
             let (tx, ty) = (ny, -nx);
             for p in &mut c.points {
                 let r = Anchors::of(p);
                 let (dvx, dvy) = r.relative_velocity((&a, &b));
-                let vt = dvx * tx + dvy * ty;
+                let vt = dvx * tx + dvy * ty - tangent_speed;
                 let max_friction = friction * L::load(&p.normal_impulse);
                 let tangent_impulse = L::load(&p.tangent_impulse);
                 let accumulated = (tangent_impulse - L::load(&p.tangent_mass) * vt)
@@ -421,6 +466,18 @@ fn pass<L: Lanes, const BIAS: bool>(
                 let impulse = accumulated - tangent_impulse;
                 accumulated.store(&mut p.tangent_impulse);
                 apply(&m, (&mut a, &mut b), &r, (impulse * tx, impulse * ty));
+            }
+            let rolling_resistance = L::load(&c.rolling_resistance);
+            if rolling && !L::all(rolling_resistance.eq(zero)) {
+                let normal =
+                    L::load(&c.points[0].normal_impulse) + L::load(&c.points[1].normal_impulse);
+                let max = rolling_resistance * normal;
+                let old = L::load(&c.rolling_impulse);
+                let accumulated = (old - L::load(&c.rolling_mass) * (b.w - a.w)).clamp(-max, max);
+                accumulated.store(&mut c.rolling_impulse);
+                let delta = accumulated - old;
+                a.w -= m.ia * delta;
+                b.w += m.ib * delta;
             }
         }
         scatter(bodies, &c.a, &a);
@@ -492,6 +549,7 @@ pub(crate) fn store_lane((w, e): (&WideConstraint, &WideExtra), l: usize, contac
         p.total_normal_impulse = q.total_normal_impulse.lane(l);
         p.normal_velocity = e.normal_velocity[k].lane(l);
     }
+    contact.rolling_impulse = w.rolling_impulse.lane(l);
 }
 
 #[cfg(test)]
@@ -564,6 +622,12 @@ mod tests {
                 // A shared push-out bound on some lanes (prepare's rule for
                 // a body with several deep contacts).
                 push_out: if contact % 4 == 1 { 0.75 } else { 3.0 },
+                // A conveyor's tangent speed on some, rolling resistance
+                // (with a warm-start impulse) on others.
+                tangent_speed: if contact % 5 == 0 { 0.3 } else { 0.0 },
+                rolling_resistance: if contact % 3 == 1 { 0.05 } else { 0.0 },
+                rolling_mass: 1.0 / (if static_a { 0.0 } else { 6.0 } + 3.0),
+                rolling_impulse: if contact % 3 == 1 { 0.01 } else { 0.0 },
                 count: 1 + contact % 2,
                 points,
             });
@@ -610,7 +674,12 @@ mod tests {
         contact_solver::restitution(&mut scalar, &mut scalar_bodies, 1.0);
         let mut set = super::super::contacts::ContactSet::default();
         for (i, c) in constraints.iter().enumerate() {
-            set.create((2 * i, 2 * i + 1), (c.a, c.b), 0.6, 0.0);
+            set.create(
+                (2 * i, 2 * i + 1),
+                (c.a, c.b),
+                super::super::contacts::tests::material(),
+                false,
+            );
             set.contacts[i].count = c.count;
         }
         let mut reference = set.contacts.clone();
@@ -622,13 +691,13 @@ mod tests {
             let (mut wide, mut wide_bodies) = (wide.clone(), bodies.clone());
             for _ in 0..3 {
                 if sse2 {
-                    warm_start_with::<F64x4>(&mut wide, &mut wide_bodies);
+                    warm_start_with::<F64x4>(&mut wide, &mut wide_bodies, true);
                     solve_with::<F64x4>(&mut wide, &mut wide_bodies, inv_h);
-                    relax_with::<F64x4>(&mut wide, &mut wide_bodies, inv_h);
+                    relax_with::<F64x4>(&mut wide, &mut wide_bodies, inv_h, true);
                 } else {
-                    warm_start(&mut wide, &mut wide_bodies);
+                    warm_start(&mut wide, &mut wide_bodies, true);
                     solve(&mut wide, &mut wide_bodies, inv_h);
-                    relax(&mut wide, &mut wide_bodies, inv_h);
+                    relax(&mut wide, &mut wide_bodies, inv_h, true);
                 }
             }
             if sse2 {

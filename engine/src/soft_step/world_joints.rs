@@ -41,8 +41,12 @@ impl SoftStep {
         while i < self.contacts.contacts.len() {
             let c = &self.contacts.contacts[i];
             if (c.body_a, c.body_b) == (a, b) || (c.body_a, c.body_b) == (b, a) {
-                if c.touching && self.settings.sleeping {
-                    self.islands.unlink(a);
+                if c.touching {
+                    let sensor = c.sensor;
+                    self.contact_ended(i);
+                    if self.settings.sleeping && !sensor {
+                        self.islands.unlink(a);
+                    }
                 }
                 self.contacts.destroy(i);
             } else {

@@ -66,6 +66,27 @@ pub fn neutral_scene(scene: &Scene, defaults: Defaults) -> Result<ManyBodyScene>
         .map(|def| {
             let (body, state) = Body::from_def(def)?;
             states.push(state);
+            // The reference adapters take a "never collide" group and
+            // nothing else of the filters, and no sensor or material
+            // beyond friction and restitution: refused, not dropped.
+            let plain_filter = engine::Filter {
+                group: 0,
+                ..body.filter
+            } == engine::Filter::DEFAULT
+                && body.filter.group <= 0;
+            if !plain_filter
+                || body.sensor
+                || body.rolling_resistance.is_some()
+                || body.tangent_speed.is_some()
+            {
+                bail!(
+                    "{}: body '{}' has a filter other than a \"never collide\" group, a sensor, \
+                     a rolling resistance or a tangent speed, which the reference engines' \
+                     conversion does not carry",
+                    scene.origin(),
+                    body.name
+                );
+            }
             let shape = body
                 .shape
                 .clone()
@@ -90,7 +111,7 @@ pub fn neutral_scene(scene: &Scene, defaults: Defaults) -> Result<ManyBodyScene>
                 density,
                 friction: body.friction.unwrap_or(defaults.friction),
                 restitution: body.restitution.unwrap_or(defaults.restitution),
-                collision_group: def.collision_group,
+                collision_group: def.collision_group(),
             })
         })
         .collect::<Result<Vec<_>>>()?;

@@ -79,6 +79,11 @@ registry! {
     fuzz_scenes,
     falling_hinges,
     snapshot_restore,
+    contact_forces,
+    sensor_gate,
+    conveyor,
+    rolling_resistance,
+    filters,
 }
 
 /// The case with this id.

@@ -15,6 +15,7 @@
 //! next step reads (a warm-starting impulse, the broad phase's tree order,
 //! a sleep timer). Hence tolerance 0.
 
+use crate::row::RowKind;
 use super::soft_step_common::SOFT_STEP;
 use super::{Case, CaseReport};
 use crate::row::RowSink;
@@ -97,6 +98,7 @@ pub fn run() -> Result<CaseReport> {
          mean the snapshot missed state the next step reads (warm-starting impulses, the broad \
          phase's tree, islands, sleep timers, joint impulses), hence tolerance 0";
     rows.within(
+        RowKind::Consistency,
         "restored_max_state_difference",
         restored_worst,
         0.0,
@@ -109,6 +111,7 @@ pub fn run() -> Result<CaseReport> {
         ),
     );
     rows.within(
+        RowKind::Consistency,
         "restored_hash_mismatches",
         f64::from(hash_mismatches),
         0.0,
@@ -119,6 +122,7 @@ pub fn run() -> Result<CaseReport> {
         ),
     );
     rows.within(
+        RowKind::Consistency,
         "clone_max_state_difference",
         cloned_worst,
         0.0,
@@ -129,6 +133,7 @@ pub fn run() -> Result<CaseReport> {
         ),
     );
     rows.at_least(
+        RowKind::Criterion,
         "pyramid_boxes_moved_after_snapshot",
         moved as f64,
         5.0,

@@ -231,11 +231,8 @@ pub fn ragdoll(
         let (y1, y2, r) = bone.capsule;
         let leg = capsule_octagon(y1 * s, y2 * s, r * s);
         let shape = if bone.foot {
-            let part = |p: ConvexPolygon| CompoundPart {
-                offset: Vector2::zeros(),
-                angle: 0.0,
-                shape: Shape::Polygon(p),
-            };
+            let part =
+                |p: ConvexPolygon| CompoundPart::new(Vector2::zeros(), 0.0, Shape::Polygon(p));
             Shape::Compound(Compound::new(vec![part(leg), part(foot.clone())]).expect("two parts"))
         } else {
             Shape::Polygon(leg)
