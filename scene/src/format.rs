@@ -139,12 +139,12 @@ pub struct BodySpec {
     #[serde(default)]
     pub angular_velocity: f64,
     /// Coulomb friction coefficient of this body (≥ 0), combined with the
-    /// other body's as √(μa μb). Default: `[contact] friction`. Soft-step
-    /// contact model only.
+    /// other body's by `[contact] friction_mixing` (√(μa μb) by default).
+    /// Default: `[contact] friction`. Soft-step contact model only.
     pub friction: Option<f64>,
-    /// Restitution of this body (in [0, 1]); a pair bounces with the
-    /// larger of its two. Default: `[contact] restitution`. Soft-step
-    /// contact model only.
+    /// Restitution of this body (in [0, 1]), combined by `[contact]
+    /// restitution_mixing` (the larger of the two by default). Default:
+    /// `[contact] restitution`. Soft-step contact model only.
     pub restitution: Option<f64>,
     /// Rolling resistance coefficient of this body's shape (≥ 0,
     /// dimensionless; Box2D v3's: the largest rolling torque is this times
