@@ -78,6 +78,7 @@ pub mod forces;
 pub mod integrators;
 pub mod ode;
 pub mod prelude;
+pub mod query;
 pub mod shape;
 pub mod soft_step;
 pub mod time_grid;
@@ -101,6 +102,7 @@ pub use integrators::{
     Integrator, Method, Solution, Stats, Tolerance, integrate_fixed, integrate_to,
 };
 pub use ode::{FnSystem, OdeSystem, Structure};
+pub use query::{RayHit, ShapeCastHit, ShapeDistance, ShapeRef};
 pub use shape::{Circle, Compound, CompoundPart, ConvexPolygon, Shape};
 pub use soft_step::SoftStepSettings;
 pub use soft_step::joints::{

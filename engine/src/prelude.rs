@@ -23,6 +23,7 @@ pub use crate::forces::{
     AngularDrag, Attachment, Force, Gravity, PointForce, QuadraticDrag, Spring, TimeWindow, Torque,
 };
 pub use crate::integrators::Method;
+pub use crate::query::{RayHit, ShapeCastHit, ShapeDistance, ShapeRef};
 pub use crate::shape::{Circle, Compound, CompoundPart, ConvexPolygon, Shape};
 pub use crate::soft_step::SoftStepSettings;
 pub use crate::soft_step::joints::{

@@ -701,6 +701,7 @@ fn same_box(a: &Aabb, b: &Aabb) -> bool {
 }
 
 mod pairs;
+pub(crate) mod ray;
 mod rebuild;
 #[cfg(test)]
 mod tests;
