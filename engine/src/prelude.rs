@@ -1,7 +1,7 @@
 //! Everything a program needs to build and step a world, in one import:
 //!
 //! ```
-//! use engine::prelude::*;
+//! use etalon2d::prelude::*;
 //! let mut world = World::with_model(
 //!     Method::SemiImplicitEuler,
 //!     ContactModel::SoftStep(SoftStepSettings::default()),

@@ -147,6 +147,7 @@ fn scene_f32(field: &'static str, x: f64) -> Result<f32, ManyBodyError> {
 }
 
 pub mod joints;
+mod ray;
 
 /// A [`ManyBodyScene`] in a Box2D world.
 pub struct Box2dWorld {

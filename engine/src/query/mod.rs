@@ -3,7 +3,7 @@
 //! shape, without stepping it.
 //!
 //! ```
-//! use engine::prelude::*;
+//! use etalon2d::prelude::*;
 //! let mut world = World::with_model(
 //!     Method::SemiImplicitEuler,
 //!     ContactModel::SoftStep(SoftStepSettings::default()),

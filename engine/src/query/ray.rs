@@ -53,16 +53,17 @@ pub(crate) fn ray_cast(
     if r > 0.0 {
         for (k, c) in v.iter().enumerate() {
             let limit = best.map_or(max_t, |b| b.t);
-            if let Some(t) = ray_circle(origin, dir, *c, r)
-                && t <= limit
-            {
-                let normal = (origin + t * dir - c) / r;
-                best = Some(ProxyRayHit {
-                    t,
-                    normal,
-                    edge: k,
-                    u: 0.0,
-                });
+            match ray_circle(origin, dir, *c, r) {
+                Some(t) if t <= limit => {
+                    let normal = (origin + t * dir - c) / r;
+                    best = Some(ProxyRayHit {
+                        t,
+                        normal,
+                        edge: k,
+                        u: 0.0,
+                    });
+                }
+                _ => {}
             }
         }
     }
