@@ -141,16 +141,7 @@ pub fn measure(repeats: usize) -> Result<Vec<QueryTiming>> {
                     0 => ours
                         .cast_ray(*o, *d, RAY_LENGTH, QueryFilter::DEFAULT)?
                         .map(|h| h.distance),
-                    1 => {
-                        let ray = rapier2d_f64::parry::query::Ray::new(
-                            rapier2d_f64::math::Vector::new(o.x, o.y),
-                            rapier2d_f64::math::Vector::new(d.x, d.y),
-                        );
-                        rapier
-                            .world()
-                            .cast_ray(&ray, RAY_LENGTH, true, Default::default())
-                            .map(|h| h.1)
-                    }
+                    1 => rapier.cast_ray([o.x, o.y], [d.x, d.y], RAY_LENGTH),
                     _ => box2d
                         .cast_ray_closest([o.x, o.y], [RAY_LENGTH * d.x, RAY_LENGTH * d.y])
                         .context("Box2D ray")?,

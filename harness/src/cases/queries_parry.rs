@@ -25,7 +25,7 @@ use crate::row::RowSink;
 use anyhow::Result;
 use engine::prelude::*;
 use nalgebra::Isometry2;
-use references::parry_queries::exact::Rng;
+use references::parry_queries::exact::{Rng, signed_distance_to_polygon, world_vertices};
 use references::parry_queries::world_queries::ParryBody;
 use std::time::Instant;
 
@@ -79,8 +79,19 @@ pub struct Tally {
     pub casts: usize,
     pub cast_hits: usize,
     pub cast_disagreements: usize,
+    /// Largest differences over the common hits, leaving out those where
+    /// the exact check finds parry's answer the worse one.
     pub max_cast_distance_diff: f64,
     pub max_cast_normal_diff: f64,
+    /// Common hits differing by more than 1e-9 where the exact check finds
+    /// parry's time of impact or normal the worse one, and the largest
+    /// differences among them.
+    pub cast_parry_worse: usize,
+    pub cast_parry_worse_distance: f64,
+    pub cast_parry_worse_normal: f64,
+    /// Common hits differing by more than 1e-9 where the exact check finds
+    /// the engine's answer the worse one.
+    pub cast_engine_worse: usize,
     pub points: usize,
     pub point_disagreements: usize,
     pub overlaps: usize,
@@ -268,9 +279,56 @@ pub fn measure(worlds: usize, rays: usize, others: usize) -> Tally {
                 (None, None) => {}
                 (Some(h), Some((b, f, n))) if h.shape.body == b => {
                     t.cast_hits += 1;
-                    t.max_cast_distance_diff =
-                        t.max_cast_distance_diff.max(length * (h.fraction - f).abs());
-                    t.max_cast_normal_diff = t.max_cast_normal_diff.max((h.normal - n).norm());
+                    let distance = length * (h.fraction - f).abs();
+                    let normal = (h.normal - n).norm();
+                    if distance <= BAND && normal <= BAND {
+                        t.max_cast_distance_diff = t.max_cast_distance_diff.max(distance);
+                        t.max_cast_normal_diff = t.max_cast_normal_diff.max(normal);
+                    } else {
+                        let target = &world.bodies()[b];
+                        let state = world.states()[b];
+                        let target_pose = Isometry2::new(state.position, state.angle);
+                        let target_shape = target.shape.as_ref().expect("hit shapes exist");
+                        let moved = |fraction: f64| {
+                            Isometry2::from_parts(
+                                (pose.translation.vector + fraction * translation).into(),
+                                pose.rotation,
+                            )
+                        };
+                        let gap = |fraction: f64| {
+                            exact_gap(&shape, &moved(fraction), target_shape, &target_pose).abs()
+                        };
+                        let (ours_gap, theirs_gap) = (gap(h.fraction), gap(f));
+                        let touch = moved(if ours_gap <= theirs_gap { h.fraction } else { f });
+                        let overlap = |n: Vector2<f64>| {
+                            support(&shape, &touch, -n) + support(target_shape, &target_pose, n)
+                        };
+                        // Rounding of the checks themselves: a few ulps
+                        // of the 50 m coordinates.
+                        let slack = 1e-13;
+                        let distance_ok = distance <= BAND || ours_gap <= theirs_gap + slack;
+                        let normal_ok = normal <= BAND || overlap(h.normal) <= overlap(n) + slack;
+                        if distance_ok && normal_ok {
+                            t.cast_parry_worse += 1;
+                            t.cast_parry_worse_distance = t.cast_parry_worse_distance.max(distance);
+                            t.cast_parry_worse_normal = t.cast_parry_worse_normal.max(normal);
+                        } else {
+                            t.cast_engine_worse += 1;
+                            t.max_cast_distance_diff = t.max_cast_distance_diff.max(distance);
+                            t.max_cast_normal_diff = t.max_cast_normal_diff.max(normal);
+                            t.list(format!(
+                                "shape cast of {shape:?} from {:?} by {translation:?}, world {w}, \
+                                 body {b}: engine fraction {} normal {:?} (gap {ours_gap:.3e} m, \
+                                 overlap along its normal {:.3e} m), parry {f} {n:?} (gap \
+                                 {theirs_gap:.3e} m, overlap {:.3e} m)",
+                                pose.translation.vector,
+                                h.fraction,
+                                h.normal,
+                                overlap(h.normal),
+                                overlap(n),
+                            ));
+                        }
+                    }
                 }
                 (Some(h), Some((_, f, _))) if length * (h.fraction - f).abs() <= BAND => {
                     t.cast_hits += 1; // a tie between two shapes
@@ -360,6 +418,48 @@ pub fn measure(worlds: usize, rays: usize, others: usize) -> Tally {
         }
     }
     t
+}
+
+/// The largest `u · x` over the shape at `pose` (m): its support along
+/// `u` (a unit vector).
+fn support(shape: &Shape, pose: &Isometry2<f64>, u: Vector2<f64>) -> f64 {
+    match shape {
+        Shape::Circle(c) => pose.translation.vector.dot(&u) + c.radius,
+        Shape::Polygon(p) => world_vertices(p, pose)
+            .iter()
+            .map(|v| v.dot(&u))
+            .fold(f64::NEG_INFINITY, f64::max),
+        Shape::Compound(_) => unreachable!("the worlds hold no compounds"),
+    }
+}
+
+/// How far two shapes are from touching (m), by closed forms independent
+/// of both the engine's queries and parry: circle to circle, circle centre
+/// to polygon (`signed_distance_to_polygon`), and for two polygons the
+/// smallest signed distance of a vertex of one to the other (the distance
+/// between two separated convex polygons is reached at a vertex; negative
+/// when a vertex is inside). 0 at contact.
+fn exact_gap(a: &Shape, pose_a: &Isometry2<f64>, b: &Shape, pose_b: &Isometry2<f64>) -> f64 {
+    match (a, b) {
+        (Shape::Circle(ca), Shape::Circle(cb)) => {
+            (pose_a.translation.vector - pose_b.translation.vector).norm() - ca.radius - cb.radius
+        }
+        (Shape::Circle(c), Shape::Polygon(p)) => {
+            signed_distance_to_polygon(&world_vertices(p, pose_b), &pose_a.translation.vector)
+                - c.radius
+        }
+        (Shape::Polygon(_), Shape::Circle(_)) => exact_gap(b, pose_b, a, pose_a),
+        (Shape::Polygon(pa), Shape::Polygon(pb)) => {
+            let (wa, wb) = (world_vertices(pa, pose_a), world_vertices(pb, pose_b));
+            let from = |w: &[Vector2<f64>], other: &[Vector2<f64>]| {
+                w.iter()
+                    .map(|v| signed_distance_to_polygon(other, v))
+                    .fold(f64::INFINITY, f64::min)
+            };
+            from(&wa, &wb).min(from(&wb, &wa))
+        }
+        _ => unreachable!("the worlds hold no compounds"),
+    }
 }
 
 /// The share of `n` queries on which both agree.
@@ -482,13 +582,17 @@ pub fn report(t: &Tally, required_rays: usize) -> CaseReport {
             t.max_cast_distance_diff,
             band_reason(
                 "largest |engine − parry| distance travelled to the first touch over the \
-                 shape casts hitting the same shape (m)",
+                 shape casts hitting the same shape (m), leaving out those where the exact check \
+                 finds parry the worse one (next rows)",
             ),
         ),
         (
             "max_shape_cast_normal_difference",
             t.max_cast_normal_diff,
-            band_reason("largest |engine − parry| unit normal at the first touch"),
+            band_reason(
+                "largest |engine − parry| unit normal at the first touch, leaving out those \
+                 where the exact check finds parry the worse one (next rows)",
+            ),
         ),
         (
             "max_closest_distance_difference",
@@ -507,10 +611,41 @@ pub fn report(t: &Tally, required_rays: usize) -> CaseReport {
     for (check, value, reason) in bands {
         sink.at_most(check, value, 0.0, BAND, reason);
     }
+    sink.within(
+        "shape_casts_engine_worse",
+        t.cast_engine_worse as f64,
+        0.0,
+        0.0,
+        format!(
+            "{VALIDATION}: common shape-cast hits differing by more than 1e-9 where the exact \
+             check finds the engine the worse one: none. The check, independent of both: at \
+             each side's time of impact the gap between the two shapes by closed forms (circle \
+             to circle, circle to polygon, polygon vertices to polygon), nearer 0 is better; of \
+             the two normals, the one along which the projections of the touching shapes \
+             overlap less (0 for the true contact normal)"
+        ),
+    );
+    sink.at_least(
+        "shape_casts_parry_worse",
+        t.cast_parry_worse as f64,
+        0.0,
+        0.0,
+        format!(
+            "{VALIDATION}: common shape-cast hits differing by more than 1e-9 where the exact \
+             check finds parry's answer the worse one, left out of the two shape-cast rows above: \
+             reported, not judged. parry's cast of polygons is a GJK ray cast on the Minkowski \
+             difference (gjk::minkowski_ray_cast) whose normal is the direction of its last \
+             advancing step, not the final feature's, and whose stop leaves a gap of up to \
+             eps_tol = 10 f64::EPSILON over the cosine of the approach angle. Largest \
+             differences among them: {:.3e} m in distance, {:.3e} in normal",
+            t.cast_parry_worse_distance, t.cast_parry_worse_normal
+        ),
+    );
     report.notes.push(format!(
         "World queries vs parry2d: {} worlds, {} rays ({} common hits), {} shape casts, {} point \
          queries, {} overlap and {} closest-shape queries. Disagreements: ray hit sets {}, \
-         closest rays {}, shape casts {}, points {}, overlaps {}, closest shapes {}. Time spent \
+         closest rays {}, shape casts {}, points {}, overlaps {}, closest shapes {}; common \
+         shape-cast hits beyond 1e-9: {} where parry is the worse, {} where the engine is. Time spent \
          ({} build, both sides brute force per shape on parry's, the engine's queries through \
          its broad phase): engine {:.3} s, parry {:.3} s.",
         t.worlds,
@@ -526,6 +661,8 @@ pub fn report(t: &Tally, required_rays: usize) -> CaseReport {
         t.point_disagreements,
         t.overlap_disagreements,
         t.closest_disagreements,
+        t.cast_parry_worse,
+        t.cast_engine_worse,
         if cfg!(debug_assertions) {
             "debug"
         } else {
