@@ -137,7 +137,13 @@ fn ray_circle(
     if c <= 0.0 || b > 0.0 {
         return None;
     }
-    let disc = b * b - c;
+    // The half chord squared, r² − |offset of the line from the centre|²:
+    // not b² − c, which cancels between two squares of the origin's
+    // distance (~1e-13 m² of rounding 30 m away) where a grazing ray's
+    // half chord is small (Haines et al., "Precision improvements for
+    // ray/sphere intersection", Ray Tracing Gems, 2019).
+    let offset = m - b * dir;
+    let disc = radius * radius - offset.norm_squared();
     if disc < 0.0 {
         return None;
     }
