@@ -11,6 +11,10 @@ use harness::bench::queries::{RAYS, measure};
 fn the_three_engines_cast_the_same_rays() {
     let timings = measure(1).expect("the benchmark runs");
     assert_eq!(timings.len(), 3);
+    for t in &timings {
+        // Printed for a look only (one noisy repeat): nothing is judged.
+        println!("{}: {:.0} ns per ray, {} hits", t.engine, t.ns_min, t.hits);
+    }
     let (ours, rapier, box2d) = (timings[0].hits, timings[1].hits, timings[2].hits);
     assert!(ours > RAYS / 10, "too few hits to time anything: {ours}");
     // f32 positions of about 100 m carry ~1e-5 m of rounding: a grazing
