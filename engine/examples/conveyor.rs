@@ -4,10 +4,10 @@
 //! program prints when each one catches up, against u/(μ g).
 //!
 //! ```sh
-//! cargo run --release -p engine --example conveyor
+//! cargo run --release -p etalon2d --example conveyor
 //! ```
 
-use engine::prelude::*;
+use etalon2d::prelude::*;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut world = World::with_model(

@@ -1,7 +1,7 @@
 //! A box dropped on the ground: the smallest contact program.
 //!
 //! ```sh
-//! cargo run --release -p engine --example drop_box
+//! cargo run --release -p etalon2d --example drop_box
 //! ```
 //!
 //! The soft-step contact model (Box2D v3's solver) catches the box; it
@@ -9,7 +9,7 @@
 //! (1.25 g/ω² for a unit box, ω = 2π·60 rad/s against a static body: about
 //! 0.09 mm), which the program prints.
 
-use engine::prelude::*;
+use etalon2d::prelude::*;
 
 fn main() -> Result<()> {
     let mut world = World::with_model(

@@ -3,7 +3,7 @@
 //! drives a kinematic paddle; the smallest use of the control calls.
 //!
 //! ```sh
-//! cargo run --release -p engine --example kick
+//! cargo run --release -p etalon2d --example kick
 //! ```
 //!
 //! It prints the velocity the impulse gave (J/m, and (r × J)/I for the
@@ -12,7 +12,7 @@
 //! about v·h/2, h the substep, which it prints too), and the paddle
 //! reaching its target.
 
-use engine::prelude::*;
+use etalon2d::prelude::*;
 
 fn main() -> Result<()> {
     let dt = 1.0 / 60.0;

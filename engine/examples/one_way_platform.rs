@@ -4,10 +4,10 @@
 //! passes through it and then lands on it.
 //!
 //! ```sh
-//! cargo run --release -p engine --example one_way_platform
+//! cargo run --release -p etalon2d --example one_way_platform
 //! ```
 
-use engine::prelude::*;
+use etalon2d::prelude::*;
 
 /// Lets the platform hold only what comes down on it from above.
 #[derive(Clone)]

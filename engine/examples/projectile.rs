@@ -3,10 +3,10 @@
 //! h = 0.01 s, its landing located inside the step by root finding.
 //!
 //! ```sh
-//! cargo run --release -p engine --example projectile
+//! cargo run --release -p etalon2d --example projectile
 //! ```
 
-use engine::prelude::*;
+use etalon2d::prelude::*;
 
 fn main() -> Result<()> {
     let mut world = World::new(Method::Rk4)?;

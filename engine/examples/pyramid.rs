@@ -3,10 +3,10 @@
 //! offset by half a box).
 //!
 //! ```sh
-//! cargo run --release -p engine --example pyramid -- 20 600
+//! cargo run --release -p etalon2d --example pyramid -- 20 600
 //! ```
 
-use engine::{BodyDef, ContactModel, Method, Shape, SoftStepSettings, World};
+use etalon2d::{BodyDef, ContactModel, Method, Shape, SoftStepSettings, World};
 use nalgebra::Vector2;
 use std::time::Instant;
 

@@ -6,10 +6,10 @@
 //! clone in memory does the same without bytes.
 //!
 //! ```sh
-//! cargo run --release -p engine --example save_restore
+//! cargo run --release -p etalon2d --example save_restore
 //! ```
 
-use engine::prelude::*;
+use etalon2d::prelude::*;
 
 fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let dt = 1.0 / 60.0;

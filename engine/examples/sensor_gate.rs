@@ -4,10 +4,10 @@
 //! after every step), and the program counts them.
 //!
 //! ```sh
-//! cargo run --release -p engine --example sensor_gate
+//! cargo run --release -p etalon2d --example sensor_gate
 //! ```
 
-use engine::prelude::*;
+use etalon2d::prelude::*;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut world = World::with_model(

@@ -4,10 +4,11 @@
 //! "seed §N" and "seed eq. N" (an English guide to it: `docs/seed.md`).
 //!
 //! Start with the [`prelude`]. A box dropped on the ground, with the
-//! soft-step contact model (the one for piles of bodies):
+//! soft-step contact model (the one for piles of bodies), then asked where
+//! a ray straight down meets it ([`query`]):
 //!
 //! ```
-//! use engine::prelude::*;
+//! use etalon2d::prelude::*;
 //! let mut world = World::with_model(
 //!     Method::SemiImplicitEuler,
 //!     ContactModel::SoftStep(SoftStepSettings::default()),
@@ -20,6 +21,13 @@
 //! let trace = world.run(2.0, 1.0 / 60.0)?; // until t = 2 s, in steps of 1/60 s
 //! let y = trace.last().unwrap().states[boxed].position.y;
 //! assert!((y - 0.5).abs() < 1e-3); // resting on the ground (its soft contact sinks < 0.1 mm)
+//!
+//! // A ray cast straight down from 10 m meets the box's top face (y ≈ 1 m).
+//! let hit = world
+//!     .cast_ray(Vector2::new(0.2, 10.0), Vector2::new(0.0, -1.0), 20.0, QueryFilter::DEFAULT)?
+//!     .expect("the ray meets the box");
+//! assert_eq!(hit.shape.body, boxed);
+//! assert!((hit.point.y - (y + 0.5)).abs() < 1e-9);
 //! # Ok::<(), EngineError>(())
 //! ```
 //!
@@ -27,7 +35,7 @@
 //! RK4 at h = 0.2 s, no contacts:
 //!
 //! ```
-//! use engine::prelude::*;
+//! use etalon2d::prelude::*;
 //! let mut world = World::new(Method::Rk4)?;
 //! let mass = world.add_body(BodyDef::particle("mass", 20.0, Vector2::new(100.0, 0.0)))?;
 //! world.add_force(Spring {
@@ -64,7 +72,9 @@
 //!   model's response (impulses with restitution, resting contact, Coulomb
 //!   friction), seed §7, and the event root finder;
 //! - [`joints`]: revolute, prismatic, distance, weld and target joints
-//!   under the soft step ([`World::add_joint`]).
+//!   under the soft step ([`World::add_joint`]);
+//! - [`query`]: ray casts, shape casts, overlap, point and distance
+//!   queries on a world, through the soft step's broad phase.
 //!
 //! Between steps a program drives the world: [`World::set_pose`],
 //! [`World::set_velocity`], [`World::apply_force`],
@@ -80,6 +90,11 @@
 
 #![warn(missing_docs)]
 
+// The crate README's example, compiled and run as a doc test.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
+
 pub mod body;
 mod contact_model;
 pub mod error;
@@ -91,6 +106,7 @@ pub mod integrators;
 pub mod material;
 pub mod ode;
 pub mod prelude;
+pub mod query;
 pub mod shape;
 pub mod soft_step;
 pub mod time_grid;
@@ -115,6 +131,7 @@ pub use integrators::{
 };
 pub use material::{MixingRule, ShapeOverrides};
 pub use ode::{FnSystem, OdeSystem, Structure};
+pub use query::{RayHit, ShapeCastHit, ShapeDistance, ShapeRef};
 pub use shape::{Circle, Compound, CompoundPart, ConvexPolygon, Shape};
 pub use soft_step::SoftStepSettings;
 pub use soft_step::joints::{

@@ -1,7 +1,7 @@
 //! Everything a program needs to build and step a world, in one import:
 //!
 //! ```
-//! use engine::prelude::*;
+//! use etalon2d::prelude::*;
 //! let mut world = World::with_model(
 //!     Method::SemiImplicitEuler,
 //!     ContactModel::SoftStep(SoftStepSettings::default()),
@@ -24,6 +24,7 @@ pub use crate::forces::{
 };
 pub use crate::integrators::Method;
 pub use crate::material::{MixingRule, ShapeOverrides};
+pub use crate::query::{RayHit, ShapeCastHit, ShapeDistance, ShapeRef};
 pub use crate::shape::{Circle, Compound, CompoundPart, ConvexPolygon, Shape};
 pub use crate::soft_step::SoftStepSettings;
 pub use crate::soft_step::joints::{

@@ -486,6 +486,15 @@ impl World {
         }
     }
 
+    /// What world queries read (module `query`): the bodies and states,
+    /// and the soft step whose broad phase they walk, if it runs.
+    pub(crate) fn query_view(&self) -> (&WorldCore, Option<&SoftStep>) {
+        match &self.model {
+            Dynamics::SoftStep(s) => (&self.core, Some(s)),
+            Dynamics::Exact(_) => (&self.core, None),
+        }
+    }
+
     /// Current time (s).
     pub fn time(&self) -> f64 {
         self.core.time

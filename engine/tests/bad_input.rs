@@ -1,8 +1,8 @@
 //! Bad input gets a typed `EngineError` naming what is wrong, never a panic
 //! and never a silent default (docs/design.md, "Principles").
 
-use engine::forces::{Attachment, Gravity, QuadraticDrag, Spring, Torque};
-use engine::{
+use etalon2d::forces::{Attachment, Gravity, QuadraticDrag, Spring, Torque};
+use etalon2d::{
     BodyDef, ConvexPolygon, EngineError, EventSpec, FnSystem, Method, Shape, TimeWindow, Tolerance,
     World, integrate_fixed,
 };

@@ -3,8 +3,8 @@
 //! (docs/design.md, Principles: "a blow-up is detected and reported
 //! (non-finite state, energy growth)").
 
-use engine::forces::{Attachment, Spring};
-use engine::{BodyDef, EngineError, FnSystem, Method, World, integrate_fixed};
+use etalon2d::forces::{Attachment, Spring};
+use etalon2d::{BodyDef, EngineError, FnSystem, Method, World, integrate_fixed};
 use nalgebra::Vector2;
 
 /// E0 of the seed spring, ½ k (x0 − l0)² (J).

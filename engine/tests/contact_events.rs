@@ -1,8 +1,8 @@
 //! The soft step's events, sensors, filters, hooks and per-part materials,
 //! through the public API: small worlds, each checking one rule.
 
-use engine::prelude::*;
-use engine::{CompoundPart, EngineError, ShapeOverrides};
+use etalon2d::prelude::*;
+use etalon2d::{CompoundPart, EngineError, ShapeOverrides};
 
 fn soft_world() -> World {
     let mut world = World::with_model(

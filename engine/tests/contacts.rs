@@ -2,9 +2,9 @@
 //! closed forms, bounces, resting, sliding and holding with friction, and
 //! several contacts in one step.
 
-use engine::forces::Gravity;
-use engine::validation::contact::{ImpactBody, Velocities, impact_eq_7_15};
-use engine::{
+use etalon2d::forces::Gravity;
+use etalon2d::validation::contact::{ImpactBody, Velocities, impact_eq_7_15};
+use etalon2d::{
     BodyDef, Circle, ContactEventKind, ContactSettings, EventSpec, Method, Shape, ToiMethod, World,
 };
 use nalgebra::Vector2;
@@ -177,7 +177,7 @@ fn elastic_ball_keeps_its_apex() {
     for method in [
         Method::Rk4,
         Method::VelocityVerlet,
-        Method::DormandPrince(engine::Tolerance::uniform(1e-10)),
+        Method::DormandPrince(etalon2d::Tolerance::uniform(1e-10)),
     ] {
         let (mut world, ball) = bouncing_ball(1.0, 1.0, method);
         let trace = world.run(9.5, 0.01).unwrap();

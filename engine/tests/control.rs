@@ -6,7 +6,7 @@
 //! world as it was: the world after the error steps to the same bits as a
 //! clone taken before the call.
 
-use engine::prelude::*;
+use etalon2d::prelude::*;
 
 const DT: f64 = 1.0 / 60.0;
 

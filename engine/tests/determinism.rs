@@ -2,8 +2,10 @@
 //! "Principles"). Compared bit for bit (`f64::to_bits`), which `==` is not:
 //! it equates 0.0 with −0.0 and never equates NaN.
 
-use engine::forces::{AngularDrag, Attachment, Gravity, PointForce, QuadraticDrag, Spring, Torque};
-use engine::{
+use etalon2d::forces::{
+    AngularDrag, Attachment, Gravity, PointForce, QuadraticDrag, Spring, Torque,
+};
+use etalon2d::{
     BodyDef, BodyState, EventSpec, FnSystem, Method, Shape, TimeWindow, Tolerance, Trace, World,
     integrate_fixed,
 };
@@ -161,7 +163,7 @@ fn two_identical_ode_integrations_give_bit_identical_solutions() {
         };
         let (first, second) = (solve(), solve());
         assert_eq!(first.stats, second.stats);
-        let bits = |s: &engine::Solution| {
+        let bits = |s: &etalon2d::Solution| {
             s.t.iter()
                 .chain(s.y.iter().flatten())
                 .map(|v| v.to_bits())

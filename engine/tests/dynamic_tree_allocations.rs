@@ -7,7 +7,7 @@
 //! The count is kept per thread, so the test harness's own threads and
 //! other tests running in parallel do not disturb it.
 
-use engine::validation::collision::{Aabb, DynamicTree, ProxyId};
+use etalon2d::validation::collision::{Aabb, DynamicTree, ProxyId};
 use nalgebra::Vector2;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;

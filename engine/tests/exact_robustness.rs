@@ -5,8 +5,8 @@
 //! angles). Work is measured by the world's counters (pieces of step,
 //! time-of-impact searches), not by a clock.
 
-use engine::forces::Gravity;
-use engine::{BodyDef, ContactSettings, EngineError, Method, Shape, World};
+use etalon2d::forces::Gravity;
+use etalon2d::{BodyDef, ContactSettings, EngineError, Method, Shape, World};
 use nalgebra::Vector2;
 
 const G: f64 = 9.81;

@@ -15,9 +15,12 @@
 //! the harness's main run), so that any change to the soft step's results
 //! (joints or contacts) is seen.
 
-use engine::prelude::*;
+use etalon2d::prelude::*;
 use std::f64::consts::PI;
 
+// The expected values are shared with the harness and the scene tests,
+// which name this crate `engine`.
+use etalon2d as engine;
 include!("falling_hinges/expected.rs");
 
 fn falling_hinges() -> World {

@@ -11,7 +11,7 @@
 //! The tests check the engine against this formula, which is what "stable"
 //! and "blown up" mean quantitatively.
 
-use engine::{EngineError, FnSystem, Method, Solution, integrate_fixed};
+use etalon2d::{EngineError, FnSystem, Method, Solution, integrate_fixed};
 
 const LAMBDA: f64 = -1000.0;
 

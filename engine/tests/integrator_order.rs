@@ -10,8 +10,8 @@
 //! - the seed spring (docs/cases.md case I) run by a `World`, which is also the
 //!   only one of the three the symplectic methods accept.
 
-use engine::forces::{Attachment, Spring};
-use engine::{BodyDef, FnSystem, Method, Tolerance, World, integrate_fixed};
+use etalon2d::forces::{Attachment, Spring};
+use etalon2d::{BodyDef, FnSystem, Method, Tolerance, World, integrate_fixed};
 use nalgebra::Vector2;
 
 /// The band around the nominal order (docs/cases.md: "within ±0.1").
@@ -205,8 +205,8 @@ fn dormand_prince_on_the_decay_reaches_the_tolerance_order_of_magnitude() {
 /// (docs/cases.md `projectile_drag`) in steps of `h`, against the reference state
 /// docs/cases.md quotes to 10–13 significant digits.
 fn drag_projectile_error(method: Method, h: f64) -> f64 {
-    use engine::Shape;
-    use engine::forces::{Gravity, QuadraticDrag};
+    use etalon2d::Shape;
+    use etalon2d::forces::{Gravity, QuadraticDrag};
     let mut world = World::new(method).unwrap();
     let v0 = 60.0 * Vector2::new(1.0, 1.0).normalize();
     let id = world

@@ -3,8 +3,8 @@
 //! island, lose their joints when removed; every bad definition is a
 //! typed error naming the joint; the exact model refuses joints.
 
-use engine::EngineError;
-use engine::prelude::*;
+use etalon2d::EngineError;
+use etalon2d::prelude::*;
 
 const DT: f64 = 1.0 / 60.0;
 
@@ -379,7 +379,7 @@ fn joints_need_the_soft_step() {
     ));
     assert!(matches!(
         soft.joint(0).unwrap().joint_type,
-        engine::JointType::Revolute
+        etalon2d::JointType::Revolute
     ));
 }
 

@@ -12,8 +12,8 @@
 //!
 //! δ ≤ (a_load + a_c (1 + 1/(2 a₃))) / ω_c².
 
-use engine::forces::Torque;
-use engine::prelude::*;
+use etalon2d::forces::Torque;
+use etalon2d::prelude::*;
 use std::f64::consts::PI;
 
 const DT: f64 = 1.0 / 60.0;

@@ -4,8 +4,8 @@
 //! standard gravity is 9.80665), dt = 0.01 s, with the landing (y = 0,
 //! terminal) and apex (vy = 0) events located inside the step.
 
-use engine::forces::{Gravity, QuadraticDrag};
-use engine::{BodyDef, EventSpec, Method, Shape, Tolerance, Trace, World};
+use etalon2d::forces::{Gravity, QuadraticDrag};
+use etalon2d::{BodyDef, EventSpec, Method, Shape, Tolerance, Trace, World};
 use nalgebra::Vector2;
 
 const G: f64 = 9.80655;

@@ -11,8 +11,8 @@
 //! discrete closed forms let the tests check the engine at round-off level,
 //! and the docs/cases.md numbers are checked to the digits it quotes.
 
-use engine::forces::{Attachment, Spring};
-use engine::{BodyDef, Method, Trace, World};
+use etalon2d::forces::{Attachment, Spring};
+use etalon2d::{BodyDef, Method, Trace, World};
 use nalgebra::{Complex, Vector2};
 
 const MASS: f64 = 20.0;
@@ -207,7 +207,7 @@ fn semi_implicit_euler_energy_stays_in_the_seed_band() {
     // C = (x0 − l0)², so E/E0 ∈ [1/(1 + a/2), 1/(1 − a/2)].
     let trace = seed_run(Method::SemiImplicitEuler);
     let (w, a) = (omega(), H * omega());
-    let q = |s: &engine::Sample| {
+    let q = |s: &etalon2d::Sample| {
         let (u, v) = (s.states[0].position.x - REST, s.states[0].velocity.x);
         u * u + (v / w) * (v / w) - H * u * v
     };
@@ -237,7 +237,7 @@ fn velocity_verlet_energy_stays_in_the_seed_band() {
     // since a² = h²k/m = 0.1.
     let trace = seed_run(Method::VelocityVerlet);
     let (w, a) = (omega(), H * omega());
-    let q = |s: &engine::Sample| {
+    let q = |s: &etalon2d::Sample| {
         let (u, v) = (s.states[0].position.x - REST, s.states[0].velocity.x);
         (1.0 - a * a / 4.0) * u * u + (v / w) * (v / w)
     };

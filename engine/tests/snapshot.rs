@@ -9,7 +9,8 @@
 //! And the refusals: a force of the program's own type, the exact model,
 //! bytes of another format.
 
-use engine::prelude::*;
+use etalon2d as engine;
+use etalon2d::prelude::*;
 
 include!("snapshot/scene.rs");
 
@@ -153,7 +154,7 @@ impl Force for Wind {
     fn bodies(&self) -> Vec<BodyId> {
         Vec::new()
     }
-    fn apply(&self, ctx: &engine::ForceContext<'_>, wrenches: &mut [engine::Wrench]) {
+    fn apply(&self, ctx: &etalon2d::ForceContext<'_>, wrenches: &mut [etalon2d::Wrench]) {
         for (w, b) in wrenches.iter_mut().zip(ctx.bodies) {
             if b.is_dynamic() {
                 w.force.x += 0.1;

@@ -5,8 +5,8 @@
 //! move at their velocity, islands sleep and wake, removal, determinism,
 //! forces and events under the soft step.
 
-use engine::forces::QuadraticDrag;
-use engine::{
+use etalon2d::forces::QuadraticDrag;
+use etalon2d::{
     BodyDef, ContactModel, EngineError, EventSpec, Method, Shape, SoftStepSettings, World,
 };
 use nalgebra::Vector2;
@@ -325,7 +325,7 @@ fn a_turning_hollow_box_keeps_its_contents_inside() {
     // A tumbler in miniature: a kinematic hollow box (a compound of four
     // walls, inside 4 × 4 m) turning at 1 rad/s with nine small boxes in it.
     let mut world = soft_world(SoftStepSettings::default());
-    let hollow = engine::Compound::hollow_box(4.0, 4.0, 0.5).unwrap();
+    let hollow = etalon2d::Compound::hollow_box(4.0, 4.0, 0.5).unwrap();
     world
         .add_body(BodyDef::kinematic(
             "tumbler",

@@ -5,7 +5,7 @@
 //! every type. Counted by a global allocator in this test binary
 //! only, per thread.
 
-use engine::{BodyDef, ContactModel, Method, Shape, SoftStepSettings, World};
+use etalon2d::{BodyDef, ContactModel, Method, Shape, SoftStepSettings, World};
 use nalgebra::Vector2;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
@@ -92,7 +92,7 @@ fn jointed_bodies_step_without_allocating() {
     // pendulum, a rope, a spring, a prismatic slider, a weld and a target
     // joint: every joint type, with sleeping on (the islands hold the
     // jointed bodies).
-    use engine::{
+    use etalon2d::{
         Distance, JointDef, JointSpring, Prismatic, Revolute, RevoluteMotor, Target, Weld,
     };
     let mut world = World::with_model(
@@ -139,12 +139,12 @@ fn jointed_bodies_step_without_allocating() {
     let last = world.bodies().len() - 1;
     world
         .add_force_during(
-            Box::new(engine::forces::PointForce {
+            Box::new(etalon2d::forces::PointForce {
                 body: last,
                 force: Vector2::new(20.0, 0.0),
                 local_point: Vector2::zeros(),
             }),
-            engine::TimeWindow::new(0.0, 0.2).unwrap(),
+            etalon2d::TimeWindow::new(0.0, 0.2).unwrap(),
         )
         .unwrap();
     let bead = |x: f64| BodyDef::particle("bead", 1.0, Vector2::new(x, 8.0));
@@ -237,7 +237,7 @@ fn events_hooks_and_contact_data_step_without_allocating() {
     // touching pair and a pair filter every new one; the contact data is
     // read after every step. Once the event lists have grown (the first
     // 240 steps), 240 more steps allocate nothing.
-    use engine::{ContactHooks, Filter, PreSolveContact, ShapeId};
+    use etalon2d::{ContactHooks, Filter, PreSolveContact, ShapeId};
     #[derive(Clone)]
     struct Counter {
         pre_solved: usize,

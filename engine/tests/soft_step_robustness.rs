@@ -6,8 +6,8 @@
 //! 1000-body pile gives the same bits on every run and machine (its hash is
 //! asserted).
 
-use engine::forces::PointForce;
-use engine::{
+use etalon2d::forces::PointForce;
+use etalon2d::{
     BodyDef, ContactModel, ContactSettings, ConvexPolygon, EngineError, Method, Shape,
     SoftStepSettings, ToiMethod, World,
 };

@@ -4,8 +4,8 @@
 //! world splits its steps at the window's edges, so no stage straddles the
 //! switch-off.
 
-use engine::forces::{AngularDrag, Torque};
-use engine::{BodyDef, Method, Shape, TimeWindow, Trace, World};
+use etalon2d::forces::{AngularDrag, Torque};
+use etalon2d::{BodyDef, Method, Shape, TimeWindow, Trace, World};
 use nalgebra::Vector2;
 
 const INERTIA: f64 = 5e-4;
@@ -40,7 +40,7 @@ fn run(method: Method, h: f64, duration: f64, drag: bool) -> (World, Trace) {
 }
 
 /// The sample closest to time `t`.
-fn at(trace: &Trace, t: f64) -> engine::BodyState {
+fn at(trace: &Trace, t: f64) -> etalon2d::BodyState {
     trace
         .samples
         .iter()

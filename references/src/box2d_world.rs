@@ -148,6 +148,7 @@ fn scene_f32(field: &'static str, x: f64) -> Result<f32, ManyBodyError> {
 
 pub mod joints;
 pub mod log;
+mod ray;
 
 /// A [`ManyBodyScene`] in a Box2D world.
 pub struct Box2dWorld {

@@ -34,6 +34,7 @@ use parry2d_f64::shape::{Ball, ConvexPolygon, SharedShape};
 pub mod exact;
 #[cfg(test)]
 mod tests;
+pub mod world_queries;
 
 /// A parry vector from a nalgebra one.
 pub fn to_parry_vector(v: &Vector2<f64>) -> Vector {

@@ -87,6 +87,7 @@ use rapier2d_f64::pipeline::PhysicsWorld;
 const ENGINE: &str = "rapier2d-f64 0.36.1";
 
 pub mod joints;
+mod ray;
 
 /// A [`ManyBodyScene`] in a rapier world.
 pub struct RapierManyWorld {

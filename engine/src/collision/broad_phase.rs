@@ -20,7 +20,7 @@ use super::aabb::Aabb;
 /// Sort-and-sweep broad phase that remembers the order of its last call.
 ///
 /// ```
-/// use engine::validation::collision::{Aabb, SweepAndPrune};
+/// use etalon2d::validation::collision::{Aabb, SweepAndPrune};
 /// use nalgebra::Vector2;
 /// let boxes = [
 ///     Aabb::new(Vector2::new(0.0, 0.0), Vector2::new(1.0, 1.0)),

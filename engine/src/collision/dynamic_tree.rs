@@ -52,7 +52,7 @@
 //! twice and is kept once, e.g. from the proxy with the smaller id.
 //!
 //! ```
-//! use engine::validation::collision::{Aabb, DynamicTree};
+//! use etalon2d::validation::collision::{Aabb, DynamicTree};
 //! use nalgebra::Vector2;
 //! let unit = |x: f64, y: f64| Aabb::new(Vector2::new(x, y), Vector2::new(x + 1.0, y + 1.0));
 //! let margin = 0.1; // m
@@ -706,6 +706,7 @@ fn same_box(a: &Aabb, b: &Aabb) -> bool {
 }
 
 mod pairs;
+pub(crate) mod ray;
 mod rebuild;
 #[cfg(test)]
 mod tests;

@@ -281,6 +281,12 @@ impl BroadPhase {
         self.moved.clear();
     }
 
+    /// The static, kinematic and dynamic trees, for world queries
+    /// (module `query`); their leaves' user data are collider indices.
+    pub(crate) fn trees(&self) -> [&DynamicTree; 3] {
+        [&self.static_tree, &self.kinematic_tree, &self.dynamic_tree]
+    }
+
     /// Whether any static shape is registered.
     pub(crate) fn has_static(&self) -> bool {
         self.static_tree.proxy_count() > 0

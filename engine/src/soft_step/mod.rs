@@ -316,6 +316,18 @@ impl SoftStep {
         model
     }
 
+    /// The broad phase's trees, for world queries (module `query`).
+    pub(crate) fn query_trees(&self) -> [&crate::collision::DynamicTree; 3] {
+        self.broad.trees()
+    }
+
+    /// The body of collider `c` and the index of its convex piece in the
+    /// body's shape (its compound part, 0 otherwise).
+    pub(crate) fn collider_owner(&self, c: usize) -> (BodyId, usize) {
+        let body = self.colliders[c].body;
+        (body, c - self.sims[body].colliders.start)
+    }
+
     /// The settings.
     pub fn settings(&self) -> &SoftStepSettings {
         &self.settings

@@ -11,6 +11,7 @@ pub mod convert;
 pub mod measure;
 pub mod neutral_joints;
 pub mod ours;
+pub mod queries;
 pub mod report;
 pub mod scenes;
 pub mod targets;
@@ -96,6 +97,7 @@ pub fn run_selected(
         charts.push(contact_precision::chart(dir, &precision)?);
     }
     report::write(dir, &results, settings, &charts, &precision)?;
+    queries::append(dir, settings.repeats.max(5))?;
     Ok(results)
 }
 

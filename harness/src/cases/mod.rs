@@ -56,6 +56,7 @@ registry! {
     angular_drag,
     hoffman,
     collision_parry,
+    queries_parry,
     collision_toi,
     collision_head_on,
     collision_off_centre,

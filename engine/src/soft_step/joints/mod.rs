@@ -27,7 +27,7 @@
 //! A bead on a massless rod of 1 m, released horizontal:
 //!
 //! ```
-//! use engine::prelude::*;
+//! use etalon2d::prelude::*;
 //! let mut world = World::with_model(
 //!     Method::SemiImplicitEuler,
 //!     ContactModel::SoftStep(SoftStepSettings::default()),
