@@ -72,6 +72,7 @@ pub mod body;
 mod contact_model;
 pub mod error;
 pub mod events;
+mod exact_joints;
 mod exact_model;
 pub mod filter;
 pub mod forces;

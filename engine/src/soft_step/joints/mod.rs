@@ -137,7 +137,7 @@ pub use revolute::{MAX_LIMIT_ANGLE, Revolute, RevoluteMotor};
 pub use target::Target;
 pub use weld::Weld;
 
-pub(crate) use set::JointSet;
+pub(crate) use set::{JointRows, JointSet};
 
 use crate::body::{BodyId, BodyState};
 use crate::error::{EngineError, Result};
