@@ -495,7 +495,9 @@ impl ExactJoints {
             for c in 0..j {
                 pivot -= k[j * m + c] * k[j * m + c];
             }
-            if !(pivot > REDUNDANT_PIVOT * diagonal.abs()) || pivot <= 0.0 {
+            // A NaN pivot is not independent either.
+            let independent = pivot > REDUNDANT_PIVOT * diagonal.abs() && pivot > 0.0;
+            if !independent {
                 keep[j] = false;
                 for r in j..m {
                     k[r * m + j] = 0.0;

@@ -24,8 +24,10 @@ mod common;
 
 pub mod collision_common;
 mod collision_plots;
+pub mod double_pendulum_exact;
 pub mod joint_common;
 mod pendulum_charts;
+pub mod pendulum_exact;
 pub mod pendulum_swing;
 pub mod soft_step_common;
 
