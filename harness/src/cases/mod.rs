@@ -75,6 +75,7 @@ registry! {
     pendulum,
     physical_pendulum,
     double_pendulum,
+    newtons_cradle,
     chain,
     slider,
     joint_motor_limit,
