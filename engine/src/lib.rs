@@ -64,7 +64,8 @@
 //!   model's response (impulses with restitution, resting contact, Coulomb
 //!   friction), seed §7, and the event root finder;
 //! - [`joints`]: revolute, prismatic, distance, weld and target joints
-//!   under the soft step ([`World::add_joint`]).
+//!   under the soft step, and the revolute, prismatic, rigid distance and
+//!   weld joints as constraints of the exact model ([`World::add_joint`]).
 
 #![warn(missing_docs)]
 
