@@ -20,7 +20,6 @@
 
 use crate::body::{Body, BodyId};
 use crate::contact::{ContactEvent, ContactSettings};
-use crate::error::EngineError;
 use crate::error::Result;
 use crate::events::EventRecord;
 use crate::exact_model::ExactModel;
@@ -58,10 +57,10 @@ impl ContactModel {
     }
 }
 
-/// Why the exact model refuses joints.
-pub(crate) const JOINTS_NEED_SOFT_STEP: &str = "joints are solved by the soft_step contact model \
-     only: build the world with ContactModel::SoftStep (in a scene file, [contact] model = \
-     \"soft_step\", the default)";
+/// Why a world refuses to leave the soft step with joints.
+pub(crate) const JOINTS_NEED_SOFT_STEP: &str = "a world's joints stay with the contact model \
+     they were added to (the soft step's are not carried over to the exact model): build the \
+     world with the model first (in a scene file, [contact] model = \"exact\" or \"soft_step\")";
 
 /// The model a world runs, with its state.
 #[derive(Debug, Clone)]
@@ -92,7 +91,10 @@ impl Dynamics {
     /// Body `id` of `core` was removed (made inert).
     pub(crate) fn body_removed(&mut self, core: &WorldCore, id: BodyId) {
         match self {
-            Dynamics::Exact(m) => m.bodies_changed(),
+            Dynamics::Exact(m) => {
+                m.joints.body_removed(id);
+                m.bodies_changed();
+            }
             Dynamics::SoftStep(s) => s.body_removed(core, id),
         }
     }
@@ -193,13 +195,12 @@ impl Dynamics {
         }
     }
 
-    /// Adds a joint: the soft step only.
+    /// Adds a joint: the soft step takes every type; the exact model the
+    /// holonomic ones it solves ([`crate::exact_joints`]), and refuses the
+    /// rest with a typed error naming the joint.
     pub(crate) fn add_joint(&mut self, core: &WorldCore, def: &JointDef) -> Result<JointId> {
         match self {
-            Dynamics::Exact(_) => Err(EngineError::Unsupported {
-                what: format!("joint '{}' ({})", def.name, def.joint_type().id()),
-                reason: JOINTS_NEED_SOFT_STEP,
-            }),
+            Dynamics::Exact(m) => m.joints.add(core, def),
             Dynamics::SoftStep(s) => s.add_joint(core, def),
         }
     }
@@ -207,47 +208,54 @@ impl Dynamics {
     /// How many joints the world holds (removed ones included).
     pub(crate) fn joint_count(&self) -> usize {
         match self {
-            Dynamics::Exact(_) => 0,
+            Dynamics::Exact(m) => m.joints.set.len(),
             Dynamics::SoftStep(s) => s.joint_count(),
         }
     }
 
-    /// The soft step, for the joint operations; the unknown-joint error
-    /// otherwise (an exact-model world has none).
-    fn soft_step_with(&self, id: JointId) -> Result<&SoftStep> {
-        match self {
-            Dynamics::SoftStep(s) => Ok(s),
-            Dynamics::Exact(_) => Err(EngineError::UnknownJoint {
-                index: id,
-                count: 0,
-            }),
-        }
-    }
-
-    fn soft_step_with_mut(&mut self, id: JointId) -> Result<&mut SoftStep> {
-        match self {
-            Dynamics::SoftStep(s) => Ok(s),
-            Dynamics::Exact(_) => Err(EngineError::UnknownJoint {
-                index: id,
-                count: 0,
-            }),
-        }
-    }
-
     pub(crate) fn joint(&self, core: &WorldCore, id: JointId) -> Result<JointState> {
-        self.soft_step_with(id)?.joint_state(core, id)
+        match self {
+            Dynamics::Exact(m) => m.joints.state(id, &core.states),
+            Dynamics::SoftStep(s) => s.joint_state(core, id),
+        }
     }
 
     pub(crate) fn remove_joint(&mut self, id: JointId) -> Result<()> {
-        self.soft_step_with_mut(id)?.remove_joint(id)
+        match self {
+            Dynamics::Exact(m) => m.joints.remove(id),
+            Dynamics::SoftStep(s) => s.remove_joint(id),
+        }
     }
 
+    /// The exact model holds no target joint: its refusal names the joint.
     pub(crate) fn set_joint_target(&mut self, id: JointId, target: Vector2<f64>) -> Result<()> {
-        self.soft_step_with_mut(id)?.set_joint_target(id, target)
+        match self {
+            Dynamics::Exact(m) => {
+                m.joints.set.check(id)?;
+                m.joints.set.set_target(id, target).map(|_| ())
+            }
+            Dynamics::SoftStep(s) => s.set_joint_target(id, target),
+        }
     }
 
+    /// The exact model holds no motor: its refusal names the joint.
     pub(crate) fn set_motor_speed(&mut self, id: JointId, speed: f64) -> Result<()> {
-        self.soft_step_with_mut(id)?.set_motor_speed(id, speed)
+        match self {
+            Dynamics::Exact(m) => {
+                m.joints.set.check(id)?;
+                m.joints.set.set_motor_speed(id, speed)
+            }
+            Dynamics::SoftStep(s) => s.set_motor_speed(id, speed),
+        }
+    }
+
+    /// The largest constraint error the exact model's projection removed
+    /// from its joints (m or rad); `None` under the soft step.
+    pub(crate) fn joint_drift(&self) -> Option<f64> {
+        match self {
+            Dynamics::Exact(m) => Some(m.joints.largest_drift()),
+            Dynamics::SoftStep(_) => None,
+        }
     }
 
     pub(crate) fn method(&self) -> Method {

@@ -46,6 +46,7 @@ use crate::contact::resting::RestingContacts;
 use crate::contact::{ContactEvent, ContactSettings};
 use crate::error::{EngineError, Result};
 use crate::events::{EventRecord, EventSpec};
+use crate::exact_joints::ExactJoints;
 use crate::integrators::{Integrator, Method, Stats};
 use crate::root_finding::illinois;
 use crate::world_core::{ForceEntry, WorldCore, check_energy_value, total_energy};
@@ -74,6 +75,9 @@ pub(crate) struct ExactModel {
     resting: RestingContacts,
     /// Contact events of pipelines replaced when bodies were added.
     earlier_contact_events: Vec<ContactEvent>,
+    /// The joints, held by constraint forces in the right-hand side and
+    /// projected after every accepted step ([`crate::exact_joints`]).
+    pub(crate) joints: ExactJoints,
     // Scratch buffers reused by every step.
     y: Vec<f64>,
     y_start: Vec<f64>,
@@ -94,6 +98,7 @@ impl ExactModel {
             contacts: None,
             resting: RestingContacts::default(),
             earlier_contact_events: Vec::new(),
+            joints: ExactJoints::default(),
             y: Vec::new(),
             y_start: Vec::new(),
             y_probe: Vec::new(),
@@ -140,6 +145,19 @@ impl ExactModel {
         Ok(())
     }
 
+    /// The error of leaving this model while it holds joints (they are
+    /// not carried over to another model), naming the first live one.
+    pub(crate) fn refuse_joints_leaving(&self) -> Result<()> {
+        match self.joints.set.infos.iter().find(|i| !i.removed) {
+            Some(info) => Err(EngineError::Unsupported {
+                what: format!("leaving the exact contact model with joint '{}'", info.name),
+                reason: "a world's joints stay with the contact model they were added to: \
+                         choose the model before adding joints",
+            }),
+            None => Ok(()),
+        }
+    }
+
     /// Bodies changed: rebuild the layout and the pipeline before the next
     /// step.
     pub(crate) fn bodies_changed(&mut self) {
@@ -159,6 +177,7 @@ impl ExactModel {
         self.resting.pairs.clear();
         self.resting.friction = self.settings.friction;
         self.resting.tolerance = self.settings.tolerance;
+        self.joints.invalidate();
         self.stale = false;
     }
 
@@ -238,6 +257,7 @@ impl ExactModel {
         found: &mut Vec<EventRecord>,
     ) -> Result<()> {
         let mut t = core.time;
+        let jointed = self.joints.any();
         for &segment_end in edges {
             let middle = 0.5 * (t + segment_end);
             let mut pipeline = self.contacts.take();
@@ -255,8 +275,12 @@ impl ExactModel {
                 states: &mut self.scratch_states,
                 wrenches: &mut self.scratch_wrenches,
                 contacts: pipeline.is_some().then_some(&mut self.resting),
+                joints: jointed.then_some(&mut self.joints),
             };
             sys.states.clone_from(&core.states);
+            // A state given off the joints' manifolds (a length or a
+            // velocity that breaks a joint) starts on them.
+            sys.project_joints(y);
             // The right-hand side may differ from the last segment's.
             self.integrator.invalidate_cache();
             if let Some(p) = pipeline.as_mut() {
@@ -296,6 +320,7 @@ impl ExactModel {
                 }
                 let started = core.profiler.start();
                 let h = self.integrator.advance(&mut sys, t, y, segment_end - t)?;
+                sys.project_joints(y);
                 core.profiler.stop(Phase::Integrate, started);
                 core.profiler.profile.steps += 1;
                 // A step that used all the room left lands exactly on the edge.
@@ -409,6 +434,7 @@ fn contact_segment(
     let events_before = pipeline.events.len();
     let mut pieces = 0usize;
     if pipeline.settle(sys, t, y, profiler)? {
+        sys.project_joints(y);
         integrator.invalidate_cache();
     }
     while t < segment_end {
@@ -443,6 +469,7 @@ fn contact_segment(
             }
             _ => t_next,
         };
+        sys.project_joints(y);
         if !events.is_empty() {
             let stop = locate_events(
                 events,
@@ -474,6 +501,7 @@ fn contact_segment(
         }
         t = t_kept;
         if pipeline.settle(sys, t, y, profiler)? {
+            sys.project_joints(y);
             integrator.invalidate_cache();
         }
     }

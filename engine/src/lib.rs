@@ -72,7 +72,8 @@
 //!   model's response (impulses with restitution, resting contact, Coulomb
 //!   friction), seed §7, and the event root finder;
 //! - [`joints`]: revolute, prismatic, distance, weld and target joints
-//!   under the soft step ([`World::add_joint`]);
+//!   under the soft step, and the revolute, prismatic, rigid distance and
+//!   weld joints as constraints of the exact model ([`World::add_joint`]).
 //! - [`query`]: ray casts, shape casts, overlap, point and distance
 //!   queries on a world, through the soft step's broad phase.
 //!
@@ -99,6 +100,7 @@ pub mod body;
 mod contact_model;
 pub mod error;
 pub mod events;
+mod exact_joints;
 mod exact_model;
 pub mod filter;
 pub mod forces;

@@ -116,6 +116,9 @@ impl World {
                 exact.set_contact_settings(settings);
             }
             ContactModel::SoftStep(settings) => {
+                if let Dynamics::Exact(exact) = &self.model {
+                    exact.refuse_joints_leaving()?;
+                }
                 let method = self.model.method();
                 if method != Method::SemiImplicitEuler {
                     return Err(EngineError::Unsupported {
@@ -158,6 +161,9 @@ impl World {
     /// The error of leaving the soft step while joints need it, naming the
     /// first joint still in the world.
     fn refuse_joints_leaving_soft_step(&self) -> Result<()> {
+        if let Dynamics::Exact(_) = self.model {
+            return Ok(());
+        }
         let live = (0..self.model.joint_count())
             .find_map(|id| self.model.joint(&self.core, id).ok().filter(|j| !j.removed));
         match live {
@@ -370,6 +376,14 @@ impl World {
     /// and reaction force ([`JointState`]).
     pub fn joint(&self, id: JointId) -> Result<JointState> {
         self.model.joint(&self.core, id)
+    }
+
+    /// The largest constraint error (m, or rad for an angle row) the exact
+    /// model's projection has removed from its joints after a step: the
+    /// drift of the integrator off the joints' manifolds
+    /// (`docs/joints.md`). `None` under the soft step.
+    pub fn joint_drift(&self) -> Option<f64> {
+        self.model.joint_drift()
     }
 
     /// How many joints were added (removed ones included; ids are

@@ -7,6 +7,7 @@
 
 use crate::body::{Body, BodyState};
 use crate::contact::resting::RestingContacts;
+use crate::exact_joints::ExactJoints;
 use crate::forces::{Force, ForceContext, Wrench};
 use crate::ode::{OdeSystem, Structure};
 
@@ -107,7 +108,8 @@ pub(crate) struct ActiveForce<'a> {
 /// The world's right-hand side: Newton–Euler for every dynamic body,
 /// `ẍ = F/m`, `θ̈ = τ/I` (seed §4.2.3–4.2.4), the forces including the
 /// contact forces of resting pairs when the world has contacts (seed §7.1,
-/// [`crate::contact`]).
+/// [`crate::contact`]) and the constraint forces of the joints
+/// ([`crate::exact_joints`]).
 pub(crate) struct WorldOde<'a> {
     pub bodies: &'a [Body],
     pub forces: Vec<ActiveForce<'a>>,
@@ -119,6 +121,21 @@ pub(crate) struct WorldOde<'a> {
     /// The resting pairs and their contact forces; `None` in a world
     /// without contacts (no collision code runs then).
     pub contacts: Option<&'a mut RestingContacts>,
+    /// The joints, held by constraint forces ([`crate::exact_joints`]);
+    /// `None` in a world without joints.
+    pub joints: Option<&'a mut ExactJoints>,
+}
+
+impl WorldOde<'_> {
+    /// Projects `y` back onto the joints' position and velocity manifolds
+    /// after an accepted step ([`ExactJoints::project`]); returns whether
+    /// it changed. Nothing without joints.
+    pub(crate) fn project_joints(&mut self, y: &mut [f64]) -> bool {
+        match self.joints.as_deref_mut() {
+            Some(joints) => joints.project(self.bodies, self.layout, self.states, y),
+            None => false,
+        }
+    }
 }
 
 impl OdeSystem for WorldOde<'_> {
@@ -163,6 +180,9 @@ impl OdeSystem for WorldOde<'_> {
             if let (true, Some(inertia)) = (slot.rotates, body.inertia) {
                 dydt[o + 2] = w.torque / inertia;
             }
+        }
+        if let Some(joints) = self.joints.as_deref_mut() {
+            joints.accelerate(self.bodies, self.layout, self.states, &mut dydt[n..]);
         }
     }
 }

@@ -1,7 +1,8 @@
 //! What joints do to the rest of the world, and what the engine refuses:
 //! jointed bodies do not collide unless asked, sleep and wake as one
 //! island, lose their joints when removed; every bad definition is a
-//! typed error naming the joint; the exact model refuses joints.
+//! typed error naming the joint; joints stay with the contact model they
+//! were added to.
 
 use etalon2d::EngineError;
 use etalon2d::prelude::*;
@@ -344,8 +345,9 @@ fn every_bad_joint_definition_is_a_typed_error_naming_the_joint() {
 }
 
 #[test]
-fn joints_need_the_soft_step() {
-    // The exact model refuses a joint, saying what to use.
+fn joints_stay_with_their_model() {
+    // The exact model refuses what it does not solve (here a motor),
+    // saying what to use (its own joints: tests/exact_joints.rs).
     let mut exact = World::new(Method::Rk4).unwrap();
     let bob = exact.add_body(unit_box("bob", 0.0, 0.0)).unwrap();
     let def = JointDef::revolute(
@@ -355,7 +357,22 @@ fn joints_need_the_soft_step() {
         Vector2::zeros(),
         Revolute::default(),
     );
-    let error = exact.add_joint(def.clone()).unwrap_err();
+    let motored = Revolute {
+        motor: Some(etalon2d::RevoluteMotor {
+            speed: 1.0,
+            max_torque: 1.0,
+        }),
+        ..Revolute::default()
+    };
+    let error = exact
+        .add_joint(JointDef::revolute(
+            "pin",
+            None,
+            Some(bob),
+            Vector2::zeros(),
+            motored,
+        ))
+        .unwrap_err();
     assert!(matches!(error, EngineError::Unsupported { .. }), "{error}");
     let message = error.to_string();
     assert!(message.contains("joint 'pin'"), "{message}");

@@ -342,9 +342,12 @@ fn every_bad_joint_definition_is_refused_at_its_field() {
         (
             format!(
                 "{}\n[contact]\nmodel = \"exact\"\n",
-                jointed("revolute", "body_b = \"bob\"\nanchor = [0.0, 0.0]\n")
+                jointed(
+                    "revolute",
+                    "body_b = \"bob\"\nanchor = [0.0, 0.0]\nlimits = [-0.5, 0.5]\n"
+                )
             ),
-            &["scene.toml:15:", "joints[0]", "soft_step"],
+            &["scene.toml:15:", "joints[0]", "angle limits", "soft_step"],
         ),
         (
             jointed("weld", "body_a = \"wall\"\nanchor = [0.0, 0.0]\n"),

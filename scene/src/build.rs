@@ -310,20 +310,8 @@ fn world(file: &SceneFile) -> Checked<WorldPlan> {
     let mut joints = generated(file, model, &mut bodies, &mut colours, moving)?;
     let names = crate::joints::Names::new(&bodies);
     let mut planned = crate::joints::joints(&file.joints, &names)?;
-    if model == Some(ContactModelSpec::Exact) {
-        if let Some(first) = planned.first() {
-            return Err(Problem::new(
-                &first.path,
-                ErrorKind::InvalidValue,
-                format!(
-                    "joint '{}' needs the soft_step contact model, and this scene has [contact] model = \"exact\" (joints are solved by the soft step only): set model = \"soft_step\" or remove the joint",
-                    first.def.name
-                ),
-            ));
-        }
-    }
     planned.append(&mut joints);
-    crate::joints::check_with_engine(&bodies, &planned)?;
+    crate::joints::check_with_engine(&bodies, &planned, model == Some(ContactModelSpec::Exact))?;
     let gravity = file
         .simulation
         .gravity
@@ -353,14 +341,13 @@ fn generated(
     let mut joints = Vec::new();
     for (i, spec) in file.generate.iter().enumerate() {
         let path = FieldPath::root().key("generate").index(i);
-        if model == Some(ContactModelSpec::Exact) && spec.has_joints() {
+        if model == Some(ContactModelSpec::Exact)
+            && matches!(spec, crate::generate::GenerateSpec::Ragdoll { .. })
+        {
             return Err(Problem::new(
                 &path.key("type"),
                 ErrorKind::InvalidValue,
-                format!(
-                    "a {} has joints, which need the soft_step contact model, and this scene has [contact] model = \"exact\": set model = \"soft_step\"",
-                    spec.kind()
-                ),
+                "a ragdoll's bones share a collision group and its joints have limits and springs, which the exact contact model does not solve: set model = \"soft_step\"",
             ));
         }
         if model != Some(ContactModelSpec::SoftStep) {

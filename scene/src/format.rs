@@ -37,7 +37,9 @@ pub struct SceneFile {
     pub events: Vec<EventEntry>,
     /// `[[joints]]`, added in this order after the bodies (the joint
     /// `joints[i]` has [`engine::JointId`] `i`, before the generators'
-    /// joints). Joints need the soft-step contact model. Default: none.
+    /// joints). Under `[contact] model = "exact"` only the revolute,
+    /// prismatic, rigid distance and weld joints without limits, motors or
+    /// springs. Default: none.
     #[serde(default)]
     pub joints: Vec<JointSpec>,
     /// `[contact]`: collision response settings. Optional.
@@ -479,9 +481,12 @@ pub enum ToiMethodSpec {
 ///   the stiffness of the joint's rigid rows (capped at a quarter of the
 ///   substep rate). Default 60 Hz and 2 (Box2D's).
 ///
-/// Joints need `[contact] model = "soft_step"`; a scene with joints and no
-/// `[contact]` table runs under the soft step at its defaults (its bodies
-/// then collide), and `model = "exact"` is refused.
+/// A scene with joints and no `[contact]` table runs under the soft step
+/// at its defaults (its bodies then collide). Under `model = "exact"` the
+/// revolute, prismatic, rigid distance and weld joints are constraints of
+/// the equations of motion, integrated by `[simulation] method`
+/// (`docs/joints.md`); a limit, motor, spring, rope or target joint there
+/// is refused at the joint, and so is a ragdoll generator.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum JointSpec {

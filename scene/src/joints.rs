@@ -706,15 +706,27 @@ fn target_joint(
 }
 
 /// The engine's own check of every joint (those of the file and of the
-/// generators), so that building the world cannot fail: a soft-step world
-/// with the bodies, each joint added in turn; a refusal is located at the
-/// joint.
-pub(crate) fn check_with_engine(bodies: &[BodyDef], joints: &[PlannedJoint]) -> Checked<()> {
+/// generators), so that building the world cannot fail: a world of the
+/// scene's contact model (`exact`: the exact model's joints, which refuse
+/// limits, motors and springs; else the soft step) with the bodies, each
+/// joint added in turn; a refusal is located at the joint.
+pub(crate) fn check_with_engine(
+    bodies: &[BodyDef],
+    joints: &[PlannedJoint],
+    exact: bool,
+) -> Checked<()> {
     if joints.is_empty() {
         return Ok(());
     }
-    let model = engine::ContactModel::SoftStep(engine::SoftStepSettings::default());
-    let world = engine::World::with_model(engine::Method::SemiImplicitEuler, model);
+    let world = if exact {
+        engine::World::with_model(
+            engine::Method::Rk4,
+            engine::ContactModel::Exact(engine::ContactSettings::default()),
+        )
+    } else {
+        let model = engine::ContactModel::SoftStep(engine::SoftStepSettings::default());
+        engine::World::with_model(engine::Method::SemiImplicitEuler, model)
+    };
     let Ok(mut world) = world else {
         return Ok(());
     };

@@ -339,13 +339,28 @@ fn a_target_joint_pulls_a_dynamic_body() {
 }
 
 #[test]
-fn joints_under_the_exact_model_are_refused() {
+fn joints_under_the_exact_model_are_its_own() {
+    // A pin runs under the exact model, with the scene's method.
     let text = format!(
         "{}\n[contact]\nmodel = \"exact\"\n",
         joint("revolute", "body_b = \"bob\"\nanchor = [0.0, 0.0]\n")
+    )
+    .replace("dt = 0.01", "method = \"rk4\"\ndt = 0.01");
+    let scene = Scene::parse_str("ok.toml", &text).unwrap();
+    let mut world = scene.build_world(None).unwrap();
+    assert_eq!(world.method(), engine::Method::Rk4);
+    world.step(0.01).unwrap();
+    assert!(world.joint(0).unwrap().linear_error < 1e-12);
+    // A limit it does not solve is refused at the joint, naming the option.
+    let text = format!(
+        "{}\n[contact]\nmodel = \"exact\"\n",
+        joint(
+            "revolute",
+            "body_b = \"bob\"\nanchor = [0.0, 0.0]\nlimits = [-0.5, 0.5]\n"
+        )
     );
     let e = error(&text);
-    check(&e, ErrorKind::InvalidValue, "joints[0]", 15, "soft_step");
+    check(&e, ErrorKind::Engine, "joints[0]", 15, "angle limits");
     // And a scene with joints and no [contact] runs the soft step, which
     // takes no other method.
     let text = joint("revolute", "body_b = \"bob\"\nanchor = [0.0, 0.0]\n")

@@ -24,10 +24,12 @@
 //! `DoublePendulum::divergence_time(δ0)`. δ0 is the soft step's own error
 //! after its first step (its local error, which the motion then
 //! amplifies); the rows compare the states at every half second before
-//! that time. Box2D and rapier2d are reported at the same times.
+//! that time. Box2D and rapier2d are reported at the same times. The
+//! exact model's rows ([`double_pendulum_exact`], full run only) go to
+//! its own, longer horizon.
 
 use super::joint_common::{Config, Engine, JointScene, Run, steps};
-use super::{Case, CaseReport, Headline, Snapshots};
+use super::{Case, CaseReport, Headline, Snapshots, double_pendulum_exact};
 use crate::row::{RowKind, RowSink};
 use crate::tolerance::{RICHARDSON_FACTOR, richardson_error};
 use anyhow::{Result, bail};
@@ -133,7 +135,7 @@ fn wrap(a: f64) -> f64 {
 
 /// The state of the two bars in `run` at time `t` (s): angles (rad) and
 /// angular velocities (rad/s).
-fn state_at(run: &Run, bodies: [usize; 2], t: f64) -> Result<[f64; 4]> {
+pub(super) fn state_at(run: &Run, bodies: [usize; 2], t: f64) -> Result<[f64; 4]> {
     let k = (t / run.dt).round() as usize;
     let Some(s) = run.samples.get(k) else {
         bail!("no sample at t = {t} s");
@@ -147,7 +149,7 @@ fn state_at(run: &Run, bodies: [usize; 2], t: f64) -> Result<[f64; 4]> {
 }
 
 /// The four errors (rad, rad/s) of `state` against `r`, angles wrapped.
-fn errors(state: [f64; 4], r: &ReferencePoint) -> [f64; 4] {
+pub(super) fn errors(state: [f64; 4], r: &ReferencePoint) -> [f64; 4] {
     [
         wrap(state[0] - r.state.angles[0]),
         wrap(state[1] - r.state.angles[1]),
@@ -181,7 +183,7 @@ fn final_energy(js: &JointScene, run: &Run, bodies: [usize; 2]) -> f64 {
         / (window + 1) as f64
 }
 
-const COMPONENTS: [(&str, &str); 4] = [
+pub(super) const COMPONENTS: [(&str, &str); 4] = [
     ("upper_angle", "rad"),
     ("lower_angle", "rad"),
     ("upper_rate", "rad/s"),
@@ -283,6 +285,15 @@ pub fn run_sized(size: Size) -> Result<CaseReport> {
             .fold(0.0, f64::max)
     ));
     if size.reference_engines {
+        let note = double_pendulum_exact::rows(
+            &js,
+            (&pendulum, initial),
+            bodies,
+            horizon,
+            size.seconds,
+            &mut report.rows,
+        )?;
+        report.notes.push(note);
         for engine in [Engine::Box2d, Engine::Rapier] {
             let config = Config::of(&js.scene, engine)?;
             let run = js.run(&config, n)?;
@@ -312,7 +323,7 @@ pub fn run_sized(size: Size) -> Result<CaseReport> {
 }
 
 /// A time as a row name: `1`, `1.5`.
-fn trim(t: f64) -> String {
+pub(super) fn trim(t: f64) -> String {
     let s = format!("{t:.2}");
     s.trim_end_matches('0').trim_end_matches('.').to_string()
 }

@@ -12,12 +12,13 @@
 //! step ([`BodySample`]), and its joints from those poses
 //! ([`ManyBodyScene::joint_states`]).
 //!
-//! Only the soft step has joints in this engine: the exact contact model
-//! refuses them with a typed error ([`exact_model_refusal`]).
+//! The exact contact model's joints (constraints of the equations of
+//! motion) are run by `pendulum_exact` and `double_pendulum` on their own
+//! worlds; a soft-step world with joints refuses to switch to it.
 
 use crate::bench::convert::many_body_scene;
 use anyhow::{Context, Result, bail};
-use engine::{ContactModel, EngineError, World};
+use engine::{ContactModel, World};
 use references::box2d_world::Box2dWorld;
 use references::many_body::{BodySample, ManyBodyEngine, ManyBodyScene};
 use references::rapier_many::RapierManyWorld;
@@ -282,18 +283,6 @@ fn soft_samples(world: &World) -> Vec<BodySample> {
 /// The steps of `duration` s at `dt` s.
 pub fn steps(duration: f64, dt: f64) -> usize {
     (duration / dt).round() as usize
-}
-
-/// What the exact contact model does with the joints of `scene`: it must
-/// refuse them with the typed `EngineError::Unsupported` naming a joint.
-/// Returns the error's message, or fails if the model took them.
-pub fn exact_model_refusal(scene: &Scene) -> Result<String> {
-    let mut world = scene.build_world(None)?;
-    match world.set_contact_model(ContactModel::Exact(engine::ContactSettings::default())) {
-        Err(e @ EngineError::Unsupported { .. }) => Ok(e.to_string()),
-        Err(e) => bail!("the exact model refused the joints with an untyped reason: {e}"),
-        Ok(()) => bail!("the exact model accepted a world with joints"),
-    }
 }
 
 /// The soft rows of a joint at frequency `hertz` (Hz, capped at a quarter

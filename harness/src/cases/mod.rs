@@ -24,8 +24,10 @@ mod common;
 
 pub mod collision_common;
 mod collision_plots;
+pub mod double_pendulum_exact;
 pub mod joint_common;
 mod pendulum_charts;
+pub mod pendulum_exact;
 pub mod pendulum_swing;
 pub mod soft_step_common;
 
@@ -74,6 +76,7 @@ registry! {
     pendulum,
     physical_pendulum,
     double_pendulum,
+    newtons_cradle,
     chain,
     slider,
     joint_motor_limit,

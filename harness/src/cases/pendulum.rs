@@ -6,19 +6,20 @@
 //! against T = 4 √(L/g) K(sin(θ0/2)) under the soft step at its defaults,
 //! with rapier2d and Box2D on the same file. The rows and their
 //! tolerances are [`pendulum_swing`]'s; this case adds the exact model's
-//! refusal of joints and the two charts of [`pendulum_charts`]: the period
-//! error against wall time (every engine, 1 to 32 substeps) and the
-//! constraint drift against the step.
+//! rows ([`pendulum_exact`]: the same pendulums with their joints as
+//! constraints of the equations of motion, the period at RK4's error, the
+//! observed order of every method, the drift; and the acceptance scene
+//! `scenes/pendulum_exact.toml`, in the full run only) and the two charts
+//! of [`pendulum_charts`]: the period error against wall time (every
+//! engine, 1 to 32 substeps) and the constraint drift against the step.
 
-use super::joint_common::exact_model_refusal;
 use super::pendulum_swing::{self, Size};
-use super::{Case, CaseReport, Headline, Snapshots, pendulum_charts};
-use crate::row::{RowKind, RowSink};
+use super::{Case, CaseReport, Headline, Snapshots, pendulum_charts, pendulum_exact};
 use anyhow::Result;
 
 /// Six pendulums from 10°, 90° and 170°.
 pub const CASE: Case = Case {
-    scenes: &["pendulum"],
+    scenes: &["pendulum", "pendulum_exact"],
     snapshots: Snapshots::HarnessOnly(
         "100 periods in three engines and the charts' sweeps take seconds in a release build; \
          harness/tests/joint_cases.rs checks a reduced run (10 periods, the soft step alone) \
@@ -40,32 +41,9 @@ pub fn run() -> Result<CaseReport> {
 /// Runs `pendulum` at `size` (the charts only at [`Size::FULL`]).
 pub fn run_sized(size: Size) -> Result<CaseReport> {
     let (mut report, js, specs) = pendulum_swing::run_case("pendulum", "pendulum", size)?;
-    let refusal = exact_model_refusal(&js.scene)?;
-    let mut sink = RowSink {
-        case: "pendulum",
-        method: "soft_step",
-        dt: js.scene.dt(),
-        rows: &mut report.rows,
-    };
-    sink.at_least(
-        RowKind::Criterion,
-        "exact_model_refuses_joints",
-        1.0,
-        1.0,
-        0.0,
-        format!(
-            "switching the scene's world to the exact contact model fails with the typed \
-             EngineError::Unsupported naming a joint (1 = it did): \"{refusal}\". The exact \
-             model has no joints: these pendulums run under the soft step only"
-        ),
-    );
-    report.notes.insert(
-        0,
-        format!(
-            "The exact contact model refuses joints with a typed error (\"{refusal}\"): the \
-             joint cases run under the soft step, the only model of this engine with joints."
-        ),
-    );
+    if size.charts {
+        pendulum_exact::rows(&js.scene, &specs, &mut report)?;
+    }
     if size.charts {
         report
             .figures

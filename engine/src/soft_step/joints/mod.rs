@@ -21,8 +21,10 @@
 //! [`JointState`]: its anchors now, the constraint error, the angle or
 //! translation, the reaction force and torque); steer it with
 //! [`crate::World::set_joint_target`] and
-//! [`crate::World::set_motor_speed`]. Joints need the soft-step contact
-//! model: the exact model refuses them ([`crate::EngineError::Unsupported`]).
+//! [`crate::World::set_motor_speed`]. The exact contact model solves the
+//! revolute, prismatic, rigid distance and rigid weld joints as constraints
+//! of its equations of motion (module `exact_joints`) and refuses the rest
+//! by name ([`crate::EngineError::Unsupported`]).
 //!
 //! A bead on a massless rod of 1 m, released horizontal:
 //!
@@ -120,7 +122,7 @@
 //! Box2D's wheel, motor and filter joints; joint breaking (force
 //! thresholds); the spring force bounds of Box2D's distance joint; angular
 //! damping on the target joint (a body pulled by one point swings about it
-//! freely); joints under the exact contact model.
+//! freely); limits, motors and springs under the exact contact model.
 
 mod distance;
 mod frame;
@@ -137,7 +139,7 @@ pub use revolute::{MAX_LIMIT_ANGLE, Revolute, RevoluteMotor};
 pub use target::Target;
 pub use weld::Weld;
 
-pub(crate) use set::JointSet;
+pub(crate) use set::{JointRows, JointSet};
 
 use crate::body::{BodyId, BodyState};
 use crate::error::{EngineError, Result};

@@ -180,6 +180,14 @@ impl JointSet {
         self.body_joints.push(SmallVec::new());
     }
 
+    /// Registers bodies until the set knows `count` of them (the exact
+    /// model's joints, whose world adds bodies without telling the set).
+    pub(crate) fn know_bodies(&mut self, count: usize) {
+        while self.body_joints.len() < count {
+            self.body_added();
+        }
+    }
+
     /// How many joints were added (removed ones included).
     pub(crate) fn len(&self) -> usize {
         self.infos.len()
