@@ -43,6 +43,14 @@ pub enum ChildBuild {
 }
 
 impl ChildBuild {
+    /// The build's name in messages.
+    pub fn label(self) -> &'static str {
+        match self {
+            ChildBuild::Sse2 => "SSE2",
+            ChildBuild::Double => "double-precision",
+        }
+    }
+
     /// The child crate's cargo features for this build.
     fn features(self) -> &'static str {
         match self {
@@ -115,9 +123,9 @@ pub fn build(build: ChildBuild) -> Result<(PathBuf, f64)> {
     let started = Instant::now();
     let status = command
         .status()
-        .with_context(|| format!("running cargo to build box2d_child ({build:?})"))?;
+        .with_context(|| format!("running cargo to build box2d_child ({})", build.label()))?;
     if !status.success() {
-        bail!("building box2d_child ({build:?}) failed: {status}");
+        bail!("building box2d_child ({}) failed: {status}", build.label());
     }
     let binary = target.join("release").join("box2d_child");
     if !binary.is_file() {

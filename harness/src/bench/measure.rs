@@ -207,6 +207,18 @@ pub enum Contender {
     Child(ChildBuild, PathBuf),
 }
 
+impl Contender {
+    /// The engine's name in messages.
+    fn label(&self) -> String {
+        match self {
+            Contender::Ours => "this engine".into(),
+            Contender::Rapier => "rapier2d".into(),
+            Contender::Box2d => Box2dBuild::linked().bench_name(),
+            Contender::Child(build, _) => format!("Box2D's {} build", build.label()),
+        }
+    }
+}
+
 /// The engines a benchmark runs, decided once before the scenes.
 #[derive(Debug, Clone)]
 pub struct Contenders {
@@ -238,11 +250,11 @@ impl Contenders {
         ] {
             if asked {
                 let (binary, seconds) = child::build(build)?;
-                let note = format!(
-                    "Box2D's {build:?} build ({}) built in {seconds:.0} s before the timing",
+                eprintln!(
+                    "bench: Box2D's {} build ({}) built in {seconds:.0} s, before the timing",
+                    build.label(),
                     binary.display()
                 );
-                eprintln!("bench: {note}");
                 list.push(Contender::Child(build, binary));
             }
         }
@@ -401,7 +413,7 @@ pub fn measure(
         for (e, contender) in contenders.list.iter().enumerate() {
             let (run, built) =
                 run_once(contender, &bench, file, scene, &neutral, steps, repeat == 0)
-                    .with_context(|| format!("{contender:?} on {}", bench.id))?;
+                    .with_context(|| format!("{} on {}", contender.label(), bench.id))?;
             if let Some(b) = built {
                 builds[e] = Some(b);
             }
