@@ -8,6 +8,7 @@
 
 use anyhow::{Context, Result, bail};
 use serde::Serialize;
+use std::path::Path;
 use std::process::{Command, Stdio};
 
 /// The scenes measured: the largest of the benchmark and of the scenes
@@ -35,19 +36,20 @@ pub fn measure_all() -> Result<Option<Vec<PeakMemory>>> {
     if !cfg!(target_os = "linux") {
         return Ok(None);
     }
+    let exe = std::env::current_exe().context("locating the harness binary")?;
     SCENES
         .iter()
-        .map(|s| measure(s))
+        .map(|s| measure(&exe, s))
         .collect::<Result<_>>()
         .map(Some)
 }
 
-/// Peak memory of `harness simulate` on scene `id`.
-pub fn measure(id: &str) -> Result<PeakMemory> {
+/// Peak memory of `exe simulate` (the harness binary `exe`) on scene `id`
+/// (relative to the scenes folder).
+pub fn measure(exe: &Path, id: &str) -> Result<PeakMemory> {
     let scene = crate::scenes::load(id)?;
     let path = crate::scenes::path_of(id);
-    let exe = std::env::current_exe().context("locating the harness binary")?;
-    let child = Command::new(&exe)
+    let child = Command::new(exe)
         .arg("simulate")
         .arg(&path)
         .stdout(Stdio::null())
