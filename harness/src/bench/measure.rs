@@ -369,7 +369,7 @@ fn run_once(
                 neutral.bodies.len()
             );
         }
-        let built = first.then(|| Build {
+        let built = first.then_some(Build {
             name: child.name,
             configuration: child.configuration,
             precision: child.precision,

@@ -66,7 +66,7 @@ impl Box2dBuild {
             .rev()
             .find(|f| f.starts_with("-O"))
             .map_or("-O2".to_string(), |f| f.to_string());
-        let ndebug = extra.iter().any(|f| *f == "-DNDEBUG");
+        let ndebug = extra.contains(&"-DNDEBUG");
         let mut flags = String::from("-O2 -std=c17 -ffp-contract=off");
         if avx2 {
             flags += " -DBOX2D_AVX2 -mavx2";
