@@ -51,6 +51,23 @@ impl ChildBuild {
         }
     }
 
+    /// The suffix of its binary's copy.
+    fn file_suffix(self) -> &'static str {
+        match self {
+            ChildBuild::Sse2 => "sse2",
+            ChildBuild::Double => "double",
+        }
+    }
+
+    /// Whether a child's own name for its build ([`Box2dBuild::bench_name`])
+    /// is this build's.
+    pub fn is_named(self, name: &str) -> bool {
+        match self {
+            ChildBuild::Sse2 => name.contains(" SSE2 ") && name.contains(" f32 "),
+            ChildBuild::Double => name.contains(" f64-pos "),
+        }
+    }
+
     /// The child crate's cargo features for this build.
     fn features(self) -> &'static str {
         match self {
@@ -127,10 +144,17 @@ pub fn build(build: ChildBuild) -> Result<(PathBuf, f64)> {
     if !status.success() {
         bail!("building box2d_child ({}) failed: {status}", build.label());
     }
-    let binary = target.join("release").join("box2d_child");
-    if !binary.is_file() {
-        bail!("box2d_child built, but {} is missing", binary.display());
+    let built = target.join("release").join("box2d_child");
+    if !built.is_file() {
+        bail!("box2d_child built, but {} is missing", built.display());
     }
+    // Each build under its own name: the other build writes the same
+    // output file.
+    let binary = target
+        .join("release")
+        .join(format!("box2d_child_{}", build.file_suffix()));
+    std::fs::copy(&built, &binary)
+        .with_context(|| format!("copying {} to {}", built.display(), binary.display()))?;
     Ok((binary, started.elapsed().as_secs_f64()))
 }
 

@@ -352,8 +352,16 @@ fn run_once(
     steps: usize,
     first: bool,
 ) -> Result<(Run, Option<Build>)> {
-    if let Contender::Child(_, binary) = contender {
+    if let Contender::Child(kind, binary) = contender {
         let child = child::run(binary, file, steps)?;
+        if !kind.is_named(&child.name) {
+            bail!(
+                "{} reports the build {}, not Box2D's {} build",
+                binary.display(),
+                child.name,
+                kind.label()
+            );
+        }
         let run = Run {
             per_step: Duration::from_secs_f64(child.ms_per_step / 1e3),
             samples: child.samples(),
