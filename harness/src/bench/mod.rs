@@ -50,6 +50,24 @@ pub fn run_selected(
             known.join(", ")
         );
     }
+    // Memory first, while this process's own peak (which a child's reading
+    // includes, see `memory`) is small.
+    let memory = if settings.memory && only.is_empty() {
+        let peaks = memory::measure_all()?;
+        for p in peaks.iter().flatten() {
+            println!(
+                "memory {:<20} {:>6} bodies, {:>5} steps: peak {}{:.0} MB",
+                p.scene,
+                p.bodies,
+                p.steps,
+                if p.exact { "" } else { "at most " },
+                p.peak_mb
+            );
+        }
+        peaks
+    } else {
+        None
+    };
     let contenders = measure::Contenders::for_settings(&settings)?;
     let selected = scenes::SCENES
         .iter()
@@ -77,18 +95,6 @@ pub fn run_selected(
         );
         results.push(result);
     }
-    let memory = if settings.memory && only.is_empty() {
-        let peaks = memory::measure_all()?;
-        for p in peaks.iter().flatten() {
-            println!(
-                "memory {:<20} {:>6} bodies, {:>5} steps: peak {:.0} MB",
-                p.scene, p.bodies, p.steps, p.peak_mb
-            );
-        }
-        peaks
-    } else {
-        None
-    };
     let precision = if only.is_empty() {
         contact_precision::run(settings)?
     } else {

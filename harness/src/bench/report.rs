@@ -272,8 +272,9 @@ pub fn write(
             md,
             "Peak resident set size of `harness simulate` run alone on the scene (no output asked, \
              the command's defaults: the trace of every body is kept in memory), read from the \
-             kernel's resource usage of that child process (`wait4`, `ru_maxrss`); MB = 10⁶ \
-             bytes.\n"
+             kernel's resource usage of that child process (`wait4`, `ru_maxrss`; Linux counts \
+             the larger of the child's peak and the harness's own, so a reading not above the \
+             harness's own peak is printed as a bound); MB = 10⁶ bytes.\n"
         )?;
         let rows: Vec<Vec<String>> = extras
             .memory
@@ -283,7 +284,11 @@ pub fn write(
                     format!("`{}`", m.command),
                     m.bodies.to_string(),
                     m.steps.to_string(),
-                    format!("{:.0}", m.peak_mb),
+                    if m.exact {
+                        format!("{:.0}", m.peak_mb)
+                    } else {
+                        format!("at most {:.0}", m.peak_mb)
+                    },
                 ]
             })
             .collect();
