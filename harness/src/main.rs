@@ -53,10 +53,20 @@ enum Command {
         /// (every scene when none is named); a selection needs `--out`
         /// (its report is partial) and skips the contact-precision study.
         scenes: Vec<String>,
-        /// Full sizes and 500 timed steps (Box2D's many pyramids, smash,
-        /// joint grid and ragdoll rain at their size: many minutes).
+        /// Full sizes (Box2D's many pyramids, smash, joint grid and ragdoll
+        /// rain at their size: many minutes).
         #[arg(long)]
         full: bool,
+        /// Also Box2D's SSE2 build, as a row of its own: a second build of
+        /// Box2D (the crate `box2d_child/`, into target/), compiled before
+        /// the timing (minutes the first time), run as a child process.
+        #[arg(long)]
+        box2d_sse2: bool,
+        /// Also Box2D's double-precision build (boxdd's
+        /// `double-precision`: f64 absolute positions, AVX2), built and run
+        /// the same way.
+        #[arg(long)]
+        box2d_double: bool,
     },
     /// Runs a scene file live in a window: pause, step, drag bodies,
     /// overlays (docs/view.md). Built with `--features view`.
@@ -141,7 +151,12 @@ fn real_main() -> Result<bool> {
             quick,
             reasons,
         }) => run(&cases, quick, reasons, cli.out),
-        Some(Command::Bench { scenes, full }) => {
+        Some(Command::Bench {
+            scenes,
+            full,
+            box2d_sse2,
+            box2d_double,
+        }) => {
             if !scenes.is_empty() && cli.out.is_none() {
                 bail!(
                     "bench {}: a benchmark of selected scenes writes a partial report; give --out DIR \
@@ -150,10 +165,14 @@ fn real_main() -> Result<bool> {
                 );
             }
             let dir = cli.out.unwrap_or_else(workspace::reports_dir);
-            let settings = if full {
-                harness::bench::BenchSettings::FULL
-            } else {
-                harness::bench::BenchSettings::DEFAULT
+            let settings = harness::bench::BenchSettings {
+                box2d_sse2,
+                box2d_double,
+                ..if full {
+                    harness::bench::BenchSettings::FULL
+                } else {
+                    harness::bench::BenchSettings::BENCH
+                }
             };
             let readme_too =
                 scenes.is_empty() && workspace::same_dir(&dir, &workspace::reports_dir()) && !full;
@@ -307,7 +326,9 @@ fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Resu
         _ => None,
     };
     // The many-body benchmark runs with a full (not quick) run that writes
-    // a report, at the sizes of `BenchSettings::DEFAULT`.
+    // a report, at the short settings of `BenchSettings::DEFAULT` (the
+    // benchmark proper, at Box2D's step counts and 10 repeats, is `harness
+    // bench`, which rewrites benchmarks.md and the README's table after).
     if let (Some(dir), true) = (&stage, full && !quick) {
         harness::bench::run(dir, harness::bench::BenchSettings::DEFAULT)?;
     }

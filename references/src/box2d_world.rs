@@ -39,7 +39,9 @@
 //! and restitution from the scene (Box2D mixes them per pair as friction
 //! √(μa μb) and restitution max(ea, eb), its default callbacks); a circle
 //! becomes a `b2Circle` at the body origin; an axis-aligned rectangle a
-//! `b2MakeBox` (centred) or a hull of its corners; any other polygon a
+//! `b2MakeBox` (centred), and any other rectangle `b2MakeOffsetBox`
+//! (half extents, centre and angle: a 2 mm card of Box2D's own Card House
+//! sample is taken, which its hull would refuse); any other polygon a
 //! `b2MakePolygon` of the hull of its vertices (radius 0). Box2D takes at
 //! most 8 vertices and welds points closer than 0.005 m: a polygon it would
 //! change is refused rather than silently altered. A body's
@@ -53,16 +55,23 @@
 //! # Precision
 //!
 //! boxdd's default build is single precision: positions, rotations,
-//! velocities, masses and impulses are `f32`. The scene's f64 values are
+//! velocities, masses and impulses are `f32` (its double-precision build,
+//! this crate's `box2d-double` feature, keeps absolute positions in f64,
+//! which are then passed unrounded). The scene's f64 values are
 //! rounded to the nearest f32 (relative error 2⁻²⁴ ≈ 6e-8); a position of
 //! 100 m is thus held to about 8 µm. Values are read back as f64 without
 //! further loss.
 //!
-//! boxdd-sys compiles the C sources with `cc` at -O2 in release builds (-O0
-//! in debug and test builds), SSE2, `-ffp-contract=off`, and without
-//! `NDEBUG`, so Box2D's internal assertions are active (a failed one stops
-//! the process; the scene is validated first so that no input reaches
-//! them).
+//! # Build
+//!
+//! Box2D as it ships its release build: the workspace's
+//! `.cargo/config.toml` appends `-O3 -DNDEBUG` to boxdd-sys's `-O2
+//! -std=c17 -ffp-contract=off` (so Box2D's assertions are compiled out),
+//! and this crate's default `box2d-avx2` feature takes Box2D's AVX2 path;
+//! [`build`] reads which build is linked and checks that the CPU can run
+//! it before any Box2D call (an AVX2 build refuses to start on a CPU
+//! without AVX2 rather than stop on an illegal instruction). In debug and
+//! test builds boxdd-sys compiles at -O0, the appended flags still apply.
 
 use crate::many_body::{
     BodyKind, BodyMass, BodySample, ContactCounts, ManyBodyEngine, ManyBodyError, ManyBodyScene,
@@ -132,6 +141,23 @@ fn to_f32(body: usize, field: &'static str, x: f64) -> Result<f32, ManyBodyError
     }
 }
 
+/// An absolute coordinate `x` in Box2D's world scalar (f32, or f64 in its
+/// double-precision build), refused if it does not fit.
+fn to_world(body: usize, field: &'static str, x: f64) -> Result<boxdd::WorldScalar, ManyBodyError> {
+    #[allow(clippy::unnecessary_cast)] // f64 as f64 in the double-precision build
+    let y = x as boxdd::WorldScalar;
+    if y.is_finite() {
+        Ok(y)
+    } else {
+        Err(ManyBodyError::body(
+            body,
+            field,
+            x,
+            "is beyond Box2D's single-precision range",
+        ))
+    }
+}
+
 /// A scene-wide `x` rounded to f32, refused if it does not fit.
 fn scene_f32(field: &'static str, x: f64) -> Result<f32, ManyBodyError> {
     let y = x as f32;
@@ -146,6 +172,7 @@ fn scene_f32(field: &'static str, x: f64) -> Result<f32, ManyBodyError> {
     }
 }
 
+pub mod build;
 pub mod joints;
 pub mod log;
 mod ray;
@@ -168,6 +195,14 @@ impl Box2dWorld {
     /// polygons Box2D cannot hold unchanged.
     pub fn new(scene: &ManyBodyScene) -> Result<Self, ManyBodyError> {
         scene.validate()?;
+        // Before any Box2D call: an AVX2 build would stop on its first AVX2
+        // instruction on a CPU without it.
+        build::Box2dBuild::linked()
+            .runnable()
+            .map_err(|message| ManyBodyError::Engine {
+                engine: ENGINE,
+                message,
+            })?;
         let foundation = Foundation::initialize(log::config()).map_err(engine_error)?;
         let gravity = [
             scene_f32("gravity x", scene.gravity[0])?,
@@ -197,8 +232,8 @@ impl Box2dWorld {
                 BodyKind::Kinematic => BodyType::Kinematic,
             };
             let position = [
-                to_f32(i, "position x", b.position[0])?,
-                to_f32(i, "position y", b.position[1])?,
+                to_world(i, "position x", b.position[0])?,
+                to_world(i, "position y", b.position[1])?,
             ];
             let velocity = [
                 to_f32(i, "velocity x", b.velocity[0])?,
@@ -405,14 +440,33 @@ pub enum ShapeGeometry {
 }
 
 /// Box2D's polygon for a polygon body shape: `b2MakeBox` for a centred
-/// axis-aligned rectangle (Box2D's benchmark boxes, exact to f32), the hull
-/// of the vertices otherwise, refused if the hull drops a vertex.
+/// axis-aligned rectangle (Box2D's benchmark boxes, exact to f32),
+/// `b2MakeOffsetBox` for any other rectangle ([`rectangle`]: half extents,
+/// centre and angle, as Box2D's own samples build boxes, so no hull welds a
+/// thin card), the hull of the vertices otherwise, refused if the hull
+/// drops a vertex.
 fn polygon(i: usize, p: &ConvexPolygon) -> Result<Polygon, ManyBodyError> {
     if let Some((centre, hw, hh)) = axis_aligned_box(p)
         && centre == [0.0, 0.0]
     {
         return shapes::box_polygon(to_f32(i, "half width", hw)?, to_f32(i, "half height", hh)?)
             .map_err(|e| refused(i, e.to_string()));
+    }
+    if let Some(r) = rectangle(p) {
+        let transform = boxdd::Transform::from_pos_angle(
+            [
+                to_f32(i, "box centre x", r.centre[0])?,
+                to_f32(i, "box centre y", r.centre[1])?,
+            ],
+            to_f32(i, "box angle", r.angle)?,
+        )
+        .map_err(|e| refused(i, e.to_string()))?;
+        return shapes::offset_box_polygon(
+            to_f32(i, "half width", r.half_width)?,
+            to_f32(i, "half height", r.half_height)?,
+            transform,
+        )
+        .map_err(|e| refused(i, e.to_string()));
     }
     let n = p.vertices().len();
     if n > MAX_POLYGON_VERTICES {
@@ -447,6 +501,48 @@ fn polygon(i: usize, p: &ConvexPolygon) -> Result<Polygon, ManyBodyError> {
     Ok(poly)
 }
 
+/// A rectangle given by its half extents, centre and angle (the arguments
+/// of Box2D's `b2MakeOffsetBox`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Rectangle {
+    centre: [f64; 2],
+    angle: f64,
+    half_width: f64,
+    half_height: f64,
+}
+
+/// `p` as a rectangle of any orientation, if it is one: four vertices whose
+/// corners are right angles and whose opposite sides are equal, both to a
+/// relative 1e-9 (a million times finer than the f32 rounding Box2D makes
+/// of every vertex anyway, so no shape that is not a rectangle to f32 is
+/// taken for one). The first edge gives the angle and the width.
+fn rectangle(p: &ConvexPolygon) -> Option<Rectangle> {
+    const RELATIVE: f64 = 1e-9;
+    let v = p.vertices();
+    if v.len() != 4 {
+        return None;
+    }
+    let edge = |k: usize| v[(k + 1) % 4] - v[k];
+    for k in 0..4 {
+        let (a, b) = (edge(k), edge((k + 1) % 4));
+        if a.dot(&b).abs() > RELATIVE * a.norm() * b.norm() {
+            return None;
+        }
+    }
+    let (e0, e1) = (edge(0), edge(1));
+    let (w, h) = (e0.norm(), e1.norm());
+    if (w - edge(2).norm()).abs() > RELATIVE * w || (h - edge(3).norm()).abs() > RELATIVE * h {
+        return None;
+    }
+    let centre = (v[0] + v[1] + v[2] + v[3]) / 4.0;
+    Some(Rectangle {
+        centre: [centre.x, centre.y],
+        angle: e0.y.atan2(e0.x),
+        half_width: 0.5 * w,
+        half_height: 0.5 * h,
+    })
+}
+
 impl ManyBodyEngine for Box2dWorld {
     fn name(&self) -> &'static str {
         ENGINE
@@ -457,7 +553,7 @@ impl ManyBodyEngine for Box2dWorld {
         let h = self.dt as f64 / self.substeps as f64;
         let hertz = CONTACT_HERTZ.min(0.125 / h);
         format!(
-            "{ENGINE}, single precision (f32 positions, velocities and impulses), \
+            "{ENGINE}, {precision}, \
              serial (one worker, no task system). dt = {dt} s with {s} substeps \
              (h = {h:.6} s). Soft contacts: {hertz:.3} Hz (min of contactHertz \
              {CONTACT_HERTZ} and 0.125/h; also against kinematic bodies), {shz:.3} Hz against \
@@ -476,6 +572,12 @@ impl ManyBodyEngine for Box2dWorld {
             dt = self.dt,
             s = self.substeps,
             shz = 2.0 * hertz,
+            precision = if build::Box2dBuild::linked().precision == "f32" {
+                "single precision (f32 positions, velocities and impulses)"
+            } else {
+                "its double-precision build (f64 absolute positions; f32 velocities, \
+                 rotations and impulses)"
+            },
         )
     }
 

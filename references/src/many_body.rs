@@ -557,7 +557,8 @@ pub(crate) fn axis_aligned_box(polygon: &ConvexPolygon) -> Option<([f64; 2], f64
 /// sleeping off, one thread), for the report.
 pub const ENGINE_DIFFERENCES: &[&str] = &[
     "precision: Box2D 3.2 stores positions, velocities and impulses in f32 \
-     (boxdd's default build); rapier2d-f64 in f64",
+     (its double-precision build only its absolute positions in f64; each \
+     row's build is in the builds table); rapier2d-f64 in f64",
     "friction: Box2D solves friction only in the relax pass of each substep; \
      rapier 0.36 does the same by default (friction_in_bias_pass = false)",
     "contact softness: both 30 Hz with damping ratio 10, 60 Hz against static \

@@ -199,6 +199,23 @@ pub use contact_events::{
 pub use settings::SoftStepSettings;
 pub use softness::Softness;
 
+/// The lane arithmetic the wide solver passes take on this CPU, as the
+/// dispatch in `lanes.rs` chooses it at run time: "AVX (4 f64 lanes)" when
+/// the CPU has AVX, "SSE2 (4 f64 lanes)" otherwise on x86-64, the portable
+/// 4-lane type elsewhere. Every path gives the same bits; this says which
+/// one runs (for benchmark reports).
+pub fn lanes_in_use() -> &'static str {
+    #[cfg(target_arch = "x86_64")]
+    if lanes_avx::detected() {
+        return "AVX (4 f64 lanes)";
+    }
+    if cfg!(target_arch = "x86_64") {
+        "SSE2 (4 f64 lanes)"
+    } else {
+        "portable (4 f64 lanes)"
+    }
+}
+
 use crate::body::{BodyId, BodyKind, BodyState};
 use crate::contact::pipeline::Phase;
 use crate::error::{EngineError, Result};

@@ -1,7 +1,13 @@
-//! One benchmark scene in the three engines, run alternately in this
-//! process (Box2D's protocol): for each repeat, each engine builds the scene
-//! afresh, takes step 0 untimed, then the timed steps; the time per step is
-//! the minimum (and the median) over the repeats. The quality figures are
+//! One benchmark scene in every engine, run alternately (Box2D's
+//! protocol): for each repeat, each engine builds the scene afresh, takes
+//! step 0 untimed, then the timed steps (Box2D's own count for the scene
+//! in `harness bench`); the time per step is the minimum, the median and
+//! the maximum over the repeats. The engines are this engine, rapier2d and
+//! the Box2D linked here, in this process, and the other Box2D builds
+//! asked for, each run as a child process ([`super::child`]) in its turn.
+//! Each row carries the engine's build: precision, the SIMD path it takes
+//! on this CPU, its compiler settings, and its thread count (one).
+//! The quality figures are
 //! read from every engine's last run the same way: the watched top body's
 //! sink and sideways drift, the fastest body at the end, and the deepest
 //! overlap of any pair that can collide, computed from the final poses by
@@ -11,41 +17,85 @@
 //! the scene's joints ([`ManyBodyScene::joint_states`]), also the same for
 //! every engine.
 
+use super::child::{self, ChildBuild};
 use super::convert::many_body_scene;
 use super::ours::SoftStepEngine;
 use super::scenes::BenchScene;
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use references::box2d_world::Box2dWorld;
+use references::box2d_world::build::Box2dBuild;
 use references::many_body::{BodySample, JointState, ManyBodyEngine, ManyBodyScene};
 use references::rapier_many::RapierManyWorld;
 use scene::Scene;
 use serde::Serialize;
+use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-/// How long the benchmark runs.
+/// How many steps each run times.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Steps {
+    /// The same count in every scene.
+    Fixed(usize),
+    /// Box2D's own count for the scene ([`BenchScene::box2d_steps`]):
+    /// like Box2D's `benchmark/main.c`, which takes one untimed step and
+    /// times the other `totalStepCount − 1`, the run takes step 0 untimed
+    /// and times `box2d_steps − 1`.
+    Box2d,
+}
+
+/// How long the benchmark runs, and what else it measures.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BenchSettings {
     /// Timed steps per run (after the untimed step 0).
-    pub steps: usize,
-    /// Runs per engine; the time is the minimum over them.
+    pub steps: Steps,
+    /// Runs per engine; the time is the minimum over them, with the median
+    /// and the maximum.
     pub repeats: usize,
     /// Full sizes (`bench --full`): the scenes' full files.
     pub full: bool,
+    /// Also Box2D's SSE2 build, from the child build ([`super::child`]).
+    pub box2d_sse2: bool,
+    /// Also Box2D's double-precision build, from the child build.
+    pub box2d_double: bool,
+    /// Also the peak memory of the large scenes ([`super::memory`]).
+    pub memory: bool,
 }
 
 impl BenchSettings {
-    /// The main run's: 120 timed steps (2 s of simulated time), 3 repeats.
+    /// The main run's (a short check that every engine runs every scene;
+    /// `harness bench` is the benchmark): 120 timed steps (2 s of
+    /// simulated time), 3 repeats, no extra builds, no memory runs.
     pub const DEFAULT: BenchSettings = BenchSettings {
-        steps: 120,
+        steps: Steps::Fixed(120),
         repeats: 3,
         full: false,
+        box2d_sse2: false,
+        box2d_double: false,
+        memory: false,
     };
-    /// `bench --full`: 500 timed steps, 3 repeats, full-size scenes.
+    /// `harness bench`: Box2D's step counts, 10 repeats, the peak memory of
+    /// the large scenes.
+    pub const BENCH: BenchSettings = BenchSettings {
+        steps: Steps::Box2d,
+        repeats: 10,
+        full: false,
+        box2d_sse2: false,
+        box2d_double: false,
+        memory: true,
+    };
+    /// `harness bench --full`: as [`Self::BENCH`] at the full sizes.
     pub const FULL: BenchSettings = BenchSettings {
-        steps: 500,
-        repeats: 3,
         full: true,
+        ..Self::BENCH
     };
+
+    /// Timed steps per run of `scene`.
+    pub fn timed_steps(&self, scene: &BenchScene) -> usize {
+        match self.steps {
+            Steps::Fixed(n) => n,
+            Steps::Box2d => scene.box2d_steps.saturating_sub(1).max(1),
+        }
+    }
 }
 
 /// One engine on one scene: a row of `benchmarks.json`.
@@ -53,18 +103,30 @@ impl BenchSettings {
 pub struct BenchRow {
     /// Scene id.
     pub scene: String,
-    /// Engine name.
+    /// Engine name, with its build (precision, SIMD, C flags for Box2D).
     pub engine: String,
+    /// Threads the engine steps with.
+    pub threads: usize,
+    /// Floating-point precision of the engine's state.
+    pub precision: String,
+    /// The SIMD path the engine takes on this CPU.
+    pub simd: String,
+    /// The engine's build flags (compiler settings, features).
+    pub build: String,
     /// Bodies of the scene.
     pub bodies: usize,
     /// Timed steps per run.
     pub steps: usize,
+    /// Runs timed.
+    pub repeats: usize,
     /// Substeps per step.
     pub substeps: usize,
     /// Minimum over the repeats of the time per step (ms).
     pub ms_per_step_min: f64,
     /// Median over the repeats of the time per step (ms).
     pub ms_per_step_median: f64,
+    /// Maximum over the repeats of the time per step (ms).
+    pub ms_per_step_max: f64,
     /// This engine's minimum over this engine's (the project's) minimum.
     pub ratio_to_engine: f64,
     /// Pairs with contact points after the last step.
@@ -95,7 +157,9 @@ pub struct BenchRow {
 pub struct SceneResult {
     /// The scene.
     pub scene: BenchScene,
-    /// One row per engine: this engine, rapier2d, Box2D.
+    /// One row per engine, in [`Contenders::list`]'s order: this engine,
+    /// rapier2d, the linked Box2D (unless this CPU cannot run it), then the
+    /// child builds asked for.
     pub rows: Vec<BenchRow>,
     /// This engine's time per phase (ms per step) from a separate
     /// profiled run, in the order of [`engine::StepProfile::phases`].
@@ -130,13 +194,202 @@ fn run_engine(engine: &mut dyn ManyBodyEngine, steps: usize) -> Result<Run> {
     })
 }
 
-/// The engine `index` (0 this engine, 1 rapier2d, 2 Box2D) on the scene.
-fn build(index: usize, scene: &Scene, neutral: &ManyBodyScene) -> Result<Box<dyn ManyBodyEngine>> {
-    Ok(match index {
-        0 => Box::new(SoftStepEngine::new(scene, false)?),
-        1 => Box::new(RapierManyWorld::new(neutral)?),
-        _ => Box::new(Box2dWorld::new(neutral)?),
+/// An engine of the benchmark.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Contender {
+    /// This engine's soft step.
+    Ours,
+    /// rapier2d-f64.
+    Rapier,
+    /// The Box2D linked into the harness.
+    Box2d,
+    /// Another Box2D build, run as a child process (its binary).
+    Child(ChildBuild, PathBuf),
+}
+
+impl Contender {
+    /// The engine's name in messages.
+    fn label(&self) -> String {
+        match self {
+            Contender::Ours => "this engine".into(),
+            Contender::Rapier => "rapier2d".into(),
+            Contender::Box2d => Box2dBuild::linked().bench_name(),
+            Contender::Child(build, _) => format!("Box2D's {} build", build.label()),
+        }
+    }
+}
+
+/// The engines a benchmark runs, decided once before the scenes.
+#[derive(Debug, Clone)]
+pub struct Contenders {
+    /// In row order.
+    pub list: Vec<Contender>,
+    /// Why an engine was left out (a CPU without the build's SIMD), printed
+    /// and reported.
+    pub notes: Vec<String>,
+}
+
+impl Contenders {
+    /// This engine, rapier2d, the linked Box2D if this CPU runs it, and the
+    /// child builds `settings` asks for (built here, before any timing).
+    pub fn for_settings(settings: &BenchSettings) -> Result<Self> {
+        let mut list = vec![Contender::Ours, Contender::Rapier];
+        let mut notes = Vec::new();
+        let linked = Box2dBuild::linked();
+        match linked.runnable() {
+            Ok(()) => list.push(Contender::Box2d),
+            Err(why) => {
+                let note = format!("{} left out: {why}", linked.bench_name());
+                eprintln!("bench: {note}");
+                notes.push(note);
+            }
+        }
+        for (asked, build) in [
+            (settings.box2d_sse2, ChildBuild::Sse2),
+            (settings.box2d_double, ChildBuild::Double),
+        ] {
+            if asked {
+                let (binary, seconds) = child::build(build)?;
+                eprintln!(
+                    "bench: Box2D's {} build ({}) built in {seconds:.0} s, before the timing",
+                    build.label(),
+                    binary.display()
+                );
+                list.push(Contender::Child(build, binary));
+            }
+        }
+        Ok(Self { list, notes })
+    }
+}
+
+/// The build of an engine of this process, for its rows.
+struct Build {
+    name: String,
+    configuration: String,
+    precision: String,
+    simd: String,
+    flags: String,
+}
+
+/// The release profile's settings common to the Rust engines (the
+/// workspace's Cargo.toml): opt-level 3, one codegen unit for the engine and
+/// for rapier2d-f64's crates; the target's baseline features.
+fn rust_flags() -> String {
+    let mut features = vec!["sse2"];
+    if cfg!(target_feature = "avx") {
+        features.push("avx");
+    }
+    if cfg!(target_feature = "avx2") {
+        features.push("avx2");
+    }
+    if cfg!(target_feature = "fma") {
+        features.push("fma");
+    }
+    format!(
+        "rustc {} profile, opt-level 3, codegen-units 1; target {} with {} at compile time",
+        crate::provenance::profile(),
+        std::env::consts::ARCH,
+        features.join(", ")
+    )
+}
+
+/// The build of `contender` (not a child: a child reports its own).
+fn build_of(contender: &Contender, engine: &dyn ManyBodyEngine) -> Build {
+    let configuration = engine.configuration();
+    match contender {
+        Contender::Ours => Build {
+            name: engine.name().to_string(),
+            configuration,
+            precision: "f64".into(),
+            simd: engine::soft_step::lanes_in_use().into(),
+            flags: format!("{}; AVX lanes chosen at run time", rust_flags()),
+        },
+        Contender::Rapier => Build {
+            name: engine.name().to_string(),
+            configuration,
+            precision: "f64".into(),
+            simd: "scalar f64 (rapier2d-f64 0.36 has no SIMD option for f64)".into(),
+            flags: format!(
+                "{}; features dim2, f64, std, block-solver (its defaults), \
+                 enhanced-determinism and parallel off",
+                rust_flags()
+            ),
+        },
+        _ => {
+            let b = Box2dBuild::linked();
+            Build {
+                name: b.bench_name(),
+                configuration,
+                precision: b.precision.into(),
+                simd: b.simd_at_run_time(),
+                flags: b.flags,
+            }
+        }
+    }
+}
+
+/// The engine of `contender` on the scene (not a child).
+fn build(
+    contender: &Contender,
+    scene: &Scene,
+    neutral: &ManyBodyScene,
+) -> Result<Box<dyn ManyBodyEngine>> {
+    Ok(match contender {
+        Contender::Ours => Box::new(SoftStepEngine::new(scene, false)?),
+        Contender::Rapier => Box::new(RapierManyWorld::new(neutral)?),
+        Contender::Box2d => Box::new(Box2dWorld::new(neutral)?),
+        Contender::Child(..) => bail!("a child build runs in its own process"),
     })
+}
+
+/// One run of `contender`, and its build on the first repeat.
+fn run_once(
+    contender: &Contender,
+    bench: &BenchScene,
+    file: &str,
+    scene: &Scene,
+    neutral: &ManyBodyScene,
+    steps: usize,
+    first: bool,
+) -> Result<(Run, Option<Build>)> {
+    if let Contender::Child(kind, binary) = contender {
+        let child = child::run(binary, file, steps)?;
+        if !kind.is_named(&child.name) {
+            bail!(
+                "{} reports the build {}, not Box2D's {} build",
+                binary.display(),
+                child.name,
+                kind.label()
+            );
+        }
+        let run = Run {
+            per_step: Duration::from_secs_f64(child.ms_per_step / 1e3),
+            samples: child.samples(),
+            touching: child.touching,
+            points: child.points,
+        };
+        if run.samples.len() != neutral.bodies.len() {
+            bail!(
+                "{} returned {} bodies for {} ({} expected)",
+                child.name,
+                run.samples.len(),
+                bench.id,
+                neutral.bodies.len()
+            );
+        }
+        let built = first.then_some(Build {
+            name: child.name,
+            configuration: child.configuration,
+            precision: child.precision,
+            simd: child.simd,
+            flags: child.flags,
+        });
+        return Ok((run, built));
+    }
+    let mut engine = build(contender, scene, neutral)?;
+    let built = first.then(|| build_of(contender, engine.as_ref()));
+    let run = run_engine(engine.as_mut(), steps)?;
+    Ok((run, built))
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -149,23 +402,29 @@ fn median(mut v: Vec<f64>) -> f64 {
     }
 }
 
-/// Measures `bench` (loaded as `scene`) under `settings`.
-pub fn measure(bench: BenchScene, scene: &Scene, settings: BenchSettings) -> Result<SceneResult> {
+/// Measures `bench` (loaded as `scene` from `file`, relative to the scenes
+/// folder) under `settings`, with `contenders`.
+pub fn measure(
+    bench: BenchScene,
+    file: &str,
+    scene: &Scene,
+    settings: BenchSettings,
+    contenders: &Contenders,
+) -> Result<SceneResult> {
     let neutral = many_body_scene(scene)?;
-    let mut times: [Vec<f64>; 3] = Default::default();
-    let mut last: Vec<Option<Run>> = vec![None, None, None];
-    let mut configurations = Vec::new();
-    let mut names = [String::new(), String::new(), String::new()];
-    for repeat in 0..settings.repeats {
-        for e in 0..3 {
-            let mut engine = build(e, scene, &neutral)
-                .with_context(|| format!("building {} for engine {e}", bench.id))?;
-            if repeat == 0 {
-                names[e] = engine.name().to_string();
-                configurations.push((engine.name().to_string(), engine.configuration()));
+    let steps = settings.timed_steps(&bench);
+    let n = contenders.list.len();
+    let mut times: Vec<Vec<f64>> = vec![Vec::new(); n];
+    let mut last: Vec<Option<Run>> = (0..n).map(|_| None).collect();
+    let mut builds: Vec<Option<Build>> = (0..n).map(|_| None).collect();
+    for repeat in 0..settings.repeats.max(1) {
+        for (e, contender) in contenders.list.iter().enumerate() {
+            let (run, built) =
+                run_once(contender, &bench, file, scene, &neutral, steps, repeat == 0)
+                    .with_context(|| format!("{} on {}", contender.label(), bench.id))?;
+            if let Some(b) = built {
+                builds[e] = Some(b);
             }
-            let run = run_engine(engine.as_mut(), settings.steps)
-                .with_context(|| format!("{} on {}", names[e], bench.id))?;
             times[e].push(1e3 * run.per_step.as_secs_f64());
             last[e] = Some(run);
         }
@@ -180,9 +439,13 @@ pub fn measure(bench: BenchScene, scene: &Scene, settings: BenchSettings) -> Res
     };
     let ours = times[0].iter().copied().fold(f64::INFINITY, f64::min);
     let mut rows = Vec::new();
-    for e in 0..3 {
+    let mut configurations = Vec::new();
+    for e in 0..n {
         let run = last[e].take().context("a run per engine")?;
+        let built = builds[e].take().context("a build per engine")?;
+        configurations.push((built.name.clone(), built.configuration.clone()));
         let min = times[e].iter().copied().fold(f64::INFINITY, f64::min);
+        let max = times[e].iter().copied().fold(0.0, f64::max);
         let (sink, drift) = match top {
             Some(i) => {
                 let start = neutral.bodies[i].position;
@@ -207,12 +470,18 @@ pub fn measure(bench: BenchScene, scene: &Scene, settings: BenchSettings) -> Res
         };
         rows.push(BenchRow {
             scene: bench.id.to_string(),
-            engine: names[e].clone(),
+            engine: built.name,
+            threads: 1,
+            precision: built.precision,
+            simd: built.simd,
+            build: built.flags,
             bodies: neutral.bodies.len(),
-            steps: settings.steps,
+            steps,
+            repeats: times[e].len(),
             substeps: neutral.substeps,
             ms_per_step_min: min,
             ms_per_step_median: median(times[e].clone()),
+            ms_per_step_max: max,
             ratio_to_engine: min / ours,
             touching_pairs: run.touching,
             points: run.points,
@@ -229,11 +498,11 @@ pub fn measure(bench: BenchScene, scene: &Scene, settings: BenchSettings) -> Res
     let mut profiled = SoftStepEngine::new(scene, true)?;
     profiled.step()?;
     let before = profiled.world().profile();
-    for _ in 0..settings.steps {
+    for _ in 0..steps {
         profiled.step()?;
     }
     let after = profiled.world().profile();
-    let n = settings.steps.max(1) as f64;
+    let n = steps.max(1) as f64;
     let profile = after
         .phases()
         .iter()

@@ -1,14 +1,19 @@
-//! The many-body benchmark (`harness bench`, and a section of the main
-//! run): this engine's soft step, rapier2d-f64 0.36 and Box2D v3.2 on the
-//! same scenes, built from the same scene files, measured side by side in
-//! one process (Box2D's protocol, [`measure`]), with the quality figures
-//! read the same way from every engine; the contact work-precision study
-//! ([`contact_precision`]); `reports/benchmarks.md`, `benchmarks.json` and
-//! the charts ([`report`], `crate::plots::bench`).
+//! The many-body benchmark (`harness bench`, and a short section of the
+//! main run): this engine's soft step, rapier2d-f64 0.36 and Box2D v3.2 on
+//! the same scenes, built from the same scene files, measured side by side
+//! (Box2D's protocol and step counts, [`measure`]), Box2D built as it
+//! ships (-O3, NDEBUG, AVX2) and, when asked, its SSE2 and double builds
+//! as child processes ([`child`]), with the quality figures read the same
+//! way from every engine; the peak memory of the large scenes
+//! ([`memory`]); the contact work-precision study ([`contact_precision`]);
+//! `reports/benchmarks.md`, `benchmarks.json` and the charts ([`report`],
+//! `crate::plots::bench`).
 
+pub mod child;
 pub mod contact_precision;
 pub mod convert;
 pub mod measure;
+pub mod memory;
 pub mod neutral_joints;
 pub mod ours;
 pub mod queries;
@@ -16,7 +21,7 @@ pub mod report;
 pub mod scenes;
 pub mod targets;
 
-pub use measure::{BenchRow, BenchSettings, SceneResult};
+pub use measure::{BenchRow, BenchSettings, SceneResult, Steps};
 
 use anyhow::{Context, Result};
 use std::path::Path;
@@ -46,6 +51,25 @@ pub fn run_selected(
             known.join(", ")
         );
     }
+    // Memory first, while this process's own peak (which a child's reading
+    // includes, see `memory`) is small.
+    let memory = if settings.memory && only.is_empty() {
+        let peaks = memory::measure_all()?;
+        for p in peaks.iter().flatten() {
+            println!(
+                "memory {:<20} {:>6} bodies, {:>5} steps: peak {}{:.0} MB",
+                p.scene,
+                p.bodies,
+                p.steps,
+                if p.exact { "" } else { "at most " },
+                p.peak_mb
+            );
+        }
+        peaks
+    } else {
+        None
+    };
+    let contenders = measure::Contenders::for_settings(&settings)?;
     let selected: Vec<_> = scenes::SCENES
         .iter()
         .filter(|s| only.is_empty() || only.iter().any(|id| id == s.id))
@@ -67,14 +91,15 @@ pub fn run_selected(
         };
         let scene =
             crate::scenes::load(file).with_context(|| format!("benchmark scene {}", bench.id))?;
-        let result = measure::measure(*bench, &scene, settings)?;
+        let result = measure::measure(*bench, file, &scene, settings, &contenders)?;
         bar.inc(1);
         // Printed on stdout even when the bar is hidden (CI, pipes).
         bar.suspend(|| {
             println!(
-                "bench {:<14} {:>6} bodies: {}",
+                "bench {:<14} {:>6} bodies, {} steps: {}",
                 bench.id,
                 result.rows[0].bodies,
+                result.rows[0].steps,
                 result
                     .rows
                     .iter()
@@ -96,18 +121,24 @@ pub fn run_selected(
     if !precision.is_empty() {
         charts.push(contact_precision::chart(dir, &precision)?);
     }
-    report::write(dir, &results, settings, &charts, &precision)?;
+    let extras = report::Extras {
+        notes: contenders.notes.clone(),
+        memory: memory.unwrap_or_default(),
+    };
+    report::write(dir, &results, settings, &charts, &precision, &extras)?;
     queries::append(dir, settings.repeats.max(5))?;
     Ok(results)
 }
 
-/// A short engine name for the console.
-pub fn short(engine: &str) -> &str {
+/// A short engine name for the console and the README: "ours",
+/// "rapier2d", or the Box2D build without the version ("Box2D f32 AVX2 -O3
+/// NDEBUG").
+pub fn short(engine: &str) -> String {
     if engine.starts_with("this") {
-        "ours"
+        "ours".into()
     } else if engine.starts_with("rapier") {
-        "rapier2d"
+        "rapier2d".into()
     } else {
-        "Box2D"
+        engine.replacen("Box2D 3.2 ", "Box2D ", 1)
     }
 }

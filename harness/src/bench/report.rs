@@ -1,11 +1,14 @@
 //! `reports/benchmarks.md` and `reports/benchmarks.json`: per scene and
-//! engine, ms per step (minimum and median), the ratio to this engine,
-//! contact counts and quality figures; the machine, the engines and their
-//! settings; the targets with their measured figures; the charts.
+//! engine, ms per step (minimum, median and maximum over the repeats), the
+//! ratio to this engine, contact counts and quality figures; the machine,
+//! the commit, each engine's build (precision, SIMD path taken on this
+//! CPU, threads, compiler flags) and settings; the targets with their
+//! measured figures; the peak memory of the large scenes; the charts.
 
 use super::contact_precision::CaseResult;
-use super::measure::{BenchSettings, SceneResult};
-use super::targets::{scaling_slope, targets};
+use super::measure::{BenchSettings, SceneResult, Steps};
+use super::memory::PeakMemory;
+use super::targets::{Target, box2d_targets, scaling_slope, targets};
 use anyhow::Result;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -24,8 +27,31 @@ fn table(headers: &[&str], rows: &[Vec<String>]) -> String {
     out
 }
 
+/// Targets as table rows: target, measured, verdict.
+fn verdict_rows(targets: &[Target]) -> Vec<Vec<String>> {
+    targets
+        .iter()
+        .map(|t| {
+            vec![
+                t.target.clone(),
+                t.measured.clone(),
+                if t.met { "met" } else { "**not met**" }.into(),
+            ]
+        })
+        .collect()
+}
+
 fn opt(v: Option<f64>) -> String {
     v.map_or("–".into(), |x| format!("{x:.3e}"))
+}
+
+/// What the report shows besides the scenes' rows.
+#[derive(Debug, Clone, Default)]
+pub struct Extras {
+    /// Engines left out, with the reason.
+    pub notes: Vec<String>,
+    /// Peak memory of the large scenes (empty when not measured).
+    pub memory: Vec<PeakMemory>,
 }
 
 /// Writes the two files into `dir`, with the charts' file names to link.
@@ -35,6 +61,7 @@ pub fn write(
     settings: BenchSettings,
     charts: &[(String, String)],
     precision: &[CaseResult],
+    extras: &Extras,
 ) -> Result<()> {
     std::fs::create_dir_all(dir)?;
     let rows: Vec<_> = results.iter().flat_map(|r| r.rows.clone()).collect();
@@ -49,37 +76,97 @@ pub fn write(
     )?;
     writeln!(
         md,
-        "Machine: {}. Build: {}. Every figure below was measured in one run of the harness \
-         (`cargo run --release -p harness -- bench{}`).\n",
+        "Machine: {}. Commit: {}. Build profile: {}. Every figure below was measured in one run \
+         of the harness (`{}`).\n",
         crate::provenance::machine(),
+        crate::provenance::commit(),
         crate::provenance::profile(),
-        if settings.full { " --full" } else { "" }
+        command(settings)
     )?;
+    let steps = match settings.steps {
+        Steps::Fixed(n) => format!("{n} timed steps"),
+        Steps::Box2d => "Box2D's own step count for the scene (its `benchmark/main.c`; 500 for \
+                         the scenes it does not have), all but the first timed, as Box2D times \
+                         them"
+            .to_string(),
+    };
     writeln!(
         md,
         "Protocol (Box2D's): dt = 1/60 s, {} substeps, gravity (0, −10) m/s² (none in `smash`), \
-         sleeping off, one thread. For each of {} repeats, each engine builds the scene afresh, \
-         takes step 0 untimed, then {} timed steps; the engines run alternately in this process. \
-         ms per step: the minimum over the repeats (and the median). The ratio is the engine's \
-         minimum over this engine's. The machine is shared and noisy: compare ratios, not \
-         absolute times across runs.\n",
+         sleeping off, one thread per engine. For each of {} repeats, each engine builds the \
+         scene afresh, takes step 0 untimed, then the timed steps: {steps}; the engines run \
+         alternately (the Box2D builds other than the harness's as child processes, in their \
+         turn). ms per step: the minimum over the repeats, with the median and the maximum. The \
+         ratio is the engine's minimum over this engine's. The machine may be shared: compare \
+         ratios, not absolute times across runs.\n",
         results.first().map_or(4, |r| r.rows[0].substeps),
         settings.repeats,
-        settings.steps
     )?;
+    writeln!(md, "## The engines' builds\n")?;
+    if let Some(r) = results.first() {
+        let rows: Vec<Vec<String>> = r
+            .rows
+            .iter()
+            .map(|b| {
+                vec![
+                    b.engine.clone(),
+                    b.precision.clone(),
+                    b.simd.clone(),
+                    b.threads.to_string(),
+                    b.build.clone(),
+                ]
+            })
+            .collect();
+        md.push_str(&table(
+            &[
+                "engine",
+                "precision",
+                "SIMD path on this CPU",
+                "threads",
+                "build",
+            ],
+            &rows,
+        ));
+        md.push('\n');
+    }
+    for note in &extras.notes {
+        writeln!(md, "- {note}")?;
+    }
+    if !settings.box2d_sse2 {
+        writeln!(
+            md,
+            "Box2D's SSE2 build is measured by `harness bench --box2d-sse2` (a second build of \
+             Box2D, compiled before the timing); this run did not ask for it.\n"
+        )?;
+    }
+    if !settings.box2d_double {
+        writeln!(
+            md,
+            "Box2D's double-precision build is measured by `harness bench --box2d-double`; this \
+             run did not ask for it.\n"
+        )?;
+    }
     writeln!(md, "## Targets\n")?;
     let t = targets(results);
-    let trows: Vec<Vec<String>> = t
-        .iter()
-        .map(|t| {
-            vec![
-                t.target.clone(),
-                t.measured.clone(),
-                if t.met { "met" } else { "**not met**" }.into(),
-            ]
-        })
-        .collect();
+    let trows = verdict_rows(&t);
     md.push_str(&table(&["target", "measured", "verdict"], &trows));
+    let lead = box2d_targets(results);
+    if !lead.is_empty() {
+        let met = lead.iter().filter(|t| t.met).count();
+        writeln!(
+            md,
+            "\n### The single-thread lead over Box2D's release build\n\n\
+             Targets: this engine at most 0.9× the ms per step of Box2D built as it ships (f32, \
+             AVX2, -O3, NDEBUG) on every scene, one thread each, the same substeps; and every \
+             quality figure at least as good as Box2D's (no worse by more than 1 % or 1e-6 in \
+             the figure's unit). Met: {met} of {}.\n",
+            lead.len()
+        )?;
+        md.push_str(&table(
+            &["target", "measured", "verdict"],
+            &verdict_rows(&lead),
+        ));
+    }
     let slopes: Vec<String> = results
         .first()
         .map(|r| {
@@ -124,6 +211,7 @@ pub fn write(
                     b.bodies.to_string(),
                     format!("{:.3}", b.ms_per_step_min),
                     format!("{:.3}", b.ms_per_step_median),
+                    format!("{:.3}", b.ms_per_step_max),
                     format!("{:.2}", b.ratio_to_engine),
                     b.touching_pairs.to_string(),
                     b.points.to_string(),
@@ -147,6 +235,7 @@ pub fn write(
             "bodies",
             "ms/step (min)",
             "ms/step (median)",
+            "ms/step (max)",
             "ratio",
             "touching pairs",
             "points",
@@ -176,6 +265,38 @@ pub fn write(
                 phases.join(", ")
             )?;
         }
+    }
+    if !extras.memory.is_empty() {
+        writeln!(md, "## Peak memory of the large scenes\n")?;
+        writeln!(
+            md,
+            "Peak resident set size of `harness simulate` run alone on the scene (no output asked, \
+             the command's defaults: the trace of every body is kept in memory), read from the \
+             kernel's resource usage of that child process (`wait4`, `ru_maxrss`; Linux counts \
+             the larger of the child's peak and the harness's own, so a reading not above the \
+             harness's own peak is printed as a bound); MB = 10⁶ bytes.\n"
+        )?;
+        let rows: Vec<Vec<String>> = extras
+            .memory
+            .iter()
+            .map(|m| {
+                vec![
+                    format!("`{}`", m.command),
+                    m.bodies.to_string(),
+                    m.steps.to_string(),
+                    if m.exact {
+                        format!("{:.0}", m.peak_mb)
+                    } else {
+                        format!("at most {:.0}", m.peak_mb)
+                    },
+                ]
+            })
+            .collect();
+        md.push_str(&table(
+            &["command", "bodies", "steps", "peak memory (MB)"],
+            &rows,
+        ));
+        md.push('\n');
     }
     writeln!(md, "## What a contact model's accuracy costs\n")?;
     writeln!(
@@ -225,6 +346,24 @@ pub fn write(
     Ok(())
 }
 
+/// The command that writes a report of `settings`.
+fn command(settings: BenchSettings) -> String {
+    let mut c = match settings.steps {
+        Steps::Box2d => "cargo run --release -p harness -- bench".to_string(),
+        Steps::Fixed(_) => "cargo run --release -p harness".to_string(),
+    };
+    if settings.full {
+        c += " --full";
+    }
+    if settings.box2d_sse2 {
+        c += " --box2d-sse2";
+    }
+    if settings.box2d_double {
+        c += " --box2d-double";
+    }
+    c
+}
+
 /// Marker lines between which the harness writes the README's benchmark
 /// table.
 pub const README_MARKERS: (&str, &str) = ("<!-- bench:start -->", "<!-- bench:end -->");
@@ -243,7 +382,11 @@ pub fn update_readme(readme: &Path, results: &[SceneResult]) -> Result<bool> {
     let rows: Vec<Vec<String>> = results
         .iter()
         .map(|r| {
-            let mut cells = vec![r.scene.id.to_string(), r.rows[0].bodies.to_string()];
+            let mut cells = vec![
+                r.scene.id.to_string(),
+                r.rows[0].bodies.to_string(),
+                r.rows[0].steps.to_string(),
+            ];
             for (i, row) in r.rows.iter().enumerate() {
                 cells.push(if i == 0 {
                     format!("{:.3}", row.ms_per_step_min)
@@ -254,7 +397,7 @@ pub fn update_readme(readme: &Path, results: &[SceneResult]) -> Result<bool> {
             cells
         })
         .collect();
-    let mut headers = vec!["scene", "bodies"];
+    let mut headers = vec!["scene", "bodies", "timed steps"];
     let names: Vec<String> = results
         .first()
         .map(|r| {

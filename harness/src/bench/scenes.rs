@@ -18,7 +18,18 @@ pub struct BenchScene {
     pub top: Option<&'static str>,
     /// Whether it belongs to the pyramid series of the scaling chart.
     pub scaling: bool,
+    /// Timed steps per run in the fair protocol (`harness bench`): the
+    /// scene's step count in Box2D's `benchmark/main.c` (`totalStepCount`:
+    /// joint_grid 500, large_pyramid 500, many_pyramids 200, rain 1000,
+    /// smash 300, tumbler 750), or, for the scenes Box2D's benchmark does
+    /// not have, [`OTHER_STEPS`].
+    pub box2d_steps: usize,
 }
+
+/// Timed steps of the scenes that are not in Box2D's benchmark (the smaller
+/// pyramids, the stack, the shape rain): 500, Box2D's count for its
+/// pyramid (`large_pyramid`), the series they belong to.
+pub const OTHER_STEPS: usize = 500;
 
 const fn pyramid(id: &'static str, file: &'static str, top: &'static str) -> BenchScene {
     BenchScene {
@@ -27,6 +38,7 @@ const fn pyramid(id: &'static str, file: &'static str, top: &'static str) -> Ben
         full: None,
         top: Some(top),
         scaling: true,
+        box2d_steps: OTHER_STEPS,
     }
 }
 
@@ -39,13 +51,17 @@ pub const SCENES: &[BenchScene] = &[
     pyramid("pyramid_20", "pyramid_20", "pyramid_209"),
     pyramid("pyramid_40", "bench/pyramid_40", "pyramid_819"),
     pyramid("pyramid_70", "bench/pyramid_70", "pyramid_2484"),
-    pyramid("large_pyramid", "bench/large_pyramid", "pyramid_5049"),
+    BenchScene {
+        box2d_steps: 500,
+        ..pyramid("large_pyramid", "bench/large_pyramid", "pyramid_5049")
+    },
     BenchScene {
         id: "stack",
         file: "stack",
         full: None,
         top: Some("stack_14"),
         scaling: false,
+        box2d_steps: OTHER_STEPS,
     },
     BenchScene {
         id: "many_pyramids",
@@ -53,6 +69,7 @@ pub const SCENES: &[BenchScene] = &[
         full: Some("bench/full/many_pyramids"),
         top: None,
         scaling: false,
+        box2d_steps: 200,
     },
     BenchScene {
         id: "tumbler",
@@ -60,6 +77,7 @@ pub const SCENES: &[BenchScene] = &[
         full: None,
         top: None,
         scaling: false,
+        box2d_steps: 750,
     },
     BenchScene {
         id: "smash",
@@ -67,6 +85,7 @@ pub const SCENES: &[BenchScene] = &[
         full: Some("bench/full/smash"),
         top: None,
         scaling: false,
+        box2d_steps: 300,
     },
     BenchScene {
         id: "shape_rain",
@@ -74,6 +93,7 @@ pub const SCENES: &[BenchScene] = &[
         full: None,
         top: None,
         scaling: false,
+        box2d_steps: OTHER_STEPS,
     },
     BenchScene {
         id: "joint_grid",
@@ -81,6 +101,7 @@ pub const SCENES: &[BenchScene] = &[
         full: Some("bench/full/joint_grid"),
         top: None,
         scaling: false,
+        box2d_steps: 500,
     },
     BenchScene {
         id: "ragdoll_rain",
@@ -88,5 +109,6 @@ pub const SCENES: &[BenchScene] = &[
         full: Some("bench/full/ragdoll_rain"),
         top: None,
         scaling: false,
+        box2d_steps: 1000,
     },
 ];

@@ -12,7 +12,13 @@ use std::path::Path;
 /// The style of an engine (this engine, rapier2d, Box2D), the same in
 /// the contact work-precision chart.
 pub fn engine_style(index: usize) -> Style {
-    [palette(0), palette(2).dashed(), palette(1).dotted()][index % 3]
+    [
+        palette(0),
+        palette(2).dashed(),
+        palette(1).dotted(),
+        palette(3).dashed(),
+        palette(4).dotted(),
+    ][index % 5]
 }
 
 /// Writes the charts into `dir`; returns their file names and captions.

@@ -269,9 +269,11 @@ pub fn write(
             "[`benchmarks.md`](benchmarks.md): this engine's soft step, rapier2d-f64 and Box2D v3 \
              on the same many-body scenes (pyramids of 55 to 5050 boxes, a stack, many pyramids, \
              a tumbler, a smash, a rain of mixed shapes, a grid of circles on revolute joints, a \
-             rain of ragdolls), measured side by side in one run: ms per step, ratios, quality \
-             figures (joint separations in the jointed scenes), the targets with their verdicts, \
-             and what a contact model's accuracy costs on the validation contact cases.",
+             rain of ragdolls), measured side by side in one run: each engine's build \
+             (precision, SIMD path, threads, flags), ms per step (minimum, median, maximum), \
+             ratios, quality figures (joint separations in the jointed scenes), the targets with \
+             their verdicts, the peak memory of the large scenes (`harness bench`), and what a \
+             contact model's accuracy costs on the validation contact cases.",
             "",
             "",
         ));
@@ -300,9 +302,9 @@ pub fn write(
     }
     if dir.join("benchmarks.json").is_file() {
         files.push(
-            "`benchmarks.json`: one row per benchmark scene and engine (`scene, engine, bodies, \
-             steps, substeps, ms_per_step_min, ms_per_step_median, ratio_to_engine` and the \
-             quality figures).",
+            "`benchmarks.json`: one row per benchmark scene and engine (`scene, engine, threads, \
+             precision, simd, build, bodies, steps, repeats, substeps, ms_per_step_min, \
+             ms_per_step_median, ms_per_step_max, ratio_to_engine` and the quality figures).",
         );
     }
     if pictures {

@@ -106,6 +106,65 @@ fn shapes_are_held_as_given_to_f32() {
 }
 
 #[test]
+fn a_thin_card_is_held_as_box2ds_box_in_any_placement() {
+    // Box2D's Card House card, 2 mm × 0.4 m (b2MakeBox(0.001, 0.2)),
+    // given as vertices turned by 25°: about its centre on a dynamic body,
+    // about an offset centre on a static one. No hull (which welds points
+    // closer than 5 mm): b2MakeOffsetBox.
+    let (hw, hh, angle) = (0.001, 0.2, 25f64.to_radians());
+    let card = |centre: Vector2<f64>| {
+        let (s, c) = angle.sin_cos();
+        let corner = |x: f64, y: f64| centre + Vector2::new(c * x - s * y, s * x + c * y);
+        ConvexPolygon::new(vec![
+            corner(-hw, -hh),
+            corner(hw, -hh),
+            corner(hw, hh),
+            corner(-hw, hh),
+        ])
+        .unwrap()
+    };
+    let centred = card(Vector2::zeros());
+    let offset = card(Vector2::new(0.1, 0.05));
+    let mut scene = pyramid(0);
+    scene.bodies.push(SceneBody::dynamic(
+        Shape::Polygon(centred.clone()),
+        [0.0, 2.0],
+        1.0,
+    ));
+    scene
+        .bodies
+        .push(SceneBody::fixed(Shape::Polygon(offset.clone()), [3.0, 2.0]));
+    let mut w = Box2dWorld::new(&scene).unwrap();
+    for (body, card) in [(1, &centred), (2, &offset)] {
+        match w.shape_geometry(body).unwrap() {
+            ShapeGeometry::Polygon { vertices } => {
+                assert_eq!(vertices.len(), 4);
+                // Box2D rotates its f32 half extents by its f32 rotation
+                // and adds its f32 centre: a few roundings of coordinates
+                // ≤ 0.3 m.
+                for v in card.vertices() {
+                    let found = vertices.iter().any(|q| {
+                        (q[0] - v.x).abs() <= 4.0 * EPS32 && (q[1] - v.y).abs() <= 4.0 * EPS32
+                    });
+                    assert!(found, "body {body}: {v:?} not in {vertices:?}");
+                }
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+    // A quadrilateral that is not a rectangle still goes through the hull.
+    let kite = ConvexPolygon::new(vec![
+        Vector2::new(0.0, -0.3),
+        Vector2::new(0.2, 0.0),
+        Vector2::new(0.0, 0.5),
+        Vector2::new(-0.2, 0.0),
+    ])
+    .unwrap();
+    assert!(rectangle(&kite).is_none());
+    assert!(rectangle(&offset).is_some());
+}
+
+#[test]
 fn polygons_box2d_would_change_are_refused() {
     let ring = |n: usize, r: f64| {
         let v = (0..n)

@@ -1,0 +1,74 @@
+//! `harness bench` through the real binary: a selected scene writes
+//! `benchmarks.json` rows that carry each engine's build and the spread
+//! over the repeats; the peak memory of a `simulate` run is read from that
+//! child process.
+
+use std::path::Path;
+use std::process::Command;
+
+const BIN: &str = env!("CARGO_BIN_EXE_harness");
+
+#[test]
+fn a_bench_row_carries_the_build_and_the_spread() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = Command::new(BIN)
+        .args(["--out", dir.path().to_str().unwrap(), "bench", "pyramid_10"])
+        .output()
+        .expect("run the harness binary");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    let json = std::fs::read_to_string(dir.path().join("benchmarks.json")).unwrap();
+    let rows: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let rows = rows.as_array().unwrap();
+    // This engine, rapier2d and Box2D's release build (this test machine
+    // has AVX2; without it the Box2D row is left out with the reason).
+    let avx2 = std::is_x86_feature_detected!("avx2");
+    assert_eq!(rows.len(), if avx2 { 3 } else { 2 }, "{json}");
+    for row in rows {
+        assert_eq!(row["scene"], "pyramid_10");
+        assert_eq!(row["threads"], 1);
+        // Box2D's count for its pyramid, 500, all but the first timed.
+        assert_eq!(row["steps"], 499);
+        assert_eq!(row["repeats"], 10);
+        let (min, median, max) = (
+            row["ms_per_step_min"].as_f64().unwrap(),
+            row["ms_per_step_median"].as_f64().unwrap(),
+            row["ms_per_step_max"].as_f64().unwrap(),
+        );
+        assert!(0.0 < min && min <= median && median <= max, "{row}");
+        for field in ["precision", "simd", "build"] {
+            assert!(!row[field].as_str().unwrap().is_empty(), "{field}: {row}");
+        }
+    }
+    assert_eq!(rows[0]["precision"], "f64");
+    if avx2 {
+        assert_eq!(rows[2]["engine"], "Box2D 3.2 f32 AVX2 -O3 NDEBUG");
+        assert_eq!(rows[2]["simd"], "AVX2 (8 f32 lanes)");
+        assert!(
+            rows[2]["build"]
+                .as_str()
+                .unwrap()
+                .ends_with("then -O3 -DNDEBUG"),
+            "{}",
+            rows[2]
+        );
+    }
+    let md = std::fs::read_to_string(dir.path().join("benchmarks.md")).unwrap();
+    assert!(md.contains("## The engines' builds"), "{md}");
+    assert!(md.contains("single-thread lead over Box2D"), "{md}");
+}
+
+#[test]
+fn the_peak_memory_is_the_simulate_runs() {
+    // container_1000: 1003 bodies for 10 s at 60 Hz, every sample of every
+    // body kept (simulate's default with no output asked): 601 samples of
+    // 1003 states of at least six f64 (48 bytes) are 28.9 MB, which the
+    // peak of that process must exceed.
+    let peak = harness::bench::memory::measure(Path::new(BIN), "container_1000").unwrap();
+    assert_eq!(peak.bodies, 1003);
+    assert_eq!(peak.steps, 600);
+    assert!(peak.peak_mb >= 1003.0 * 601.0 * 48.0 / 1e6, "{peak:?}");
+    // A bound is flagged as one: a reading not above the test process's
+    // own peak may be that peak (see `memory`).
+    assert_eq!(peak.exact, peak.peak_mb > peak.harness_mb, "{peak:?}");
+}
