@@ -191,6 +191,9 @@ impl ExactJoints {
                 reason: EXACT_JOINTS_SUPPORT,
             })
         };
+        if def.force_threshold.is_some() || def.torque_threshold.is_some() {
+            return refuse("with a force or torque threshold (joint events are the soft step's)");
+        }
         match &def.kind {
             JointKind::Revolute(j) => {
                 if j.limits.is_some() {

@@ -3,9 +3,11 @@
 //! simulation du comportement dynamique des corps rigides » (ÉTS), cited as
 //! "seed §N" and "seed eq. N" (an English guide to it: `docs/seed.md`).
 //!
-//! Start with the [`prelude`]. A box dropped on the ground, with the
-//! soft-step contact model (the one for piles of bodies), then asked where
-//! a ray straight down meets it ([`query`]):
+//! Start with the [`prelude`]. A box thrown up from the ground with the
+//! soft-step contact model (the one for piles of bodies): the program
+//! kicks it ([`World::apply_linear_impulse`]), reads the hit it makes when
+//! it lands ([`World::step_events`]), then asks where a ray straight down
+//! meets it ([`query`]):
 //!
 //! ```
 //! use etalon2d::prelude::*;
@@ -14,13 +16,25 @@
 //!     ContactModel::SoftStep(SoftStepSettings::default()),
 //! )?;
 //! world.set_gravity(Vector2::new(0.0, -9.81))?;
-//! world.add_body(BodyDef::fixed("ground", Vector2::new(0.0, -0.5), Some(Shape::rectangle(20.0, 1.0)?)))?;
+//! let ground = world.add_body(BodyDef::fixed("ground", Vector2::new(0.0, -0.5), Some(Shape::rectangle(20.0, 1.0)?)))?;
 //! let boxed = world.add_body(
-//!     BodyDef::rigid("box", 1.0, Shape::rectangle(1.0, 1.0)?).with_position(Vector2::new(0.0, 3.0)),
+//!     BodyDef::rigid("box", 1.0, Shape::rectangle(1.0, 1.0)?).with_position(Vector2::new(0.0, 0.5)),
 //! )?;
-//! let trace = world.run(2.0, 1.0 / 60.0)?; // until t = 2 s, in steps of 1/60 s
-//! let y = trace.last().unwrap().states[boxed].position.y;
-//! assert!((y - 0.5).abs() < 1e-3); // resting on the ground (its soft contact sinks < 0.1 mm)
+//! // A kick of 5 N·s up through its centre: 5 m/s up, back down at about
+//! // 5 m/s (the hit threshold is 1 m/s).
+//! world.apply_linear_impulse(boxed, Vector2::new(0.0, 5.0), Vector2::new(0.0, 0.5))?;
+//! let mut landing = None;
+//! for _ in 0..180 {
+//!     world.step(1.0 / 60.0)?; // 3 s in steps of 1/60 s
+//!     for hit in &world.step_events()?.hits {
+//!         assert!([hit.a.body, hit.b.body].contains(&ground));
+//!         landing.get_or_insert(hit.approach_speed);
+//!     }
+//! }
+//! let speed = landing.expect("it lands with a hit event");
+//! assert!((speed - 5.0).abs() < 0.5, "{speed} m/s");
+//! let y = world.states()[boxed].position.y;
+//! assert!((y - 0.5).abs() < 1e-3); // resting on the ground again
 //!
 //! // A ray cast straight down from 10 m meets the box's top face (y ≈ 1 m).
 //! let hit = world
@@ -141,8 +155,8 @@ pub use soft_step::joints::{
     JointType, Prismatic, PrismaticMotor, Revolute, RevoluteMotor, Target, Weld,
 };
 pub use soft_step::{
-    ContactData, ContactHooks, ContactPointData, HitEvent, PreSolveContact, SensorEvent, ShapeId,
-    StepEvents, TouchEvent,
+    ContactData, ContactHooks, ContactPointData, HitEvent, JointEvent, PreSolveContact,
+    SensorEvent, ShapeId, StepEvents, TouchEvent,
 };
 pub use time_grid::{MAX_RUN_STEPS, step_count};
 pub use trace::{Sample, Trace};

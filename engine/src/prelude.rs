@@ -32,8 +32,8 @@ pub use crate::soft_step::joints::{
     Target, Weld,
 };
 pub use crate::soft_step::{
-    ContactData, ContactHooks, HitEvent, PreSolveContact, SensorEvent, ShapeId, StepEvents,
-    TouchEvent,
+    ContactData, ContactHooks, HitEvent, JointEvent, PreSolveContact, SensorEvent, ShapeId,
+    StepEvents, TouchEvent,
 };
 pub use crate::trace::{Sample, Trace};
 pub use crate::world::World;

@@ -329,3 +329,114 @@ fn mixing_rules_decide_the_pairs_friction() {
         );
     }
 }
+
+/// A 2 kg box hanging at rest from a hinge: the joint carries its weight,
+/// m g = 20 N (the soft rows settle within the first steps). A threshold
+/// of 25 N is never reached; one of 15 N is reached every step once the
+/// box hangs, and a program that removes the joint on that event (a
+/// breakable joint) lets the box fall.
+#[test]
+fn a_joint_force_threshold_reports_the_joint_and_a_program_can_break_it() {
+    for (threshold, breaks) in [(25.0, false), (15.0, true)] {
+        let mut world = soft_world();
+        let weight = 2.0 * 10.0;
+        let b = world
+            .add_body(
+                BodyDef::rigid("box", 2.0, Shape::rectangle(0.5, 0.5).unwrap())
+                    .with_position(Vector2::new(0.0, 5.0)),
+            )
+            .unwrap();
+        let hinge = world
+            .add_joint(
+                JointDef::revolute(
+                    "hinge",
+                    None,
+                    Some(b),
+                    Vector2::new(0.0, 5.0),
+                    Revolute::default(),
+                )
+                .with_thresholds(Some(threshold), None),
+            )
+            .unwrap();
+        let mut broken_at = None;
+        for step in 0..120 {
+            world.step(DT).unwrap();
+            let events = &world.step_events().unwrap().joints_exceeded;
+            if let Some(e) = events.first() {
+                assert_eq!(e.joint, hinge);
+                // The force it reports is the one the joint state gives,
+                // at least the threshold.
+                assert!(e.force.norm() >= threshold, "{e:?}");
+                assert_eq!(e.force, world.joint(hinge).unwrap().force);
+                if broken_at.is_none() {
+                    world.remove_joint(hinge).unwrap();
+                    broken_at = Some(step);
+                }
+            }
+        }
+        let y = world.states()[b].position.y;
+        if breaks {
+            let step = broken_at.expect("the 15 N threshold is under the 20 N weight");
+            assert!(step < 10, "reported at step {step}");
+            // Falling freely since: far below the hinge.
+            assert!(y < 0.0, "y = {y}");
+        } else {
+            assert_eq!(broken_at, None, "25 N is above the {weight} N weight");
+            // Held: within a millimetre of the hinge.
+            assert!((y - 5.0).abs() < 1e-3, "y = {y}");
+        }
+    }
+}
+
+/// Thresholds are validated, and the exact model refuses them by name.
+#[test]
+fn joint_thresholds_are_checked() {
+    let mut world = soft_world();
+    let b = world
+        .add_body(BodyDef::rigid(
+            "box",
+            1.0,
+            Shape::rectangle(0.5, 0.5).unwrap(),
+        ))
+        .unwrap();
+    let def = JointDef::revolute(
+        "hinge",
+        None,
+        Some(b),
+        Vector2::zeros(),
+        Revolute::default(),
+    );
+    for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        let error = world
+            .add_joint(def.clone().with_thresholds(Some(bad), None))
+            .unwrap_err();
+        assert!(error.to_string().contains("force threshold"), "{error}");
+    }
+    assert_eq!(world.joint_count(), 0, "a refused joint is not added");
+    let mut exact =
+        World::with_model(Method::Rk4, ContactModel::Exact(ContactSettings::default())).unwrap();
+    let b = exact
+        .add_body(BodyDef::rigid(
+            "box",
+            1.0,
+            Shape::rectangle(0.5, 0.5).unwrap(),
+        ))
+        .unwrap();
+    let error = exact
+        .add_joint(def_for(b).with_thresholds(None, Some(1.0)))
+        .unwrap_err();
+    assert!(
+        matches!(error, EngineError::Unsupported { .. }) && error.to_string().contains("threshold"),
+        "{error}"
+    );
+}
+
+fn def_for(b: BodyId) -> JointDef {
+    JointDef::revolute(
+        "hinge",
+        None,
+        Some(b),
+        Vector2::zeros(),
+        Revolute::default(),
+    )
+}

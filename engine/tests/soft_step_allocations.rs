@@ -237,7 +237,7 @@ fn events_hooks_and_contact_data_step_without_allocating() {
     // touching pair and a pair filter every new one; the contact data is
     // read after every step. Once the event lists have grown (the first
     // 240 steps), 240 more steps allocate nothing.
-    use etalon2d::{ContactHooks, Filter, PreSolveContact, ShapeId};
+    use etalon2d::{ContactHooks, Filter, JointDef, PreSolveContact, Revolute, ShapeId};
     #[derive(Clone)]
     struct Counter {
         pre_solved: usize,
@@ -289,6 +289,26 @@ fn events_hooks_and_contact_data_step_without_allocating() {
             )
             .unwrap();
     }
+    // A box hanging from a hinge whose 1 N force threshold its 10 N weight
+    // exceeds: a joint event every step.
+    let hung = world
+        .add_body(
+            BodyDef::rigid("hung", 1.0, Shape::rectangle(0.5, 0.5).unwrap())
+                .with_position(Vector2::new(0.0, 8.0)),
+        )
+        .unwrap();
+    world
+        .add_joint(
+            JointDef::revolute(
+                "hinge",
+                None,
+                Some(hung),
+                Vector2::new(0.0, 8.0),
+                Revolute::default(),
+            )
+            .with_thresholds(Some(1.0), None),
+        )
+        .unwrap();
     world
         .set_contact_hooks(Counter {
             pre_solved: 0,
@@ -296,14 +316,15 @@ fn events_hooks_and_contact_data_step_without_allocating() {
         })
         .unwrap();
     let dt = 1.0 / 60.0;
-    let mut seen = [0usize; 5];
-    let read = |world: &World, seen: &mut [usize; 5]| {
+    let mut seen = [0usize; 6];
+    let read = |world: &World, seen: &mut [usize; 6]| {
         let e = world.step_events().unwrap();
         seen[0] += e.touch_began.len();
         seen[1] += e.touch_ended.len();
         seen[2] += e.hits.len();
         seen[3] += e.sensor_began.len();
         seen[4] += e.sensor_ended.len();
+        seen[5] += e.joints_exceeded.len();
         world
             .contact_data()
             .unwrap()
@@ -330,7 +351,7 @@ fn events_hooks_and_contact_data_step_without_allocating() {
     assert_eq!(made, 0, "{made} allocations in 240 steps with events");
     // Events did happen while counting: the balls still bounce through
     // the band and push on the ground.
-    for k in 0..5 {
+    for k in 0..6 {
         assert!(seen[k] > warm[k], "event kind {k}: {seen:?} after {warm:?}");
     }
     assert!(impulse > 0.0);

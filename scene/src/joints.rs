@@ -338,6 +338,9 @@ fn joint(path: &FieldPath, spec: &JointSpec, names: &Names<'_>, index: usize) ->
             .map(|a| finite(&path.key("reference_angle"), a))
             .transpose()?,
         collide_connected: common.collide_connected.unwrap_or(false),
+        // Joint events are read by programs, not scene files.
+        force_threshold: None,
+        torque_threshold: None,
         constraint_hertz: common
             .constraint_hertz
             .map(|f| positive(&path.key("constraint_hertz"), f, "constraint_hertz", "Hz"))

@@ -107,6 +107,22 @@ pub struct StepEvents {
     pub sensor_began: Vec<SensorEvent>,
     /// Shapes that stopped overlapping a sensor.
     pub sensor_ended: Vec<SensorEvent>,
+    /// Joints whose force or torque reached their threshold
+    /// ([`crate::JointDef::force_threshold`]) in the step's last substep.
+    pub joints_exceeded: Vec<JointEvent>,
+}
+
+/// A joint whose force or torque reached its threshold (Box2D v3's
+/// `b2JointEvent`): a breakable joint is one the program then removes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct JointEvent {
+    /// The joint.
+    pub joint: crate::JointId,
+    /// Its force on body B in the last substep (N), world frame.
+    pub force: Vector2<f64>,
+    /// Its torque on body B in the last substep (N·m).
+    pub torque: f64,
 }
 
 impl StepEvents {
@@ -117,6 +133,7 @@ impl StepEvents {
         self.hits.clear();
         self.sensor_began.clear();
         self.sensor_ended.clear();
+        self.joints_exceeded.clear();
     }
 }
 

@@ -193,8 +193,8 @@ mod wide_solver;
 mod world_joints;
 
 pub use contact_events::{
-    ContactData, ContactHooks, ContactPointData, HitEvent, PreSolveContact, SensorEvent, ShapeId,
-    StepEvents, TouchEvent,
+    ContactData, ContactHooks, ContactPointData, HitEvent, JointEvent, PreSolveContact,
+    SensorEvent, ShapeId, StepEvents, TouchEvent,
 };
 pub use settings::SoftStepSettings;
 pub use softness::Softness;
@@ -433,10 +433,12 @@ impl SoftStep {
         for &end in edges {
             self.step(core, t, end, found)?;
             if core.stopped {
-                return Ok(());
+                break;
             }
             t = end;
         }
+        self.joints
+            .exceeded(&core.states, &mut self.events.joints_exceeded);
         Ok(())
     }
 

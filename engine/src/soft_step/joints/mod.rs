@@ -281,6 +281,14 @@ pub struct JointDef {
     pub constraint_hertz: f64,
     /// Damping ratio of the rigid rows (≥ 0). Default 2 (Box2D's).
     pub constraint_damping_ratio: f64,
+    /// Force (N, > 0) at or above which the joint is reported in
+    /// [`crate::soft_step::StepEvents::joints_exceeded`] after a step
+    /// (Box2D v3's `forceThreshold`): a breakable joint is one the program
+    /// removes on that event. Default `None`: never reported.
+    pub force_threshold: Option<f64>,
+    /// Torque (N·m, > 0) at or above which the joint is reported, in the
+    /// same way (Box2D v3's `torqueThreshold`). Default `None`.
+    pub torque_threshold: Option<f64>,
     /// The type and its parameters.
     pub kind: JointKind,
 }
@@ -302,6 +310,8 @@ impl JointDef {
             collide_connected: false,
             constraint_hertz: DEFAULT_CONSTRAINT_HERTZ,
             constraint_damping_ratio: DEFAULT_CONSTRAINT_DAMPING_RATIO,
+            force_threshold: None,
+            torque_threshold: None,
             kind,
         }
     }
@@ -404,6 +414,14 @@ impl JointDef {
         self
     }
 
+    /// Sets [`JointDef::force_threshold`] (N) and
+    /// [`JointDef::torque_threshold`] (N·m); `None` for never.
+    pub fn with_thresholds(mut self, force: Option<f64>, torque: Option<f64>) -> Self {
+        self.force_threshold = force;
+        self.torque_threshold = torque;
+        self
+    }
+
     /// The type.
     pub fn joint_type(&self) -> JointType {
         self.kind.joint_type()
@@ -440,6 +458,12 @@ impl JointDef {
             "constraint damping ratio",
             self.constraint_damping_ratio,
         )?;
+        if let Some(force) = self.force_threshold {
+            positive(name, "force threshold (N)", force)?;
+        }
+        if let Some(torque) = self.torque_threshold {
+            positive(name, "torque threshold (N·m)", torque)?;
+        }
         if let Some(angle) = self.reference_angle {
             if !matches!(
                 self.kind,

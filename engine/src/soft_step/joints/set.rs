@@ -15,6 +15,7 @@
 //! another valid order of the same Gauss–Seidel iteration, whose lanes
 //! give the scalar solver's bits.
 
+use super::super::contact_events::JointEvent;
 use super::distance::DistanceRows;
 use super::frame::JointFrame;
 use super::prismatic::PrismaticRows;
@@ -72,7 +73,24 @@ pub(crate) struct JointInfo {
     pub collide_connected: bool,
     pub constraint_hertz: f64,
     pub constraint_damping_ratio: f64,
+    /// Reported at or above these (N, N·m); `None`: never.
+    pub force_threshold: Option<f64>,
+    pub torque_threshold: Option<f64>,
     pub removed: bool,
+}
+
+/// A joint's measured state ([`JointState`] without its identity).
+struct Measures {
+    joint_type: JointType,
+    anchor_a: Vector2<f64>,
+    anchor_b: Vector2<f64>,
+    angle: f64,
+    translation: f64,
+    linear_error: f64,
+    angular_error: f64,
+    force: Vector2<f64>,
+    torque: f64,
+    motor: f64,
 }
 
 /// A joint as one of its bodies sees it: which joint, the body at its
@@ -316,6 +334,8 @@ impl JointSet {
             collide_connected: def.collide_connected,
             constraint_hertz: def.constraint_hertz,
             constraint_damping_ratio: def.constraint_damping_ratio,
+            force_threshold: def.force_threshold,
+            torque_threshold: def.torque_threshold,
             removed: false,
         });
         self.sims.push(JointSim {
@@ -580,6 +600,50 @@ impl JointSet {
     /// Joint `id` now, from the bodies' `states`.
     pub(crate) fn state(&self, id: JointId, states: &[BodyState]) -> JointState {
         let info = &self.infos[id];
+        let m = self.measures(id, states);
+        JointState {
+            name: info.name.clone(),
+            joint_type: m.joint_type,
+            body_a: info.body_a,
+            body_b: info.body_b,
+            local_anchor_a: info.local_a,
+            local_anchor_b: info.local_b,
+            anchor_a: m.anchor_a,
+            anchor_b: m.anchor_b,
+            angle: m.angle,
+            translation: m.translation,
+            linear_error: m.linear_error,
+            angular_error: m.angular_error,
+            force: m.force,
+            torque: m.torque,
+            motor: m.motor,
+            removed: info.removed,
+        }
+    }
+
+    /// Appends to `out` every live joint whose force or torque in the last
+    /// substep reached its threshold (no allocation once `out` has grown).
+    pub(crate) fn exceeded(&self, states: &[BodyState], out: &mut Vec<JointEvent>) {
+        for (id, info) in self.infos.iter().enumerate() {
+            if info.removed || (info.force_threshold.is_none() && info.torque_threshold.is_none()) {
+                continue;
+            }
+            let m = self.measures(id, states);
+            let over_force = info.force_threshold.is_some_and(|f| m.force.norm() >= f);
+            let over_torque = info.torque_threshold.is_some_and(|t| m.torque.abs() >= t);
+            if over_force || over_torque {
+                out.push(JointEvent {
+                    joint: id,
+                    force: m.force,
+                    torque: m.torque,
+                });
+            }
+        }
+    }
+
+    /// What [`JointSet::state`] reports of joint `id`, without its name.
+    fn measures(&self, id: JointId, states: &[BodyState]) -> Measures {
+        let info = &self.infos[id];
         let sim = &self.sims[id];
         let pa = world_point(info.body_a, info.local_a, states);
         let pb = world_point(info.body_b, info.local_b, states);
@@ -656,13 +720,8 @@ impl JointSet {
                     0.0,
                 ),
             };
-        JointState {
-            name: info.name.clone(),
+        Measures {
             joint_type,
-            body_a: info.body_a,
-            body_b: info.body_b,
-            local_anchor_a: info.local_a,
-            local_anchor_b: info.local_b,
             anchor_a: pa,
             anchor_b: pb,
             angle,
@@ -676,7 +735,6 @@ impl JointSet {
             },
             torque: if self.inv_h > 0.0 { torque } else { 0.0 },
             motor: if self.inv_h > 0.0 { motor } else { 0.0 },
-            removed: info.removed,
         }
     }
 
