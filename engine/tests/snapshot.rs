@@ -199,3 +199,11 @@ fn what_cannot_be_written_is_refused_with_a_typed_error() {
     assert!(e.to_string().contains("format 99"), "{e}");
     assert!(ciborium::from_reader::<World, _>(&b"not a world"[..]).is_err());
 }
+
+/// A world can be moved to another thread (the live view steps it on one;
+/// a program may too): every part of it, hooks included, is `Send`.
+#[test]
+fn a_world_is_send() {
+    fn send<T: Send>(_: &T) {}
+    send(&pyramid_with_joints());
+}

@@ -205,8 +205,9 @@ pub struct PreSolveContact {
 /// Hooks are code, not state: a cloned world gets its own copy of them
 /// (hence `Clone`), and a world written to bytes leaves them out, so a
 /// restored world has none until the program sets them again
-/// ([`crate::World::set_contact_hooks`]).
-pub trait ContactHooks: ContactHooksClone {
+/// ([`crate::World::set_contact_hooks`]). `Send`, as the world is: a
+/// program may step it on another thread.
+pub trait ContactHooks: ContactHooksClone + Send {
     /// Whether shapes `a` and `b`, whose filters let them collide, get a
     /// contact. Asked when their enlarged boxes begin to overlap.
     fn should_collide(&mut self, a: ShapeId, b: ShapeId) -> bool {

@@ -103,9 +103,12 @@ fn contacts(world: &World, joined: &HashSet<(usize, usize)>, out: &mut Vec<Conta
         if bodies[a].kind != BodyKind::Dynamic && bodies[b].kind != BodyKind::Dynamic {
             continue;
         }
-        let same_group = bodies[a].collision_group.is_some()
-            && bodies[a].collision_group == bodies[b].collision_group;
-        if soft_step && (same_group || joined.contains(&(a.min(b), a.max(b)))) {
+        // The bodies' filters (a compound part's own filter aside) and
+        // sensors, as the soft step's pair search reads them.
+        let refused = !bodies[a].filter.should_collide(&bodies[b].filter)
+            || bodies[a].sensor
+            || bodies[b].sensor;
+        if soft_step && (refused || joined.contains(&(a.min(b), a.max(b)))) {
             continue;
         }
         let (Some(sa), Some(sb)) = (&bodies[a].shape, &bodies[b].shape) else {
