@@ -92,7 +92,7 @@ pub struct SoftStepSettings {
     /// does not give its own ([`crate::material`]). Default 0 (Box2D's).
     pub rolling_resistance: f64,
     /// Approach speed (m/s, ≥ 0) above which a pair that begins touching
-    /// reports a hit event ([`super::ContactEvents::hits`]). Default 1 m/s
+    /// reports a hit event ([`super::StepEvents::hits`]). Default 1 m/s
     /// (Box2D's `hitEventThreshold`).
     pub hit_event_threshold: f64,
 }
