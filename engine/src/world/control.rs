@@ -185,10 +185,7 @@ impl World {
                 reason: "the body does not rotate (a particle, or its rotation is locked)",
             });
         }
-        let state = &mut self.core.states[id];
-        state.velocity = velocity;
-        state.angular_velocity = angular_velocity;
-        self.model.velocity_changed(id);
+        self.write_velocity(id, velocity, angular_velocity);
         Ok(())
     }
 
@@ -315,11 +312,17 @@ impl World {
             format!("angular velocity of body '{name}' after the impulse"),
             angular_velocity,
         )?;
+        self.write_velocity(id, velocity, angular_velocity);
+        Ok(())
+    }
+
+    /// Sets body `id`'s velocity (m/s) and angular velocity (rad/s),
+    /// already validated, and tells the contact model (which wakes it).
+    fn write_velocity(&mut self, id: BodyId, velocity: Vector2<f64>, angular_velocity: f64) {
         let state = &mut self.core.states[id];
         state.velocity = velocity;
         state.angular_velocity = angular_velocity;
         self.model.velocity_changed(id);
-        Ok(())
     }
 
     /// Gives kinematic body `id` the velocity that brings it to `position`
@@ -366,10 +369,7 @@ impl World {
             format!("angular velocity to the target of body '{name}'"),
             angular_velocity,
         )?;
-        let state = &mut self.core.states[id];
-        state.velocity = velocity;
-        state.angular_velocity = angular_velocity;
-        self.model.velocity_changed(id);
+        self.write_velocity(id, velocity, angular_velocity);
         Ok(())
     }
 
