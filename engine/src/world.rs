@@ -242,18 +242,22 @@ impl World {
     /// ([`ContactHooks`]), replacing any set before. Soft-step contact
     /// model only, as [`World::step_events`].
     pub fn set_contact_hooks(&mut self, hooks: impl ContactHooks + 'static) -> Result<()> {
-        match &mut self.model {
-            Dynamics::SoftStep(s) => {
-                s.set_hooks(Some(Box::new(hooks)));
-                Ok(())
-            }
-            Dynamics::Exact(_) => Err(exact_refuses("contact hooks")),
-        }
+        self.soft_step_mut("contact hooks")?
+            .set_hooks(Some(Box::new(hooks)));
+        Ok(())
     }
 
     /// The soft-step model, or the error naming the exact model for `what`.
     fn soft_step(&self, what: &str) -> Result<&SoftStep> {
         match &self.model {
+            Dynamics::SoftStep(s) => Ok(s),
+            Dynamics::Exact(_) => Err(exact_refuses(what)),
+        }
+    }
+
+    /// [`World::soft_step`], to change it.
+    fn soft_step_mut(&mut self, what: &str) -> Result<&mut SoftStep> {
+        match &mut self.model {
             Dynamics::SoftStep(s) => Ok(s),
             Dynamics::Exact(_) => Err(exact_refuses(what)),
         }
