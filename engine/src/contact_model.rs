@@ -22,7 +22,7 @@ use crate::body::{Body, BodyId};
 use crate::contact::{ContactEvent, ContactSettings};
 use crate::error::Result;
 use crate::events::EventRecord;
-use crate::exact_model::ExactModel;
+use crate::exact::ExactModel;
 use crate::integrators::{Method, Stats};
 use crate::soft_step::joints::{JointDef, JointId, JointState};
 use crate::soft_step::{SoftStep, SoftStepSettings};

@@ -114,8 +114,7 @@ pub mod body;
 mod contact_model;
 pub mod error;
 pub mod events;
-mod exact_joints;
-mod exact_model;
+mod exact;
 pub mod filter;
 pub mod forces;
 pub mod integrators;
@@ -130,7 +129,6 @@ pub mod trace;
 pub mod validation;
 mod world;
 mod world_core;
-mod world_ode;
 
 // The validation modules under their old paths, for the engine itself.
 pub(crate) use validation::{collision, contact, root_finding};

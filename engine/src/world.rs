@@ -22,7 +22,7 @@ use crate::contact::{ContactEvent, ContactSettings, StepProfile};
 use crate::contact_model::{ContactModel, Dynamics};
 use crate::error::{EngineError, Result, require_positive};
 use crate::events::{EventRecord, EventSpec};
-use crate::exact_model::ExactModel;
+use crate::exact::ExactModel;
 use crate::forces::{Force, Gravity, TimeWindow};
 use crate::integrators::{Method, Stats};
 use crate::soft_step::joints::{JointDef, JointId, JointState};

@@ -45,13 +45,13 @@
 //! The world then integrates to that time, settles, and goes on with the
 //! rest of the step: several contacts in one step are handled in time order.
 
-use super::events::{ContactEvent, ContactEventKind, StepProfile};
-use super::resting::{
+use crate::contact::{ContactEvent, ContactEventKind, StepProfile};
+use crate::contact::resting::{
     FrictionMode, RestingContacts, RestingPair, features_of, islands, manifold_rows, pose,
 };
-use super::rows::{BodyView, Row, RowKind, Side, effective_mass, perp};
-use super::settings::ContactSettings;
-use super::solver::{MAX_CONTACT_ROWS, solve};
+use crate::contact::rows::{BodyView, Row, RowKind, Side, effective_mass, perp};
+use crate::contact::ContactSettings;
+use crate::contact::solver::{MAX_CONTACT_ROWS, solve};
 use crate::body::{Body, BodyState};
 use crate::collision::features::ContactFeatures;
 use crate::collision::features::{collide_on_face, equally_deep};
@@ -59,7 +59,7 @@ use crate::collision::narrow_phase::rotation_radius;
 use crate::collision::polygon_polygon::Face;
 use crate::collision::{Aabb, Manifold, SweepAndPrune};
 use crate::error::{EngineError, Result};
-use crate::world_ode::{Layout, WorldOde};
+use super::ode::{Layout, WorldOde};
 use nalgebra::Vector2;
 use std::time::{Duration, Instant};
 

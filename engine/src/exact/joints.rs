@@ -62,7 +62,7 @@ use crate::soft_step::joints::{
     wrap_angle,
 };
 use crate::world_core::WorldCore;
-use crate::world_ode::Layout;
+use super::ode::Layout;
 use nalgebra::Vector2;
 
 /// Most Newton iterations of the position projection.

@@ -9,16 +9,16 @@
 //! length, so the event lies on the method's solution.
 
 use super::pipeline::{ContactPipeline, PROJECTION_SLOP, Phase, Profiler};
-use super::resting::{FrictionMode, RestingPair, pose};
-use super::rows::BodyView;
-use super::settings::ToiMethod;
+use crate::contact::resting::{FrictionMode, RestingPair, pose};
+use crate::contact::rows::BodyView;
+use crate::contact::ToiMethod;
 use crate::body::{Body, BodyState};
 use crate::collision::narrow_phase::{inner_radius, rotation_radius};
 use crate::collision::proximity;
 use crate::error::{EngineError, Result};
 use crate::integrators::Integrator;
 use crate::root_finding::illinois;
-use crate::world_ode::WorldOde;
+use super::ode::WorldOde;
 use nalgebra::Vector2;
 
 /// Relative time tolerance of the stick-time root finding (as the world's

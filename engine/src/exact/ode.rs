@@ -7,7 +7,7 @@
 
 use crate::body::{Body, BodyState};
 use crate::contact::resting::RestingContacts;
-use crate::exact_joints::ExactJoints;
+use super::joints::ExactJoints;
 use crate::forces::{Force, ForceContext, Wrench};
 use crate::ode::{OdeSystem, Structure};
 

@@ -40,17 +40,23 @@
 //!    starts with a settle. Several contacts in one step are so handled in
 //!    time order.
 
+pub mod contact;
+pub(crate) mod joints;
+pub(crate) mod ode;
+pub(crate) mod pipeline;
+mod search;
+
 use crate::body::{Body, BodyKind, BodyState};
-use crate::contact::pipeline::{ContactPipeline, Phase, Profiler};
+use pipeline::{ContactPipeline, Phase, Profiler};
 use crate::contact::resting::RestingContacts;
 use crate::contact::{ContactEvent, ContactSettings};
 use crate::error::{EngineError, Result};
 use crate::events::{EventRecord, EventSpec};
-use crate::exact_joints::ExactJoints;
+use joints::ExactJoints;
 use crate::integrators::{Integrator, Method, Stats};
 use crate::root_finding::illinois;
 use crate::world_core::{ForceEntry, WorldCore, check_energy_value, total_energy};
-use crate::world_ode::{ActiveForce, Layout, WorldOde};
+use ode::{ActiveForce, Layout, WorldOde};
 
 /// Relative width (of the step) to which event times are located: a few
 /// ulps of the time, far below any tolerance the harness applies.
