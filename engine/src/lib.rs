@@ -121,6 +121,7 @@ pub mod integrators;
 pub mod material;
 pub mod ode;
 pub mod prelude;
+mod profile;
 pub mod query;
 pub mod shape;
 pub mod soft_step;
@@ -134,7 +135,7 @@ mod world_core;
 pub(crate) use validation::{collision, contact, root_finding};
 
 pub use body::{Body, BodyDef, BodyId, BodyKind, BodyState};
-pub use contact::{ContactEvent, ContactEventKind, ContactSettings, StepProfile, ToiMethod};
+pub use contact::{ContactEvent, ContactEventKind, ContactSettings, ToiMethod};
 pub use contact_model::ContactModel;
 pub use error::{EngineError, Result};
 pub use events::{Crossing, EventRecord, EventSpec, Quantity};
@@ -145,6 +146,7 @@ pub use integrators::{
 };
 pub use material::{MixingRule, ShapeOverrides};
 pub use ode::{FnSystem, OdeSystem, Structure};
+pub use profile::StepProfile;
 pub use query::{RayHit, ShapeCastHit, ShapeDistance, ShapeRef};
 pub use shape::{Circle, Compound, CompoundPart, ConvexPolygon, Shape};
 pub use soft_step::SoftStepSettings;

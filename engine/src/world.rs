@@ -18,7 +18,8 @@
 //! the body's proxy into its broad phase.
 
 use crate::body::{Body, BodyDef, BodyId, BodyState};
-use crate::contact::{ContactEvent, ContactSettings, StepProfile};
+use crate::contact::{ContactEvent, ContactSettings};
+use crate::profile::StepProfile;
 use crate::contact_model::{ContactModel, Dynamics};
 use crate::error::{EngineError, Result, require_positive};
 use crate::events::{EventRecord, EventSpec};

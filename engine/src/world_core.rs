@@ -5,7 +5,7 @@
 //! every step; the models never see each other.
 
 use crate::body::{Body, BodyState};
-use crate::exact::pipeline::Profiler;
+use crate::profile::Profiler;
 use crate::error::{EngineError, Result};
 use crate::events::EventSpec;
 use crate::forces::{Force, ForceContext, TimeWindow, Wrench};

@@ -47,7 +47,8 @@ pub(crate) mod pipeline;
 mod search;
 
 use crate::body::{Body, BodyKind, BodyState};
-use pipeline::{ContactPipeline, Phase, Profiler};
+use crate::profile::{Phase, Profiler};
+use pipeline::ContactPipeline;
 use crate::contact::resting::RestingContacts;
 use crate::contact::{ContactEvent, ContactSettings};
 use crate::error::{EngineError, Result};

@@ -45,7 +45,7 @@
 //! The world then integrates to that time, settles, and goes on with the
 //! rest of the step: several contacts in one step are handled in time order.
 
-use crate::contact::{ContactEvent, ContactEventKind, StepProfile};
+use crate::contact::{ContactEvent, ContactEventKind};
 use crate::contact::resting::{
     FrictionMode, RestingContacts, RestingPair, features_of, islands, manifold_rows, pose,
 };
@@ -61,7 +61,7 @@ use crate::collision::{Aabb, Manifold, SweepAndPrune};
 use crate::error::{EngineError, Result};
 use super::ode::{Layout, WorldOde};
 use nalgebra::Vector2;
-use std::time::{Duration, Instant};
+use crate::profile::{Phase, Profiler};
 
 /// Overlap (in units of ε) beyond which a pair is projected apart at a
 /// settle. Above the 2ε a located impact can leave, so a pair found by the
@@ -71,64 +71,6 @@ pub const PROJECTION_SLOP: f64 = 4.0;
 /// Most projection passes at one settle: each is linearised, so a deep
 /// overlap (bodies created inside each other) may need a few.
 const PROJECTION_PASSES: usize = 16;
-
-/// Per-phase timing, on only when asked (an `Instant::now` per phase would
-/// otherwise cost more than a cheap step).
-#[derive(Debug, Clone, Default)]
-pub(crate) struct Profiler {
-    pub on: bool,
-    pub profile: StepProfile,
-}
-
-/// A phase of the step.
-#[derive(Debug, Clone, Copy)]
-pub(crate) enum Phase {
-    Integrate,
-    Broad,
-    Narrow,
-    Toi,
-    Respond,
-    Pairs,
-    Collide,
-    Prepare,
-    WarmStart,
-    Solve,
-    Relax,
-    Restitution,
-    Store,
-    Continuous,
-    Sleep,
-}
-
-impl Profiler {
-    pub(crate) fn start(&self) -> Option<Instant> {
-        self.on.then(Instant::now)
-    }
-
-    pub(crate) fn stop(&mut self, phase: Phase, started: Option<Instant>) {
-        if let Some(s) = started {
-            let d = s.elapsed();
-            let slot: &mut Duration = match phase {
-                Phase::Integrate => &mut self.profile.integrate,
-                Phase::Broad => &mut self.profile.broad_phase,
-                Phase::Narrow => &mut self.profile.narrow_phase,
-                Phase::Toi => &mut self.profile.toi,
-                Phase::Respond => &mut self.profile.respond,
-                Phase::Pairs => &mut self.profile.pairs,
-                Phase::Collide => &mut self.profile.collide,
-                Phase::Prepare => &mut self.profile.prepare,
-                Phase::WarmStart => &mut self.profile.warm_start,
-                Phase::Solve => &mut self.profile.solve,
-                Phase::Relax => &mut self.profile.relax,
-                Phase::Restitution => &mut self.profile.restitution,
-                Phase::Store => &mut self.profile.store,
-                Phase::Continuous => &mut self.profile.continuous,
-                Phase::Sleep => &mut self.profile.sleep,
-            };
-            *slot += d;
-        }
-    }
-}
 
 /// Writes body `i`'s velocities into the state vector.
 fn write_velocity(layout: &Layout, y: &mut [f64], i: usize, s: &BodyState) {

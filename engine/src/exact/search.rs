@@ -8,7 +8,8 @@
 //! integrator's own step from the start of the trial step, of a shorter
 //! length, so the event lies on the method's solution.
 
-use super::pipeline::{ContactPipeline, PROJECTION_SLOP, Phase, Profiler};
+use super::pipeline::{ContactPipeline, PROJECTION_SLOP};
+use crate::profile::{Phase, Profiler};
 use crate::contact::resting::{FrictionMode, RestingPair, pose};
 use crate::contact::rows::BodyView;
 use crate::contact::ToiMethod;

@@ -217,7 +217,7 @@ pub fn lanes_in_use() -> &'static str {
 }
 
 use crate::body::{BodyId, BodyKind, BodyState};
-use crate::exact::pipeline::Phase;
+use crate::profile::Phase;
 use crate::error::{EngineError, Result};
 use crate::events::EventRecord;
 use crate::forces::Wrench;

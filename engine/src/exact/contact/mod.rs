@@ -46,7 +46,8 @@ pub(crate) mod rows;
 mod settings;
 pub(crate) mod solver;
 
-pub use events::{ContactEvent, ContactEventKind, StepProfile};
+pub use crate::profile::StepProfile;
+pub use events::{ContactEvent, ContactEventKind};
 pub use impulse::{ImpactBody, ImpactOutcome, Velocities, impact_eq_7_15};
 pub use super::pipeline::PROJECTION_SLOP;
 pub use settings::{ContactSettings, ToiMethod};
