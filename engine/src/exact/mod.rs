@@ -45,6 +45,7 @@ pub(crate) mod joints;
 pub(crate) mod ode;
 pub(crate) mod pipeline;
 mod search;
+mod world_seam;
 
 use crate::body::{Body, BodyKind, BodyState};
 use crate::profile::{Phase, Profiler};

@@ -191,6 +191,7 @@ mod softness;
 mod test_numbers;
 mod wide_solver;
 mod world_joints;
+mod world_seam;
 
 pub use contact_events::{
     ContactData, ContactHooks, ContactPointData, HitEvent, JointEvent, PreSolveContact,
