@@ -127,6 +127,7 @@ pub mod shape;
 pub mod soft_step;
 pub mod time_grid;
 pub mod trace;
+mod tunables;
 pub mod validation;
 mod world;
 mod world_core;

@@ -19,13 +19,13 @@
 
 use crate::body::{Body, BodyDef, BodyId, BodyState};
 use crate::contact::{ContactEvent, ContactSettings};
-use crate::profile::StepProfile;
 use crate::contact_model::{ContactModel, Dynamics};
 use crate::error::{EngineError, Result, require_positive};
 use crate::events::{EventRecord, EventSpec};
 use crate::exact::ExactModel;
 use crate::forces::{Force, Gravity, TimeWindow};
 use crate::integrators::{Method, Stats};
+use crate::profile::StepProfile;
 use crate::soft_step::joints::{JointDef, JointId, JointState};
 use crate::soft_step::{ContactData, ContactHooks, SoftStep, StepEvents};
 use crate::time_grid::{grid_time, step_count};
@@ -40,9 +40,7 @@ mod snapshot;
 #[cfg(feature = "serde")]
 pub(crate) use snapshot::{deserialize_forces, serialize_forces};
 
-/// How many ulps of the current time separate a force-window edge from a
-/// step end before the step is split there.
-const EDGE_RESOLUTION_ULPS: f64 = 16.0;
+use crate::tunables::EDGE_RESOLUTION_ULPS;
 
 /// The error of a soft-step-only call under the exact model.
 fn exact_refuses(what: &str) -> EngineError {

@@ -48,21 +48,19 @@ mod search;
 mod world_seam;
 
 use crate::body::{Body, BodyKind, BodyState};
-use crate::profile::{Phase, Profiler};
-use pipeline::ContactPipeline;
 use crate::contact::resting::RestingContacts;
 use crate::contact::{ContactEvent, ContactSettings};
 use crate::error::{EngineError, Result};
 use crate::events::{EventRecord, EventSpec};
-use joints::ExactJoints;
 use crate::integrators::{Integrator, Method, Stats};
+use crate::profile::{Phase, Profiler};
 use crate::root_finding::illinois;
 use crate::world_core::{ForceEntry, WorldCore, check_energy_value, total_energy};
+use joints::ExactJoints;
 use ode::{ActiveForce, Layout, WorldOde};
+use pipeline::ContactPipeline;
 
-/// Relative width (of the step) to which event times are located: a few
-/// ulps of the time, far below any tolerance the harness applies.
-const EVENT_TIME_TOLERANCE: f64 = 1e-15;
+use crate::tunables::EVENT_TIME_TOLERANCE;
 
 /// The exact model's state: the integrator, the state-vector layout, and
 /// the contact pipeline when contacts are on.

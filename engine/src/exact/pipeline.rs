@@ -45,32 +45,28 @@
 //! The world then integrates to that time, settles, and goes on with the
 //! rest of the step: several contacts in one step are handled in time order.
 
-use crate::contact::{ContactEvent, ContactEventKind};
-use crate::contact::resting::{
-    FrictionMode, RestingContacts, RestingPair, features_of, islands, manifold_rows, pose,
-};
-use crate::contact::rows::{BodyView, Row, RowKind, Side, effective_mass, perp};
-use crate::contact::ContactSettings;
-use crate::contact::solver::{MAX_CONTACT_ROWS, solve};
+use super::ode::{Layout, WorldOde};
 use crate::body::{Body, BodyState};
 use crate::collision::features::ContactFeatures;
 use crate::collision::features::{collide_on_face, equally_deep};
 use crate::collision::narrow_phase::rotation_radius;
 use crate::collision::polygon_polygon::Face;
 use crate::collision::{Aabb, Manifold, SweepAndPrune};
+use crate::contact::ContactSettings;
+use crate::contact::resting::{
+    FrictionMode, RestingContacts, RestingPair, features_of, islands, manifold_rows, pose,
+};
+use crate::contact::rows::{BodyView, Row, RowKind, Side, effective_mass, perp};
+use crate::contact::solver::{MAX_CONTACT_ROWS, solve};
+use crate::contact::{ContactEvent, ContactEventKind};
 use crate::error::{EngineError, Result};
-use super::ode::{Layout, WorldOde};
-use nalgebra::Vector2;
 use crate::profile::{Phase, Profiler};
+use nalgebra::Vector2;
 
-/// Overlap (in units of ε) beyond which a pair is projected apart at a
-/// settle. Above the 2ε a located impact can leave, so a pair found by the
-/// time-of-impact search is never moved.
-pub const PROJECTION_SLOP: f64 = 4.0;
+/// Read from [`crate::tunables`] (unit, value and source there).
+pub use crate::tunables::PROJECTION_SLOP;
 
-/// Most projection passes at one settle: each is linearised, so a deep
-/// overlap (bodies created inside each other) may need a few.
-const PROJECTION_PASSES: usize = 16;
+use crate::tunables::PROJECTION_PASSES;
 
 /// Writes body `i`'s velocities into the state vector.
 fn write_velocity(layout: &Layout, y: &mut [f64], i: usize, s: &BodyState) {

@@ -108,11 +108,11 @@ pub fn lanes_in_use() -> &'static str {
 }
 
 use crate::body::{BodyId, BodyKind, BodyState};
-use crate::profile::Phase;
 use crate::error::{EngineError, Result};
 use crate::events::EventRecord;
 use crate::forces::Wrench;
 use crate::integrators::Stats;
+use crate::profile::Phase;
 use crate::world_core::{WorldCore, check_energy_value};
 use bodies::{BodyMass, BodySim, SolverBody, solver_body};
 use broad_phase::BroadPhase;

@@ -47,7 +47,7 @@ mod settings;
 pub(crate) mod solver;
 
 pub use crate::profile::StepProfile;
+pub use crate::tunables::PROJECTION_SLOP;
 pub use events::{ContactEvent, ContactEventKind};
 pub use impulse::{ImpactBody, ImpactOutcome, Velocities, impact_eq_7_15};
-pub use super::pipeline::PROJECTION_SLOP;
 pub use settings::{ContactSettings, ToiMethod};
