@@ -18,8 +18,9 @@
 //!
 //! What a world asks of its model is the trait [`ContactModelStep`]: each
 //! model implements it beside its own code (`exact/world_seam.rs`,
-//! `soft_step/world_seam.rs`), and [`Dynamics`] turns the model a world
-//! holds into that trait object in one place ([`Dynamics::step_model`]), so
+//! `soft_step/world_seam.rs`), and the world's `Dynamics`
+//! (`world/dynamics.rs`) turns the model a world holds into that trait
+//! object in one place, so
 //! the world's calls (`self.model.advance(..)`, `self.model.body_added(..)`)
 //! read the same for every model. A third model is a module implementing
 //! the trait, plus a variant here, in `Dynamics` and in that one match.
@@ -28,13 +29,11 @@ use crate::body::{Body, BodyId};
 use crate::contact::{ContactEvent, ContactSettings};
 use crate::error::Result;
 use crate::events::EventRecord;
-use crate::exact::ExactModel;
 use crate::integrators::{Method, Stats};
+use crate::soft_step::SoftStepSettings;
 use crate::soft_step::joints::{JointDef, JointId, JointState};
-use crate::soft_step::{SoftStep, SoftStepSettings};
 use crate::world_core::WorldCore;
 use nalgebra::Vector2;
-use std::ops::{Deref, DerefMut};
 
 /// How a world handles contacts, with the model's settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -71,7 +70,7 @@ pub(crate) const JOINTS_NEED_SOFT_STEP: &str = "a world's joints stay with the c
 
 /// What a world asks of its contact model: the body and joint changes it
 /// must hear of, the step itself, and what it reports. Implemented by
-/// [`ExactModel`] (`exact/world_seam.rs`) and [`SoftStep`]
+/// the exact model (`exact/world_seam.rs`) and the soft step
 /// (`soft_step/world_seam.rs`); the defaults are what a model without
 /// sleeping, joints of its own or contact events answers.
 pub(crate) trait ContactModelStep {
@@ -162,47 +161,4 @@ pub(crate) trait ContactModelStep {
 
     /// The integration method.
     fn method(&self) -> Method;
-}
-
-/// The model a world runs, with its state (an enum rather than a boxed
-/// trait object so that a world stays `Clone` and serializable).
-#[derive(Debug, Clone)]
-pub(crate) enum Dynamics {
-    /// The exact model; also a world without contacts.
-    Exact(Box<ExactModel>),
-    /// The soft step.
-    SoftStep(Box<SoftStep>),
-}
-
-impl Dynamics {
-    /// The model as the world sees it: the one place the variants are
-    /// told apart for the world's calls.
-    pub(crate) fn step_model(&self) -> &(dyn ContactModelStep + 'static) {
-        match self {
-            Dynamics::Exact(m) => m.as_ref(),
-            Dynamics::SoftStep(s) => s.as_ref(),
-        }
-    }
-
-    /// [`Dynamics::step_model`], mutable.
-    pub(crate) fn step_model_mut(&mut self) -> &mut (dyn ContactModelStep + 'static) {
-        match self {
-            Dynamics::Exact(m) => m.as_mut(),
-            Dynamics::SoftStep(s) => s.as_mut(),
-        }
-    }
-}
-
-impl Deref for Dynamics {
-    type Target = dyn ContactModelStep;
-
-    fn deref(&self) -> &Self::Target {
-        self.step_model()
-    }
-}
-
-impl DerefMut for Dynamics {
-    fn deref_mut(&mut self) -> &mut Self::Target {
-        self.step_model_mut()
-    }
 }

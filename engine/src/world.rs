@@ -19,7 +19,7 @@
 
 use crate::body::{Body, BodyDef, BodyId, BodyState};
 use crate::contact::{ContactEvent, ContactSettings};
-use crate::contact_model::{ContactModel, Dynamics};
+use crate::contact_model::ContactModel;
 use crate::error::{EngineError, Result, require_positive};
 use crate::events::{EventRecord, EventSpec};
 use crate::exact::ExactModel;
@@ -35,9 +35,11 @@ use nalgebra::Vector2;
 use std::sync::Arc;
 
 mod control;
+mod dynamics;
 mod snapshot;
 
 #[cfg(feature = "serde")]
+pub(crate) use dynamics::Dynamics;
 pub(crate) use snapshot::{deserialize_forces, serialize_forces};
 
 use crate::tunables::EDGE_RESOLUTION_ULPS;
