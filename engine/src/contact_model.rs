@@ -16,16 +16,22 @@
 //!   passes, speculative contacts. Meant for thousands of bodies (seed
 //!   §2.2). Module [`crate::soft_step`].
 //!
-//! A third model is a module plus a variant here and in `Dynamics`.
+//! What a world asks of its model is the trait [`ContactModelStep`]: each
+//! model implements it beside its own code (`exact/world_seam.rs`,
+//! `soft_step/world_seam.rs`), and the world's `Dynamics`
+//! (`world/dynamics.rs`) turns the model a world holds into that trait
+//! object in one place, so
+//! the world's calls (`self.model.advance(..)`, `self.model.body_added(..)`)
+//! read the same for every model. A third model is a module implementing
+//! the trait, plus a variant here, in `Dynamics` and in that one match.
 
 use crate::body::{Body, BodyId};
 use crate::contact::{ContactEvent, ContactSettings};
 use crate::error::Result;
 use crate::events::EventRecord;
-use crate::exact_model::ExactModel;
 use crate::integrators::{Method, Stats};
+use crate::soft_step::SoftStepSettings;
 use crate::soft_step::joints::{JointDef, JointId, JointState};
-use crate::soft_step::{SoftStep, SoftStepSettings};
 use crate::world_core::WorldCore;
 use nalgebra::Vector2;
 
@@ -62,206 +68,97 @@ pub(crate) const JOINTS_NEED_SOFT_STEP: &str = "a world's joints stay with the c
      they were added to (the soft step's are not carried over to the exact model): build the \
      world with the model first (in a scene file, [contact] model = \"exact\" or \"soft_step\")";
 
-/// The model a world runs, with its state.
-#[derive(Debug, Clone)]
-pub(crate) enum Dynamics {
-    /// The exact model; also a world without contacts.
-    Exact(Box<ExactModel>),
-    /// The soft step.
-    SoftStep(Box<SoftStep>),
-}
-
-impl Dynamics {
+/// What a world asks of its contact model: the body and joint changes it
+/// must hear of, the step itself, and what it reports. Implemented by
+/// the exact model (`exact/world_seam.rs`) and the soft step
+/// (`soft_step/world_seam.rs`); the defaults are what a model without
+/// sleeping, joints of its own or contact events answers.
+pub(crate) trait ContactModelStep {
     /// Refuses a body the model cannot simulate.
-    pub(crate) fn check_body(&self, body: &Body) -> Result<()> {
-        match self {
-            Dynamics::Exact(_) => ExactModel::check_body(body),
-            Dynamics::SoftStep(_) => Ok(()),
-        }
+    fn check_body(&self, _body: &Body) -> Result<()> {
+        Ok(())
     }
 
     /// A body was added to `core` (it is the last one).
-    pub(crate) fn body_added(&mut self, core: &WorldCore, id: BodyId) {
-        match self {
-            Dynamics::Exact(m) => m.bodies_changed(),
-            Dynamics::SoftStep(s) => s.body_added(core, id),
-        }
-    }
+    fn body_added(&mut self, core: &WorldCore, id: BodyId);
 
     /// Body `id` of `core` was removed (made inert).
-    pub(crate) fn body_removed(&mut self, core: &WorldCore, id: BodyId) {
-        match self {
-            Dynamics::Exact(m) => {
-                m.joints.body_removed(id);
-                m.bodies_changed();
-            }
-            Dynamics::SoftStep(s) => s.body_removed(core, id),
-        }
-    }
+    fn body_removed(&mut self, core: &WorldCore, id: BodyId);
 
     /// Body `id`'s [`Body`] in `core` changed (kind, mass, inertia,
     /// shape set or cleared).
-    pub(crate) fn body_changed(&mut self, core: &WorldCore, id: BodyId) {
-        match self {
-            Dynamics::Exact(m) => m.bodies_changed(),
-            Dynamics::SoftStep(s) => s.body_changed(core, id),
-        }
-    }
+    fn body_changed(&mut self, core: &WorldCore, id: BodyId);
 
     /// Body `id` was moved to the pose in `core.states[id]`.
-    pub(crate) fn pose_changed(&mut self, core: &WorldCore, id: BodyId) {
-        match self {
-            Dynamics::Exact(m) => m.bodies_changed(),
-            Dynamics::SoftStep(s) => s.pose_changed(core, id),
-        }
-    }
+    fn pose_changed(&mut self, core: &WorldCore, id: BodyId);
 
     /// Body `id`'s velocity was set or kicked: the exact model drops its
     /// resting pairs (they are chosen again at the next step from the new
     /// velocities), the soft step wakes the body.
-    pub(crate) fn velocity_changed(&mut self, id: BodyId) {
-        match self {
-            Dynamics::Exact(m) => m.bodies_changed(),
-            Dynamics::SoftStep(s) => s.velocity_changed(id),
-        }
-    }
+    fn velocity_changed(&mut self, id: BodyId);
 
-    /// Wakes body `id` (the soft step; nothing sleeps under the exact
-    /// model).
-    pub(crate) fn wake(&mut self, id: BodyId) {
-        if let Dynamics::SoftStep(s) = self {
-            s.velocity_changed(id);
-        }
-    }
+    /// Wakes body `id` (nothing sleeps under a model without sleeping).
+    fn wake(&mut self, _id: BodyId) {}
 
     /// The joints of body `id` that are not removed, with the other body
     /// of each (`None`: the world).
-    pub(crate) fn joints_of(&self, id: BodyId) -> Vec<(JointId, Option<BodyId>)> {
-        match self {
-            Dynamics::Exact(_) => Vec::new(),
-            Dynamics::SoftStep(s) => s.joints_of(id),
-        }
+    fn joints_of(&self, _id: BodyId) -> Vec<(JointId, Option<BodyId>)> {
+        Vec::new()
     }
 
-    /// Whether body `id` sleeps (soft step with sleeping on).
-    pub(crate) fn is_asleep(&self, id: BodyId) -> bool {
-        match self {
-            Dynamics::Exact(_) => false,
-            Dynamics::SoftStep(s) => s.is_asleep(id),
-        }
+    /// Whether body `id` sleeps.
+    fn is_asleep(&self, _id: BodyId) -> bool {
+        false
     }
 
-    /// Advances `core` over the force segments ending at `edges`.
-    pub(crate) fn advance(
+    /// Advances `core` over the force segments ending at `edges`,
+    /// recording located events in `found`.
+    fn advance(
         &mut self,
         core: &mut WorldCore,
         edges: &[f64],
         found: &mut Vec<EventRecord>,
-    ) -> Result<()> {
-        match self {
-            Dynamics::Exact(m) => m.advance(core, edges, found),
-            Dynamics::SoftStep(s) => s.advance(core, edges, found),
-        }
-    }
+    ) -> Result<()>;
 
     /// The model and its settings; `None` for a world without contacts.
-    pub(crate) fn model(&self) -> Option<ContactModel> {
-        match self {
-            Dynamics::Exact(m) => m
-                .contacts_enabled()
-                .then_some(ContactModel::Exact(m.settings)),
-            Dynamics::SoftStep(s) => Some(ContactModel::SoftStep(*s.settings())),
-        }
+    fn model(&self) -> Option<ContactModel>;
+
+    /// Whether collision code runs for these bodies.
+    fn has_contacts(&self, bodies: &[Body]) -> bool;
+
+    /// The contact events so far, in time order (the exact model's).
+    fn contact_events(&self) -> Vec<ContactEvent> {
+        Vec::new()
     }
 
-    pub(crate) fn has_contacts(&self, bodies: &[Body]) -> bool {
-        match self {
-            Dynamics::Exact(m) => m.has_contacts(bodies),
-            Dynamics::SoftStep(_) => true,
-        }
-    }
+    /// Work done by the integrator.
+    fn stats(&self) -> Stats;
 
-    pub(crate) fn contact_events(&self) -> Vec<ContactEvent> {
-        match self {
-            Dynamics::Exact(m) => m.contact_events(),
-            Dynamics::SoftStep(_) => Vec::new(),
-        }
-    }
-
-    pub(crate) fn stats(&self) -> Stats {
-        match self {
-            Dynamics::Exact(m) => m.stats(),
-            Dynamics::SoftStep(s) => s.stats(),
-        }
-    }
-
-    /// Adds a joint: the soft step takes every type; the exact model the
-    /// holonomic ones it solves ([`crate::exact_joints`]), and refuses the
-    /// rest with a typed error naming the joint.
-    pub(crate) fn add_joint(&mut self, core: &WorldCore, def: &JointDef) -> Result<JointId> {
-        match self {
-            Dynamics::Exact(m) => m.joints.add(core, def),
-            Dynamics::SoftStep(s) => s.add_joint(core, def),
-        }
-    }
+    /// Adds a joint, or refuses a type the model does not solve with a
+    /// typed error naming the joint.
+    fn add_joint(&mut self, core: &WorldCore, def: &JointDef) -> Result<JointId>;
 
     /// How many joints the world holds (removed ones included).
-    pub(crate) fn joint_count(&self) -> usize {
-        match self {
-            Dynamics::Exact(m) => m.joints.set.len(),
-            Dynamics::SoftStep(s) => s.joint_count(),
-        }
+    fn joint_count(&self) -> usize;
+
+    /// Joint `id`'s state.
+    fn joint(&self, core: &WorldCore, id: JointId) -> Result<JointState>;
+
+    /// Removes joint `id`.
+    fn remove_joint(&mut self, id: JointId) -> Result<()>;
+
+    /// Moves a target joint's target (m, world frame).
+    fn set_joint_target(&mut self, id: JointId, target: Vector2<f64>) -> Result<()>;
+
+    /// Sets a joint motor's speed (rad/s or m/s).
+    fn set_motor_speed(&mut self, id: JointId, speed: f64) -> Result<()>;
+
+    /// The largest constraint error a projection removed from the joints
+    /// (m or rad); `None` for a model that does not project.
+    fn joint_drift(&self) -> Option<f64> {
+        None
     }
 
-    pub(crate) fn joint(&self, core: &WorldCore, id: JointId) -> Result<JointState> {
-        match self {
-            Dynamics::Exact(m) => m.joints.state(id, &core.states),
-            Dynamics::SoftStep(s) => s.joint_state(core, id),
-        }
-    }
-
-    pub(crate) fn remove_joint(&mut self, id: JointId) -> Result<()> {
-        match self {
-            Dynamics::Exact(m) => m.joints.remove(id),
-            Dynamics::SoftStep(s) => s.remove_joint(id),
-        }
-    }
-
-    /// The exact model holds no target joint: its refusal names the joint.
-    pub(crate) fn set_joint_target(&mut self, id: JointId, target: Vector2<f64>) -> Result<()> {
-        match self {
-            Dynamics::Exact(m) => {
-                m.joints.set.check(id)?;
-                m.joints.set.set_target(id, target).map(|_| ())
-            }
-            Dynamics::SoftStep(s) => s.set_joint_target(id, target),
-        }
-    }
-
-    /// The exact model holds no motor: its refusal names the joint.
-    pub(crate) fn set_motor_speed(&mut self, id: JointId, speed: f64) -> Result<()> {
-        match self {
-            Dynamics::Exact(m) => {
-                m.joints.set.check(id)?;
-                m.joints.set.set_motor_speed(id, speed)
-            }
-            Dynamics::SoftStep(s) => s.set_motor_speed(id, speed),
-        }
-    }
-
-    /// The largest constraint error the exact model's projection removed
-    /// from its joints (m or rad); `None` under the soft step.
-    pub(crate) fn joint_drift(&self) -> Option<f64> {
-        match self {
-            Dynamics::Exact(m) => Some(m.joints.largest_drift()),
-            Dynamics::SoftStep(_) => None,
-        }
-    }
-
-    pub(crate) fn method(&self) -> Method {
-        match self {
-            Dynamics::Exact(m) => m.method(),
-            Dynamics::SoftStep(_) => Method::SemiImplicitEuler,
-        }
-    }
+    /// The integration method.
+    fn method(&self) -> Method;
 }

@@ -114,29 +114,29 @@ pub mod body;
 mod contact_model;
 pub mod error;
 pub mod events;
-mod exact_joints;
-mod exact_model;
+mod exact;
 pub mod filter;
 pub mod forces;
 pub mod integrators;
 pub mod material;
 pub mod ode;
 pub mod prelude;
+mod profile;
 pub mod query;
 pub mod shape;
 pub mod soft_step;
 pub mod time_grid;
 pub mod trace;
+mod tunables;
 pub mod validation;
 mod world;
 mod world_core;
-mod world_ode;
 
 // The validation modules under their old paths, for the engine itself.
 pub(crate) use validation::{collision, contact, root_finding};
 
 pub use body::{Body, BodyDef, BodyId, BodyKind, BodyState};
-pub use contact::{ContactEvent, ContactEventKind, ContactSettings, StepProfile, ToiMethod};
+pub use contact::{ContactEvent, ContactEventKind, ContactSettings, ToiMethod};
 pub use contact_model::ContactModel;
 pub use error::{EngineError, Result};
 pub use events::{Crossing, EventRecord, EventSpec, Quantity};
@@ -147,6 +147,7 @@ pub use integrators::{
 };
 pub use material::{MixingRule, ShapeOverrides};
 pub use ode::{FnSystem, OdeSystem, Structure};
+pub use profile::StepProfile;
 pub use query::{RayHit, ShapeCastHit, ShapeDistance, ShapeRef};
 pub use shape::{Circle, Compound, CompoundPart, ConvexPolygon, Shape};
 pub use soft_step::SoftStepSettings;

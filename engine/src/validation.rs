@@ -9,7 +9,6 @@
 
 #[path = "collision/mod.rs"]
 pub mod collision;
-#[path = "contact/mod.rs"]
-pub mod contact;
+pub use crate::exact::contact;
 #[path = "root_finding.rs"]
 pub mod root_finding;

@@ -18,13 +18,14 @@
 //! the body's proxy into its broad phase.
 
 use crate::body::{Body, BodyDef, BodyId, BodyState};
-use crate::contact::{ContactEvent, ContactSettings, StepProfile};
-use crate::contact_model::{ContactModel, Dynamics};
+use crate::contact::{ContactEvent, ContactSettings};
+use crate::contact_model::ContactModel;
 use crate::error::{EngineError, Result, require_positive};
 use crate::events::{EventRecord, EventSpec};
-use crate::exact_model::ExactModel;
+use crate::exact::ExactModel;
 use crate::forces::{Force, Gravity, TimeWindow};
 use crate::integrators::{Method, Stats};
+use crate::profile::StepProfile;
 use crate::soft_step::joints::{JointDef, JointId, JointState};
 use crate::soft_step::{ContactData, ContactHooks, SoftStep, StepEvents};
 use crate::time_grid::{grid_time, step_count};
@@ -34,14 +35,14 @@ use nalgebra::Vector2;
 use std::sync::Arc;
 
 mod control;
+mod dynamics;
 mod snapshot;
 
 #[cfg(feature = "serde")]
+pub(crate) use dynamics::Dynamics;
 pub(crate) use snapshot::{deserialize_forces, serialize_forces};
 
-/// How many ulps of the current time separate a force-window edge from a
-/// step end before the step is split there.
-const EDGE_RESOLUTION_ULPS: f64 = 16.0;
+use crate::tunables::EDGE_RESOLUTION_ULPS;
 
 /// The error of a soft-step-only call under the exact model.
 fn exact_refuses(what: &str) -> EngineError {

@@ -5,10 +5,10 @@
 //! every step; the models never see each other.
 
 use crate::body::{Body, BodyState};
-use crate::contact::pipeline::Profiler;
 use crate::error::{EngineError, Result};
 use crate::events::EventSpec;
 use crate::forces::{Force, ForceContext, TimeWindow, Wrench};
+use crate::profile::Profiler;
 use nalgebra::Vector2;
 use std::sync::Arc;
 

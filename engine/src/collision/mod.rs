@@ -23,9 +23,9 @@
 //!    soft-step contact model.
 //! 2. **Narrow phase** ([`narrow_phase`], seed §7.2, Fig. 7.2–7.6): for each
 //!    candidate, the separating axis theorem over the edge normals of both
-//!    polygons ([`polygon_polygon`]), with the seed's OBB test as a fast path
-//!    for boxes ([`obb`]), and exact tests for circles ([`polygon_circle`],
-//!    [`circle_circle`]). A touching pair gives a contact [`Manifold`]: one
+//!    polygons ([`polygon_polygon`]; boxes take the same path, the seed's
+//!    OBB test being that test restricted to two boxes' four normals), and
+//!    exact tests for circles ([`polygon_circle`], [`circle_circle`]). A touching pair gives a contact [`Manifold`]: one
 //!    normal and up to two points with their depths ([`manifold`]).
 //! 3. **Time of impact** ([`time_of_impact`], seed §7.2, Fig. 7.7–7.8): when
 //!    a pair interpenetrates at the end of a step, the first time in the step
@@ -50,7 +50,6 @@ pub mod dynamic_tree;
 pub(crate) mod features;
 pub mod manifold;
 pub mod narrow_phase;
-pub mod obb;
 pub mod polygon_circle;
 pub mod polygon_polygon;
 pub mod time_of_impact;
@@ -66,7 +65,6 @@ pub use circle_circle::{
 pub use dynamic_tree::{DynamicTree, ProxyId};
 pub use manifold::{Contact, Manifold, ManifoldPoint, Proximity};
 pub use narrow_phase::{collide, inner_radius, proximity};
-pub use obb::{Obb, obb_overlap, obb_separation};
 pub use polygon_circle::{
     collide_polygon_circle, collide_polygon_circle_with_margin, distance_polygon_circle,
 };

@@ -13,13 +13,10 @@ use crate::error::{EngineError, Result};
 use crate::ode::OdeSystem;
 use nalgebra::{DMatrix, DVector};
 
-/// Newton iterations allowed per step.
-pub const MAX_ITERATIONS: usize = 25;
+/// Read from [`crate::tunables`] (unit, value and source there).
+pub use crate::tunables::IMPLICIT_EULER_MAX_ITERATIONS as MAX_ITERATIONS;
 
-/// Relative size of the Newton correction at which the iteration stops: a
-/// few hundred ulps, above round-off of the residual and far below the
-/// method's own O(h²) local error for any step the harness uses.
-const NEWTON_TOLERANCE: f64 = 1e-12;
+use crate::tunables::NEWTON_TOLERANCE;
 
 /// One step of size `h` from `(t, y)` into `out`. Costs `(n + 1)` evaluations
 /// per Newton iteration (the residual and n difference columns).

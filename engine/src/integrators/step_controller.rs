@@ -3,16 +3,11 @@
 //! err_prev^β)`, with α = 0.2 − 0.75 β, β = 0.04, safety s = 0.9, the factor
 //! clamped to [0.2, 10] (to at most 1 right after a rejection).
 
-/// Exponent β of the previous error (stabilisation of the PI controller).
-const BETA: f64 = 0.04;
-/// Exponent α of the current error, for an order-5 pair.
-const ALPHA: f64 = 0.2 - BETA * 0.75;
-/// Safety factor applied to the optimal step.
-const SAFETY: f64 = 0.9;
-/// Smallest allowed shrink factor.
-const MIN_FACTOR: f64 = 0.2;
-/// Largest allowed growth factor.
-const MAX_FACTOR: f64 = 10.0;
+use crate::tunables::STEP_CONTROLLER_ALPHA as ALPHA;
+use crate::tunables::STEP_CONTROLLER_BETA as BETA;
+use crate::tunables::STEP_CONTROLLER_MAX_FACTOR as MAX_FACTOR;
+use crate::tunables::STEP_CONTROLLER_MIN_FACTOR as MIN_FACTOR;
+use crate::tunables::STEP_CONTROLLER_SAFETY as SAFETY;
 
 /// Remembers the last accepted error so the next step can use it.
 #[derive(Debug, Clone, Copy)]

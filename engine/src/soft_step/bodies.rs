@@ -83,8 +83,7 @@ impl SolverBody {
     }
 }
 
-/// Largest |x| (rad) for which [`small_sin_cos`] uses its polynomials.
-const SMALL_ANGLE: f64 = 0.25;
+use crate::tunables::SMALL_ANGLE;
 
 /// (sin x, cos x), x in rad: the Taylor polynomials for |x| ≤ 1/4 (a
 /// body's rotation since the step began is almost always that small),

@@ -18,9 +18,7 @@ use crate::body::BodyId;
 use nalgebra::{Isometry2, UnitComplex, Vector2};
 use rustc_hash::FxHashMap;
 
-/// Cosine of the largest turn (about 11.5°) of either body for which a
-/// manifold may be recycled (Box2D's `B2_CONTACT_RECYCLE_COS_ANGLE`).
-const RECYCLE_COS_ANGLE: f64 = 0.98;
+use crate::tunables::RECYCLE_COS_ANGLE;
 
 /// A point of a contact's manifold, in the world frame at the time the
 /// manifold was computed.

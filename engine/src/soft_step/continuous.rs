@@ -22,13 +22,10 @@ use crate::body::{Body, BodyState};
 use crate::collision::{Aabb, Motion, ToiOptions, toi_conservative_advancement};
 use nalgebra::{Isometry2, Vector2};
 
-/// Fraction of its smallest extent a body must move in a step to be swept
-/// (Box2D's safety factor).
-pub(crate) const FAST_FRACTION: f64 = 0.5;
+/// Read from [`crate::tunables`] (unit, value and source there).
+pub(crate) use crate::tunables::FAST_FRACTION;
 
-/// Most distance evaluations of one sweep; a sweep that needs more is
-/// abandoned (the speculative contacts still act).
-const MAX_ITERATIONS: usize = 50;
+use crate::tunables::SWEEP_MAX_ITERATIONS as MAX_ITERATIONS;
 
 /// A fast body's motion over the step of `dt` (s), from `start` (position
 /// in m, angle in rad) to `end`.

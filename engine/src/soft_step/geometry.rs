@@ -20,9 +20,8 @@ use smallvec::SmallVec;
 /// base-100 pyramid before; boxes have 4).
 const INLINE_VERTICES: usize = 8;
 
-/// The largest broad-phase margin of a collider as a fraction of its extent
-/// ([`Collider::aabb_margin`]; Box2D's `B2_AABB_MARGIN_FRACTION`).
-pub(crate) const MARGIN_FRACTION: f64 = 0.125;
+/// Read from [`crate::tunables`] (unit, value and source there).
+pub(crate) use crate::tunables::MARGIN_FRACTION;
 
 /// A polygon's points or edge normals (m, or unit vectors).
 pub(crate) type Points = SmallVec<[Vector2<f64>; INLINE_VERTICES]>;

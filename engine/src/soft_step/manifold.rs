@@ -29,10 +29,8 @@
 use super::geometry::{Polygon, SolverShape};
 use nalgebra::{Isometry2, Vector2};
 
-/// Linear slop (m): the round-off scale of contact geometry (Box2D's
-/// 0.005 m). Separations within a tenth of it count as touching when
-/// choosing between clipping and a vertex–vertex point.
-pub(crate) const LINEAR_SLOP: f64 = 0.005;
+/// Read from [`crate::tunables`] (unit, value and source there).
+pub(crate) use crate::tunables::LINEAR_SLOP;
 
 /// A point of a [`LocalManifold`], in A's frame.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

@@ -50,119 +50,9 @@
 //!
 //! # Speed
 //!
-//! The solver passes dominate: on a pyramid of boxes each pass visits
-//! every contact, 12 times a step (4 substeps of warm start, solve,
-//! relax). Visited one at a time (projected Gauss–Seidel, the scalar
-//! `contact_solver.rs`) each constraint is a long chain of dependent
-//! floating-point operations through its two bodies' velocities, so the
-//! CPU mostly waits. What was done, each kept because it paid when
-//! measured (instruction counts from callgrind, repeatable on a shared
-//! machine; times are noisier):
-//!
-//! - **Graph colouring and lanes** (Box2D v3's `constraint_graph.c` and the
-//!   SIMD path of `contact_solver.c`): constraints of one colour share no
-//!   dynamic body, so four of them are solved at once, one per lane of
-//!   `F64x4` (`lanes.rs`), in records laid out structure-of-arrays: four
-//!   independent chains instead of one, and packed instructions. Within a
-//!   record the lanes are independent, so the result is exactly that of
-//!   the scalar solver visiting the constraints colour after colour, and
-//!   the lanes give its bits (tested); the scalar solver stays as the
-//!   reference and runs the overflow. The colouring is redone each step,
-//!   greedily in contact order with a colour mask per body (a few
-//!   instructions per constraint, deterministic, no bookkeeping when
-//!   contacts begin or end touching).
-//! - **AVX when the CPU has it**: the build targets the x86-64 baseline
-//!   (SSE2, two f64 per instruction and two-operand forms); the passes are
-//!   generic over the lane arithmetic (`Lanes` (`lanes.rs`)) and compiled a
-//!   second time for AVX registers (`lanes_avx.rs`, four f64 per
-//!   instruction), chosen at run time. No fused multiply-add, so both give
-//!   the same bits: which one runs does not change the simulation. Two
-//!   lanes (f64x2) were measured too: 7% fewer instructions than four on
-//!   SSE2 but 8–10% slower.
-//! - **Trigonometry**: the rotation since the step began, (cos, sin) of
-//!   Δθ, from Taylor polynomials for |Δθ| ≤ 1/4 (within 0.6 ulp, see
-//!   `bodies.rs`) instead of `sin_cos` per body per substep; the angle
-//!   itself is still accumulated exactly.
-//! - **Memory**: constraints prepared and stored in contact (memory)
-//!   order, each written in place into its lane (no per-step zeroing or
-//!   copying of records); what prepare reads of the bodies in a compact
-//!   per-step array; polygon points inline in their colliders (a pointer to
-//!   a separate block cost a cache miss per body in the bounding-box
-//!   update); the engine crate in one codegen unit (release profile).
-//!
-//! Instructions per step (callgrind, 100 steps after the first, this
-//! module's stages as functions; base 20: 210 boxes, base 100: 5050):
-//!
-//! | stage | base 20 before | after | base 100 before | after |
-//! |---|---:|---:|---:|---:|
-//! | warm start | 281 k | 125 k | 7.12 M | 3.08 M |
-//! | solve | 716 k | 235 k | 18.2 M | 5.81 M |
-//! | relax | 1 065 k | 294 k | 27.0 M | 7.29 M |
-//! | prepare (with colouring) | 213 k | 284 k | 5.37 M | 7.19 M |
-//! | collide | 238 k | 221 k | 6.02 M | 5.59 M |
-//! | integrate positions | 102 k | 46 k | 2.43 M | 1.10 M |
-//! | whole step | 2.76 M | 1.36 M | 71.6 M | 35.2 M |
-//!
-//! What is left, by the profile: the passes are still about half the
-//! step; prepare (colouring plus the lane writes) and collide (mostly
-//! recycled manifolds) about a fifth and a sixth on large scenes, where
-//! they are bound by memory traffic over the contacts (some 330 bytes
-//! each) rather than by instructions.
-//!
-//! On scenes where bodies move a lot (the benchmark's `tumbler`: 2025
-//! boxes in a turning hollow box; `smash`: a heavy box into 2400; `rain`:
-//! 1000 mixed bodies falling into a container) the broad phase, the
-//! collide stage and the bounding-box updates came first instead. What was
-//! done, after Box2D v3.2 unless said (each kept because it paid when
-//! measured; results unchanged except where said):
-//!
-//! - **Enlarge in place, rebuild once** ([`crate::collision::DynamicTree::enlarge_proxy`],
-//!   [`crate::collision::DynamicTree::rebuild`]): a body leaving its fat
-//!   box was removed from its tree and reinserted, 70–85 % of the
-//!   continuous stage; its leaf now takes the new box in place and the
-//!   enlarged part of the tree is rebuilt top-down once per step (median
-//!   split: a third of the binned surface-area heuristic's work for queries
-//!   4 % slower). New pairs are reported grouped by moved body, each
-//!   group in the trees' order (this changed the results: the contact
-//!   order is the solve order; see `broad_phase.rs` for why the pairs are
-//!   not sorted by id).
-//! - **Margin at most 1/8 of a shape's extent** (the setting is the cap):
-//!   with 0.1 m every 0.25 m box of the tumbler, 0.4 m apart, overlapped
-//!   its eight neighbours' fat boxes, 13 000 contacts a step instead of
-//!   5 000 (this changed the results: pairs are created later).
-//! - **A tree per body kind**, kinematic apart from dynamic.
-//! - **Branch-free overlap tests in queries**: a child is written on the
-//!   stack and kept only if it overlaps; mispredicted branches were most of
-//!   the queries' time (simulated: 8.5 M to 4.5 M over the tumbler's 120
-//!   steps, for 3 % more instructions).
-//! - **Pairs of two dynamic bodies by one walk of the tree against itself**
-//!   ([`crate::collision::DynamicTree::moved_pairs`], own code): a query
-//!   per moved body found each pair of two moved bodies twice.
-//! - **Early outs**: the separating-axis search stops at the first edge
-//!   that separates a pair beyond the speculative distance (most pairs are
-//!   apart, such as the tumbler's walls with distant boxes); no sweep when
-//!   the world has no static shape; the end rotation computed once.
-//!
-//! Instructions per step (callgrind, 120 steps after the first, the bench
-//! scenes as files; `cargo run --release -p harness --example
-//! scene_timing -- bench/tumbler 120 1 ours` under `valgrind
-//! --tool=callgrind --collect-atstart=no --toggle-collect='*timed_steps*'`;
-//! pairs is `update_pairs` with the tree rebuild, continuous
-//! is `finalize_bodies`):
-//!
-//! | stage | tumbler before | after | smash before | after | rain before | after |
-//! |---|---:|---:|---:|---:|---:|---:|
-//! | pairs | 5.20 M | 3.71 M | 2.65 M | 2.14 M | 0.71 M | 1.06 M |
-//! | collide | 8.47 M | 2.75 M | 5.22 M | 3.60 M | 0.77 M | 0.43 M |
-//! | continuous | 5.38 M | 0.96 M | 4.46 M | 0.93 M | 2.62 M | 0.73 M |
-//! | whole step | 23.4 M | 11.7 M | 25.4 M | 19.7 M | 5.08 M | 3.20 M |
-//!
-//! (Rain's pairs stage grew: the tree work moved there from the
-//! continuous stage, and the smaller margins move more boxes; the two
-//! together went from 3.33 M to 1.79 M.) What is left on these scenes:
-//! the pairs stage is still a third of the tumbler's instructions, about
-//! 1850 of its 2025 boxes leaving their fat boxes every step; the smash is
-//! dominated by the solver passes and prepare, as the pyramids are.
+//! What was done to make it fast, each change with the instruction counts
+//! that justified it (callgrind), is in `docs/soft_step.md`, section
+//! "Speed: what was done, as measured".
 
 mod bodies;
 mod broad_phase;
@@ -191,6 +81,7 @@ mod softness;
 mod test_numbers;
 mod wide_solver;
 mod world_joints;
+mod world_seam;
 
 pub use contact_events::{
     ContactData, ContactHooks, ContactPointData, HitEvent, JointEvent, PreSolveContact,
@@ -217,11 +108,11 @@ pub fn lanes_in_use() -> &'static str {
 }
 
 use crate::body::{BodyId, BodyKind, BodyState};
-use crate::contact::pipeline::Phase;
 use crate::error::{EngineError, Result};
 use crate::events::EventRecord;
 use crate::forces::Wrench;
 use crate::integrators::Stats;
+use crate::profile::Phase;
 use crate::world_core::{WorldCore, check_energy_value};
 use bodies::{BodyMass, BodySim, SolverBody, solver_body};
 use broad_phase::BroadPhase;

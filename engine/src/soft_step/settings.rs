@@ -3,6 +3,7 @@
 
 use crate::error::{EngineError, Result, require_non_negative, require_positive};
 use crate::material::MixingRule;
+use crate::tunables;
 
 /// Settings of the soft-step contact model. `Default` gives Box2D v3's
 /// defaults with sleeping off.
@@ -100,25 +101,25 @@ pub struct SoftStepSettings {
 impl Default for SoftStepSettings {
     fn default() -> Self {
         Self {
-            substeps: 4,
-            contact_hertz: 30.0,
-            contact_damping_ratio: 10.0,
-            push_out_speed: 3.0,
-            restitution_threshold: 1.0,
-            speculative_distance: 0.02,
-            aabb_margin: 0.1,
-            friction: 0.6,
-            restitution: 0.0,
-            recycle_distance: 0.05,
+            substeps: tunables::SOFT_SUBSTEPS_DEFAULT,
+            contact_hertz: tunables::SOFT_CONTACT_HERTZ_DEFAULT,
+            contact_damping_ratio: tunables::SOFT_CONTACT_DAMPING_RATIO_DEFAULT,
+            push_out_speed: tunables::SOFT_PUSH_OUT_SPEED_DEFAULT,
+            restitution_threshold: tunables::SOFT_RESTITUTION_THRESHOLD_DEFAULT,
+            speculative_distance: tunables::SOFT_SPECULATIVE_DISTANCE_DEFAULT,
+            aabb_margin: tunables::SOFT_AABB_MARGIN_DEFAULT,
+            friction: tunables::SOFT_FRICTION_DEFAULT,
+            restitution: tunables::SOFT_RESTITUTION_DEFAULT,
+            recycle_distance: tunables::SOFT_RECYCLE_DISTANCE_DEFAULT,
             continuous: true,
             sleeping: false,
-            sleep_threshold: 0.05,
-            time_to_sleep: 0.5,
+            sleep_threshold: tunables::SOFT_SLEEP_THRESHOLD_DEFAULT,
+            time_to_sleep: tunables::SOFT_TIME_TO_SLEEP_DEFAULT,
             warm_starting: true,
             friction_mixing: MixingRule::GeometricMean,
             restitution_mixing: MixingRule::Max,
-            rolling_resistance: 0.0,
-            hit_event_threshold: 1.0,
+            rolling_resistance: tunables::SOFT_ROLLING_RESISTANCE_DEFAULT,
+            hit_event_threshold: tunables::SOFT_HIT_EVENT_THRESHOLD_DEFAULT,
         }
     }
 }

@@ -13,9 +13,9 @@
 //! naming it (its right-hand side has no term for them), and kinematic
 //! bodies as it always did.
 
+use super::Dynamics;
 use super::World;
 use crate::body::{Body, BodyId, BodyKind};
-use crate::contact_model::Dynamics;
 use crate::error::{EngineError, Result, require_finite, require_non_negative, require_positive};
 use crate::forces::{Force, ForceContext, Wrench};
 use crate::soft_step::joints::JointId;

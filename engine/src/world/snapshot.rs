@@ -39,8 +39,8 @@
 //! worlds with the same hash are, with overwhelming likelihood, at the same
 //! poses to the bit.
 
+use super::Dynamics;
 use super::World;
-use crate::contact_model::Dynamics;
 use crate::error::{EngineError, Result};
 
 /// The FNV-1a offset basis and prime (64 bits).

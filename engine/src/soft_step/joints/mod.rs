@@ -149,10 +149,10 @@ use nalgebra::Vector2;
 /// shift: a removed joint keeps its id.
 pub type JointId = usize;
 
-/// Box2D's default stiffness of the rigid rows (Hz).
-pub const DEFAULT_CONSTRAINT_HERTZ: f64 = 60.0;
-/// Box2D's default damping ratio of the rigid rows.
-pub const DEFAULT_CONSTRAINT_DAMPING_RATIO: f64 = 2.0;
+/// Read from [`crate::tunables`] (unit, value and source there).
+pub use crate::tunables::DEFAULT_CONSTRAINT_DAMPING_RATIO;
+/// Read from [`crate::tunables`] (unit, value and source there).
+pub use crate::tunables::DEFAULT_CONSTRAINT_HERTZ;
 
 /// Where a joint attaches to one of its bodies.
 #[derive(Debug, Clone, Copy, PartialEq)]

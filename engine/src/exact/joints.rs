@@ -55,6 +55,7 @@
 //! target joints: each is refused when added, by a typed
 //! [`EngineError::Unsupported`] naming the joint and the option.
 
+use super::ode::Layout;
 use crate::body::{Body, BodyState};
 use crate::error::{EngineError, Result};
 use crate::soft_step::joints::{
@@ -62,14 +63,12 @@ use crate::soft_step::joints::{
     wrap_angle,
 };
 use crate::world_core::WorldCore;
-use crate::world_ode::Layout;
 use nalgebra::Vector2;
 
-/// Most Newton iterations of the position projection.
-pub const MAX_PROJECTIONS: usize = 8;
+/// Read from [`crate::tunables`] (unit, value and source there).
+pub use crate::tunables::JOINT_MAX_PROJECTIONS as MAX_PROJECTIONS;
 
-/// Relative size of a Cholesky pivot below which its row is redundant.
-const REDUNDANT_PIVOT: f64 = 1e-12;
+use crate::tunables::REDUNDANT_PIVOT;
 
 /// Why the exact model refuses an option of a joint.
 const EXACT_JOINTS_SUPPORT: &str = "the exact contact model solves revolute, prismatic, rigid \

@@ -5,9 +5,9 @@
 //! velocity block. Particles carry no angle; static bodies are not in the
 //! state at all (docs/design.md: "model no more than a scene needs").
 
+use super::joints::ExactJoints;
 use crate::body::{Body, BodyState};
 use crate::contact::resting::RestingContacts;
-use crate::exact_joints::ExactJoints;
 use crate::forces::{Force, ForceContext, Wrench};
 use crate::ode::{OdeSystem, Structure};
 

@@ -5,7 +5,7 @@
 //! has to stop.
 //!
 //! At each evaluation, for every resting pair (chosen by the world at the
-//! start of each piece of step, see [`super::pipeline`]):
+//! start of each piece of step, see the exact model's `pipeline.rs`):
 //! 1. the manifold of the pair at the current poses, followed from the
 //!    features it was found with at the piece's start, whatever its
 //!    separation now (module `persistent`: the contact set is fixed between

@@ -41,14 +41,13 @@
 mod events;
 mod impulse;
 mod persistent;
-pub(crate) mod pipeline;
 pub(crate) mod resting;
 pub(crate) mod rows;
-mod search;
 mod settings;
 pub(crate) mod solver;
 
-pub use events::{ContactEvent, ContactEventKind, StepProfile};
+pub use crate::profile::StepProfile;
+pub use crate::tunables::PROJECTION_SLOP;
+pub use events::{ContactEvent, ContactEventKind};
 pub use impulse::{ImpactBody, ImpactOutcome, Velocities, impact_eq_7_15};
-pub use pipeline::PROJECTION_SLOP;
 pub use settings::{ContactSettings, ToiMethod};

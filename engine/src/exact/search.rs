@@ -8,22 +8,21 @@
 //! integrator's own step from the start of the trial step, of a shorter
 //! length, so the event lies on the method's solution.
 
-use super::pipeline::{ContactPipeline, PROJECTION_SLOP, Phase, Profiler};
-use super::resting::{FrictionMode, RestingPair, pose};
-use super::rows::BodyView;
-use super::settings::ToiMethod;
+use super::ode::WorldOde;
+use super::pipeline::{ContactPipeline, PROJECTION_SLOP};
 use crate::body::{Body, BodyState};
 use crate::collision::narrow_phase::{inner_radius, rotation_radius};
 use crate::collision::proximity;
+use crate::contact::ToiMethod;
+use crate::contact::resting::{FrictionMode, RestingPair, pose};
+use crate::contact::rows::BodyView;
 use crate::error::{EngineError, Result};
 use crate::integrators::Integrator;
+use crate::profile::{Phase, Profiler};
 use crate::root_finding::illinois;
-use crate::world_ode::WorldOde;
 use nalgebra::Vector2;
 
-/// Relative time tolerance of the stick-time root finding (as the world's
-/// event location).
-const STICK_TIME_TOLERANCE: f64 = 1e-15;
+use crate::tunables::STICK_TIME_TOLERANCE;
 
 impl ContactPipeline {
     /// The earliest contact event inside the trial step from `(t, y_a)`
@@ -385,9 +384,7 @@ enum Advance {
     Later,
 }
 
-/// Samples of the rest of the step when the swept search's advancement
-/// creeps.
-const SWEEP_SAMPLES: usize = 32;
+use crate::tunables::SWEEP_SAMPLES;
 
 /// Conservative advancement on the integrated path with a speed bound that
 /// grows: from separation d and speed bound c (m/s) at s (`g` gives both),

@@ -23,25 +23,16 @@
 
 use super::rows::{Row, RowKind};
 
-/// The largest contact problem (rows) the dense solver takes: its matrix
-/// has n² entries (2 MiB at 512 rows) and the polish eliminates up to n
-/// unknowns (n³/3 ≈ 4.5e7 operations), and the exact model solves one per
-/// right-hand-side evaluation. A larger problem is refused with a typed
-/// error rather than left to run for minutes.
-pub(crate) const MAX_CONTACT_ROWS: usize = 512;
+/// Read from [`crate::tunables`] (unit, value and source there).
+pub(crate) use crate::tunables::MAX_CONTACT_ROWS;
 
-/// Most PGS sweeps.
-const MAX_SWEEPS: usize = 500;
+use crate::tunables::PGS_MAX_SWEEPS as MAX_SWEEPS;
 
-/// PGS stops when no λ moves by more than this times the scale of `b`
-/// (in units of the residual).
-const PGS_TOLERANCE: f64 = 1e-15;
+use crate::tunables::PGS_TOLERANCE;
 
-/// Relative size under which a λ counts as zero when reading the active set.
-const ACTIVE_THRESHOLD: f64 = 1e-10;
+use crate::tunables::ACTIVE_THRESHOLD;
 
-/// Relative violation the polished solution may show and still be taken.
-const POLISH_TOLERANCE: f64 = 1e-12;
+use crate::tunables::POLISH_TOLERANCE;
 
 /// The bounds of row `k` given the current λ.
 fn bounds(rows: &[Row], lambda: &[f64], k: usize) -> (f64, f64) {

@@ -3,6 +3,7 @@
 //! parameter).
 
 use crate::error::{EngineError, Result, require_non_negative, require_positive};
+use crate::tunables;
 
 /// How the time of first contact inside a step is found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -95,14 +96,14 @@ pub struct ContactSettings {
 impl Default for ContactSettings {
     fn default() -> Self {
         Self {
-            restitution: 1.0,
-            friction: 0.0,
-            tolerance: 1e-10,
-            resting_speed: 1e-3,
-            sliding_speed: 1e-9,
+            restitution: tunables::EXACT_RESTITUTION_DEFAULT,
+            friction: tunables::EXACT_FRICTION_DEFAULT,
+            tolerance: tunables::EXACT_TOLERANCE_DEFAULT,
+            resting_speed: tunables::EXACT_RESTING_SPEED_DEFAULT,
+            sliding_speed: tunables::EXACT_SLIDING_SPEED_DEFAULT,
             toi_method: ToiMethod::Swept,
-            max_toi_iterations: 200,
-            max_events_per_step: 10_000,
+            max_toi_iterations: tunables::EXACT_MAX_TOI_ITERATIONS_DEFAULT,
+            max_events_per_step: tunables::EXACT_MAX_EVENTS_PER_STEP_DEFAULT,
         }
     }
 }

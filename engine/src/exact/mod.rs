@@ -18,43 +18,63 @@
 //!    is a typed [`EngineError::BlowUp`] naming the time and the step.
 //!
 //! A world with contacts on and at least two shapes, one of them on a
-//! moving body, also handles contacts; each piece of step is then, in
-//! order, one flat list of named phases, each timed into a
+//! moving body, also handles contacts. A step is then, per force segment,
+//! a list of pieces, each one flat list of named stages (functions of this
+//! file, like the soft step's stage list), each timed into a
 //! [`crate::StepProfile`] when profiling is on:
-//! 1. **respond** (settle): at the piece's start, projection of pairs that
-//!    sank, impulses for the touching pairs that approach (seed eq. 7.15
-//!    with restitution), and the choice of the resting pairs whose contact
-//!    forces enter the right-hand side, with the features they are
-//!    followed by (seed §7.1 after Baraff); the integrator's cached
-//!    derivative is dropped when anything changed;
-//! 2. **integrate** a trial step to the end of the step (or segment);
-//! 3. **broad phase** (sort-and-sweep of bounding boxes) and **narrow
-//!    phase** (exact distances) at the trial step's end;
-//! 4. **time of impact**: the first contact event inside the trial step: a
-//!    pair that overlaps at its end, by the seed's bisection (Fig.
-//!    7.7–7.8), one apart at both ends that moved fast enough to have gone
-//!    deep in between, by conservative advancement (the default swept
-//!    search; [`crate::ToiMethod`]), a resting point that leaves, and the
-//!    first stop of a sliding contact, by root finding; the step is cut
-//!    there, events are located in the piece kept, and the next piece
-//!    starts with a settle. Several contacts in one step are so handled in
-//!    time order.
+//! 1. **respond** (`stage_settle`, [`pipeline`]'s settle): at the piece's
+//!    start, projection of pairs that sank, impulses for the touching pairs
+//!    that approach (seed eq. 7.15 with restitution), and the choice of the
+//!    resting pairs whose contact forces enter the right-hand side, with
+//!    the features they are followed by (seed §7.1 after Baraff); the
+//!    integrator's cached derivative is dropped when anything changed;
+//! 2. **integrate** (`stage_trial_step`) a trial step to the end of the
+//!    step (or segment), with the resting pairs' forces;
+//! 3. **broad phase** (sort-and-sweep of bounding boxes), **narrow phase**
+//!    (exact distances) and **time of impact** (`stage_cut`, the
+//!    pipeline's `first_event` in `search.rs`): the first contact event
+//!    inside the trial step: a pair that overlaps at its end, by the
+//!    seed's bisection (Fig. 7.7–7.8), one apart at both ends that moved
+//!    fast enough to have gone deep in between, by conservative advancement
+//!    (the default swept search; [`crate::ToiMethod`]), a resting point that
+//!    leaves, and the first stop of a sliding contact, by root finding; the
+//!    step is redone up to it;
+//! 4. **locate events** and **guard** (`stage_accept`) in the piece kept;
+//!    the next piece starts with a settle. Several contacts in one step are
+//!    so handled in time order.
+//!
+//! Without contacts a piece is one accepted step: **integrate**
+//! (`stage_step`), then **locate events** and **guard** (`stage_accept`).
+//!
+//! The files of the model: this one (the step), `ode.rs` (the world as one
+//! ODE: the state-vector layout and the right-hand side with contact and
+//! joint forces), `pipeline.rs` and `search.rs` (the contact phases of a
+//! piece), `contact/` (the response: impulses, resting contact, friction,
+//! the complementarity solver; published as [`crate::validation::contact`]),
+//! `joints.rs` (joints as constraints), `world_seam.rs` (the world's calls,
+//! [`crate::contact_model`]). Its tunables are in `tunables.rs`.
+
+pub mod contact;
+pub(crate) mod joints;
+pub(crate) mod ode;
+pub(crate) mod pipeline;
+mod search;
+mod world_seam;
 
 use crate::body::{Body, BodyKind, BodyState};
-use crate::contact::pipeline::{ContactPipeline, Phase, Profiler};
 use crate::contact::resting::RestingContacts;
 use crate::contact::{ContactEvent, ContactSettings};
 use crate::error::{EngineError, Result};
 use crate::events::{EventRecord, EventSpec};
-use crate::exact_joints::ExactJoints;
 use crate::integrators::{Integrator, Method, Stats};
+use crate::profile::{Phase, Profiler};
 use crate::root_finding::illinois;
 use crate::world_core::{ForceEntry, WorldCore, check_energy_value, total_energy};
-use crate::world_ode::{ActiveForce, Layout, WorldOde};
+use joints::ExactJoints;
+use ode::{ActiveForce, Layout, WorldOde};
+use pipeline::ContactPipeline;
 
-/// Relative width (of the step) to which event times are located: a few
-/// ulps of the time, far below any tolerance the harness applies.
-const EVENT_TIME_TOLERANCE: f64 = 1e-15;
+use crate::tunables::EVENT_TIME_TOLERANCE;
 
 /// The exact model's state: the integrator, the state-vector layout, and
 /// the contact pipeline when contacts are on.
@@ -313,52 +333,38 @@ impl ExactModel {
                 }
                 continue;
             }
+            // Without contacts, each piece is an accepted step.
             while t < segment_end {
                 // Event location restarts from the step's start state.
                 if !core.events.is_empty() {
                     self.y_start.clone_from(y);
                 }
-                let started = core.profiler.start();
-                let h = self.integrator.advance(&mut sys, t, y, segment_end - t)?;
-                sys.project_joints(y);
-                core.profiler.stop(Phase::Integrate, started);
-                core.profiler.profile.steps += 1;
-                // A step that used all the room left lands exactly on the edge.
-                let t_next = if h == segment_end - t {
-                    segment_end
-                } else {
-                    t + h
-                };
-                if !core.events.is_empty() {
-                    let stop = locate_events(
-                        &core.events,
-                        &mut self.integrator,
-                        &mut sys,
-                        &core.states,
-                        (t, &self.y_start),
-                        (t_next, y),
-                        &mut self.y_probe,
-                        found,
-                    )?;
-                    if let Some(t_stop) = stop {
-                        y.clone_from(&self.y_probe);
-                        self.layout.unpack(y, &mut core.states);
-                        core.time = t_stop;
-                        core.stopped = true;
-                        return Ok(());
-                    }
-                }
-                if let Some(limit) = core.energy_limit {
-                    check_energy(
-                        &core.bodies,
-                        &core.forces,
-                        &self.layout,
-                        &mut sys,
-                        y,
-                        (t, t_next),
-                        self.integrator.stats().steps - 1,
-                        limit,
-                    )?;
+                let t_next = stage_step(
+                    &mut self.integrator,
+                    &mut sys,
+                    (t, segment_end),
+                    y,
+                    &mut core.profiler,
+                )?;
+                let stop = stage_accept(
+                    AcceptParts {
+                        events: &core.events,
+                        forces: &core.forces,
+                        template: &core.states,
+                        energy_limit: core.energy_limit,
+                    },
+                    &mut self.integrator,
+                    &mut sys,
+                    (t, &self.y_start),
+                    (t_next, y),
+                    &mut self.y_probe,
+                    found,
+                )?;
+                if let Some(t_stop) = stop {
+                    self.layout.unpack(y, &mut core.states);
+                    core.time = t_stop;
+                    core.stopped = true;
+                    return Ok(());
                 }
                 t = t_next;
             }
@@ -433,10 +439,7 @@ fn contact_segment(
     let limit = pipeline.settings.max_events_per_step;
     let events_before = pipeline.events.len();
     let mut pieces = 0usize;
-    if pipeline.settle(sys, t, y, profiler)? {
-        sys.project_joints(y);
-        integrator.invalidate_cache();
-    }
+    stage_settle(pipeline, integrator, sys, t, y, profiler)?;
     while t < segment_end {
         pieces += 1;
         if pieces > limit.saturating_add(1) {
@@ -450,63 +453,188 @@ fn contact_segment(
             });
         }
         y_start.clone_from(y);
-        let started = profiler.start();
-        let h = integrator.advance(sys, t, y, segment_end - t)?;
-        profiler.stop(Phase::Integrate, started);
-        profiler.profile.steps += 1;
-        let t_next = if h == segment_end - t {
-            segment_end
-        } else {
-            t + h
-        };
-        let cut = pipeline.first_event(sys, integrator, t, y_start, y, h, y_probe, profiler)?;
-        let t_kept = match cut {
-            Some(s) if s < h => {
-                let started = profiler.start();
-                integrator.single_step(sys, t, y_start, s, y)?;
-                profiler.stop(Phase::Integrate, started);
-                t + s
-            }
-            _ => t_next,
-        };
-        sys.project_joints(y);
-        if !events.is_empty() {
-            let stop = locate_events(
+        let h = stage_trial_step(integrator, sys, (t, segment_end), y, profiler)?;
+        let t_kept = stage_cut(
+            pipeline,
+            integrator,
+            sys,
+            (t, h, segment_end),
+            y_start,
+            y,
+            y_probe,
+            profiler,
+        )?;
+        let stop = stage_accept(
+            AcceptParts {
                 events,
-                integrator,
-                sys,
-                template,
-                (t, y_start),
-                (t_kept, y),
-                y_probe,
-                found,
-            )?;
-            if let Some(t_stop) = stop {
-                y.clone_from(y_probe);
-                return Ok(Segment::Stopped(t_stop));
-            }
-        }
-        if let Some(limit) = energy_limit {
-            let step = integrator.stats().steps - 1;
-            check_energy(
-                sys.bodies,
                 forces,
-                sys.layout,
-                sys,
-                y,
-                (t, t_kept),
-                step,
-                limit,
-            )?;
+                template,
+                energy_limit,
+            },
+            integrator,
+            sys,
+            (t, y_start),
+            (t_kept, y),
+            y_probe,
+            found,
+        )?;
+        if let Some(t_stop) = stop {
+            return Ok(Segment::Stopped(t_stop));
         }
         t = t_kept;
-        if pipeline.settle(sys, t, y, profiler)? {
-            sys.project_joints(y);
-            integrator.invalidate_cache();
-        }
+        stage_settle(pipeline, integrator, sys, t, y, profiler)?;
     }
     profiler.profile.events = pipeline.events.len() as u64;
     Ok(Segment::Reached(t))
+}
+
+/// The end of a step of length `h` begun at `t` that may not pass
+/// `segment_end`: a step that used all the room left lands exactly on the
+/// edge.
+fn step_end(t: f64, h: f64, segment_end: f64) -> f64 {
+    if h == segment_end - t {
+        segment_end
+    } else {
+        t + h
+    }
+}
+
+/// Stage **integrate** without contacts: one accepted step of the
+/// integrator from `t` towards `segment_end`, projected onto the joints'
+/// manifolds; returns the step's end time.
+fn stage_step(
+    integrator: &mut Integrator,
+    sys: &mut WorldOde<'_>,
+    (t, segment_end): (f64, f64),
+    y: &mut [f64],
+    profiler: &mut Profiler,
+) -> Result<f64> {
+    let started = profiler.start();
+    let h = integrator.advance(sys, t, y, segment_end - t)?;
+    sys.project_joints(y);
+    profiler.stop(Phase::Integrate, started);
+    profiler.profile.steps += 1;
+    Ok(step_end(t, h, segment_end))
+}
+
+/// Stage **respond** (settle, at the start of every piece with contacts):
+/// projection, impulses and the choice of resting pairs
+/// ([`ContactPipeline::settle`]); when anything changed, the state is put
+/// back on the joints' manifolds and the integrator's cached derivative
+/// dropped.
+fn stage_settle(
+    pipeline: &mut ContactPipeline,
+    integrator: &mut Integrator,
+    sys: &mut WorldOde<'_>,
+    t: f64,
+    y: &mut [f64],
+    profiler: &mut Profiler,
+) -> Result<()> {
+    if pipeline.settle(sys, t, y, profiler)? {
+        sys.project_joints(y);
+        integrator.invalidate_cache();
+    }
+    Ok(())
+}
+
+/// Stage **integrate** with contacts: a trial step from `t` towards
+/// `segment_end` with the resting pairs' forces; returns its length h (s).
+fn stage_trial_step(
+    integrator: &mut Integrator,
+    sys: &mut WorldOde<'_>,
+    (t, segment_end): (f64, f64),
+    y: &mut [f64],
+    profiler: &mut Profiler,
+) -> Result<f64> {
+    let started = profiler.start();
+    let h = integrator.advance(sys, t, y, segment_end - t)?;
+    profiler.stop(Phase::Integrate, started);
+    profiler.profile.steps += 1;
+    Ok(h)
+}
+
+/// Stages **broad phase**, **narrow phase** and **time of impact**: the
+/// first contact event inside the trial step `(t, t + h)`
+/// ([`ContactPipeline::first_event`], timed inside); the step is redone
+/// from `y_start` up to it, and the state put back on the joints'
+/// manifolds. Returns the end of the piece kept.
+#[allow(clippy::too_many_arguments)]
+fn stage_cut(
+    pipeline: &mut ContactPipeline,
+    integrator: &mut Integrator,
+    sys: &mut WorldOde<'_>,
+    (t, h, segment_end): (f64, f64, f64),
+    y_start: &[f64],
+    y: &mut Vec<f64>,
+    y_probe: &mut Vec<f64>,
+    profiler: &mut Profiler,
+) -> Result<f64> {
+    let cut = pipeline.first_event(sys, integrator, t, y_start, y, h, y_probe, profiler)?;
+    let t_kept = match cut {
+        Some(s) if s < h => {
+            let started = profiler.start();
+            integrator.single_step(sys, t, y_start, s, y)?;
+            profiler.stop(Phase::Integrate, started);
+            t + s
+        }
+        _ => step_end(t, h, segment_end),
+    };
+    sys.project_joints(y);
+    Ok(t_kept)
+}
+
+/// What the last stage reads of the world.
+struct AcceptParts<'w> {
+    events: &'w [EventSpec],
+    forces: &'w [ForceEntry],
+    template: &'w [BodyState],
+    energy_limit: Option<f64>,
+}
+
+/// Stages **locate events** and **guard**, on the piece kept
+/// `(t, t_kept)`: the events crossed in it, in time order; a terminal one
+/// ends the run (its time returned, its state left in `y`). Then the
+/// energy guard, when a bound is set.
+#[allow(clippy::too_many_arguments)]
+fn stage_accept(
+    parts: AcceptParts<'_>,
+    integrator: &mut Integrator,
+    sys: &mut WorldOde<'_>,
+    (t, y_start): (f64, &[f64]),
+    (t_kept, y): (f64, &mut Vec<f64>),
+    y_probe: &mut Vec<f64>,
+    found: &mut Vec<EventRecord>,
+) -> Result<Option<f64>> {
+    if !parts.events.is_empty() {
+        let stop = locate_events(
+            parts.events,
+            integrator,
+            sys,
+            parts.template,
+            (t, y_start),
+            (t_kept, y),
+            y_probe,
+            found,
+        )?;
+        if let Some(t_stop) = stop {
+            y.clone_from(y_probe);
+            return Ok(Some(t_stop));
+        }
+    }
+    if let Some(limit) = parts.energy_limit {
+        let step = integrator.stats().steps - 1;
+        check_energy(
+            sys.bodies,
+            parts.forces,
+            sys.layout,
+            sys,
+            y,
+            (t, t_kept),
+            step,
+            limit,
+        )?;
+    }
+    Ok(None)
 }
 
 /// Looks for every event crossing inside the accepted step `start → end`,

@@ -45,90 +45,28 @@
 //! The world then integrates to that time, settles, and goes on with the
 //! rest of the step: several contacts in one step are handled in time order.
 
-use super::events::{ContactEvent, ContactEventKind, StepProfile};
-use super::resting::{
-    FrictionMode, RestingContacts, RestingPair, features_of, islands, manifold_rows, pose,
-};
-use super::rows::{BodyView, Row, RowKind, Side, effective_mass, perp};
-use super::settings::ContactSettings;
-use super::solver::{MAX_CONTACT_ROWS, solve};
+use super::ode::{Layout, WorldOde};
 use crate::body::{Body, BodyState};
 use crate::collision::features::ContactFeatures;
 use crate::collision::features::{collide_on_face, equally_deep};
 use crate::collision::narrow_phase::rotation_radius;
 use crate::collision::polygon_polygon::Face;
 use crate::collision::{Aabb, Manifold, SweepAndPrune};
+use crate::contact::ContactSettings;
+use crate::contact::resting::{
+    FrictionMode, RestingContacts, RestingPair, features_of, islands, manifold_rows, pose,
+};
+use crate::contact::rows::{BodyView, Row, RowKind, Side, effective_mass, perp};
+use crate::contact::solver::{MAX_CONTACT_ROWS, solve};
+use crate::contact::{ContactEvent, ContactEventKind};
 use crate::error::{EngineError, Result};
-use crate::world_ode::{Layout, WorldOde};
+use crate::profile::{Phase, Profiler};
 use nalgebra::Vector2;
-use std::time::{Duration, Instant};
 
-/// Overlap (in units of ε) beyond which a pair is projected apart at a
-/// settle. Above the 2ε a located impact can leave, so a pair found by the
-/// time-of-impact search is never moved.
-pub const PROJECTION_SLOP: f64 = 4.0;
+/// Read from [`crate::tunables`] (unit, value and source there).
+pub use crate::tunables::PROJECTION_SLOP;
 
-/// Most projection passes at one settle: each is linearised, so a deep
-/// overlap (bodies created inside each other) may need a few.
-const PROJECTION_PASSES: usize = 16;
-
-/// Per-phase timing, on only when asked (an `Instant::now` per phase would
-/// otherwise cost more than a cheap step).
-#[derive(Debug, Clone, Default)]
-pub(crate) struct Profiler {
-    pub on: bool,
-    pub profile: StepProfile,
-}
-
-/// A phase of the step.
-#[derive(Debug, Clone, Copy)]
-pub(crate) enum Phase {
-    Integrate,
-    Broad,
-    Narrow,
-    Toi,
-    Respond,
-    Pairs,
-    Collide,
-    Prepare,
-    WarmStart,
-    Solve,
-    Relax,
-    Restitution,
-    Store,
-    Continuous,
-    Sleep,
-}
-
-impl Profiler {
-    pub(crate) fn start(&self) -> Option<Instant> {
-        self.on.then(Instant::now)
-    }
-
-    pub(crate) fn stop(&mut self, phase: Phase, started: Option<Instant>) {
-        if let Some(s) = started {
-            let d = s.elapsed();
-            let slot: &mut Duration = match phase {
-                Phase::Integrate => &mut self.profile.integrate,
-                Phase::Broad => &mut self.profile.broad_phase,
-                Phase::Narrow => &mut self.profile.narrow_phase,
-                Phase::Toi => &mut self.profile.toi,
-                Phase::Respond => &mut self.profile.respond,
-                Phase::Pairs => &mut self.profile.pairs,
-                Phase::Collide => &mut self.profile.collide,
-                Phase::Prepare => &mut self.profile.prepare,
-                Phase::WarmStart => &mut self.profile.warm_start,
-                Phase::Solve => &mut self.profile.solve,
-                Phase::Relax => &mut self.profile.relax,
-                Phase::Restitution => &mut self.profile.restitution,
-                Phase::Store => &mut self.profile.store,
-                Phase::Continuous => &mut self.profile.continuous,
-                Phase::Sleep => &mut self.profile.sleep,
-            };
-            *slot += d;
-        }
-    }
-}
+use crate::tunables::PROJECTION_PASSES;
 
 /// Writes body `i`'s velocities into the state vector.
 fn write_velocity(layout: &Layout, y: &mut [f64], i: usize, s: &BodyState) {
