@@ -27,6 +27,7 @@
 //! shape is called A; the normal points from A to B; lengths are in m.
 
 use super::geometry::{Polygon, SolverShape};
+use crate::collision::features::{FeatureId, feature_pair};
 use crate::collision::{circle_circle, polygon_circle};
 use nalgebra::{Isometry2, Vector2};
 
@@ -43,8 +44,8 @@ pub(crate) struct LocalPoint {
     pub point: Vector2<f64>,
     /// Signed distance along the normal (m): < 0 overlapping.
     pub separation: f64,
-    /// Feature id: `(feature of A) << 16 | (feature of B)`.
-    pub id: u32,
+    /// Feature id ([`feature_pair`]: the feature of A and of B).
+    pub id: FeatureId,
 }
 
 /// A manifold in A's frame: 0, 1 or 2 points sharing a normal.
@@ -63,10 +64,6 @@ pub(crate) struct Scratch {
     a_vertices: Vec<Vector2<f64>>,
     b_vertices: Vec<Vector2<f64>>,
     b_normals: Vec<Vector2<f64>>,
-}
-
-fn feature_id(a: usize, b: usize) -> u32 {
-    ((a as u32) << 16) | b as u32
 }
 
 fn perp_left(v: Vector2<f64>) -> Vector2<f64> {
@@ -290,7 +287,7 @@ fn apart(
                     LocalPoint {
                         point: 0.5 * (av[ia] + bv[ib]),
                         separation: distance,
-                        id: feature_id(ia, ib),
+                        id: feature_pair(ia, ib),
                     },
                     LocalPoint::default(),
                 ],
@@ -356,22 +353,22 @@ fn clip(
     let points = if flip {
         [
             LocalPoint {
-                id: feature_id(i21, i12),
+                id: feature_pair(i21, i12),
                 ..upper
             },
             LocalPoint {
-                id: feature_id(i22, i11),
+                id: feature_pair(i22, i11),
                 ..lower
             },
         ]
     } else {
         [
             LocalPoint {
-                id: feature_id(i11, i22),
+                id: feature_pair(i11, i22),
                 ..lower
             },
             LocalPoint {
-                id: feature_id(i12, i21),
+                id: feature_pair(i12, i21),
                 ..upper
             },
         ]
@@ -444,7 +441,6 @@ mod tests {
     use crate::collision::{self, test_rng::Rng};
     use crate::shape::{Circle, ConvexPolygon, Shape};
 
-
     /// The soft step's own circle manifolds as they were before it took
     /// the exact model's geometry (kept as the reference of
     /// `circle_manifolds_agree_with_the_former_soft_step_ones`).
@@ -452,96 +448,100 @@ mod tests {
         use super::super::{LocalManifold, LocalPoint, Polygon};
         use nalgebra::Vector2;
 
-/// Two circles of radii `ra`, `rb` (m), B's centre at `pb` in A's frame.
-pub(super) fn collide_circles(ra: f64, rb: f64, pb: Vector2<f64>, speculative: f64) -> LocalManifold {
-    let distance = pb.norm();
-    let separation = distance - ra - rb;
-    if separation > speculative {
-        return LocalManifold::default();
-    }
-    // Concentric circles have no line of centres: push along A's y axis.
-    let normal = if distance > 0.0 {
-        pb / distance
-    } else {
-        Vector2::y()
-    };
-    let ca = normal * ra;
-    let cb = pb - normal * rb;
-    LocalManifold {
-        normal,
-        count: 1,
-        points: [
-            LocalPoint {
-                point: 0.5 * (ca + cb),
-                separation,
-                id: 0,
-            },
-            LocalPoint::default(),
-        ],
-    }
-}
-
-/// Polygon A against a circle of radius `rb` centred at `center` (A's
-/// frame).
-pub(super) fn collide_polygon_circle(
-    poly: &Polygon,
-    rb: f64,
-    center: Vector2<f64>,
-    speculative: f64,
-) -> LocalManifold {
-    let n = poly.vertices.len();
-    let (mut best, mut separation) = (0, f64::NEG_INFINITY);
-    for i in 0..n {
-        let s = poly.normals[i].dot(&(center - poly.vertices[i]));
-        if s > separation {
-            separation = s;
-            best = i;
+        /// Two circles of radii `ra`, `rb` (m), B's centre at `pb` in A's frame.
+        pub(super) fn collide_circles(
+            ra: f64,
+            rb: f64,
+            pb: Vector2<f64>,
+            speculative: f64,
+        ) -> LocalManifold {
+            let distance = pb.norm();
+            let separation = distance - ra - rb;
+            if separation > speculative {
+                return LocalManifold::default();
+            }
+            // Concentric circles have no line of centres: push along A's y axis.
+            let normal = if distance > 0.0 {
+                pb / distance
+            } else {
+                Vector2::y()
+            };
+            let ca = normal * ra;
+            let cb = pb - normal * rb;
+            LocalManifold {
+                normal,
+                count: 1,
+                points: [
+                    LocalPoint {
+                        point: 0.5 * (ca + cb),
+                        separation,
+                        id: 0,
+                    },
+                    LocalPoint::default(),
+                ],
+            }
         }
-    }
-    if separation > rb + speculative {
-        return LocalManifold::default();
-    }
-    let v1 = poly.vertices[best];
-    let v2 = poly.vertices[(best + 1) % n];
-    let u1 = (center - v1).dot(&(v2 - v1));
-    let u2 = (center - v2).dot(&(v1 - v2));
-    let vertex_point = |v: Vector2<f64>| {
-        let d = center - v;
-        let distance = d.norm();
-        let normal = d / distance;
-        let separation = distance - rb;
-        let cb = center - rb * normal;
-        (normal, separation, 0.5 * (v + cb))
-    };
-    // The centre is beyond a vertex (and outside the polygon, so the
-    // direction to it is defined): the vertex is the closest feature.
-    let (normal, separation, point) = if u1 < 0.0 && separation > f64::EPSILON {
-        vertex_point(v1)
-    } else if u2 < 0.0 && separation > f64::EPSILON {
-        vertex_point(v2)
-    } else {
-        let normal = poly.normals[best];
-        let ca = center - (center - v1).dot(&normal) * normal;
-        let cb = center - rb * normal;
-        (normal, separation - rb, 0.5 * (ca + cb))
-    };
-    if separation > speculative {
-        return LocalManifold::default();
-    }
-    LocalManifold {
-        normal,
-        count: 1,
-        points: [
-            LocalPoint {
-                point,
-                separation,
-                id: 0,
-            },
-            LocalPoint::default(),
-        ],
-    }
-}
 
+        /// Polygon A against a circle of radius `rb` centred at `center` (A's
+        /// frame).
+        pub(super) fn collide_polygon_circle(
+            poly: &Polygon,
+            rb: f64,
+            center: Vector2<f64>,
+            speculative: f64,
+        ) -> LocalManifold {
+            let n = poly.vertices.len();
+            let (mut best, mut separation) = (0, f64::NEG_INFINITY);
+            for i in 0..n {
+                let s = poly.normals[i].dot(&(center - poly.vertices[i]));
+                if s > separation {
+                    separation = s;
+                    best = i;
+                }
+            }
+            if separation > rb + speculative {
+                return LocalManifold::default();
+            }
+            let v1 = poly.vertices[best];
+            let v2 = poly.vertices[(best + 1) % n];
+            let u1 = (center - v1).dot(&(v2 - v1));
+            let u2 = (center - v2).dot(&(v1 - v2));
+            let vertex_point = |v: Vector2<f64>| {
+                let d = center - v;
+                let distance = d.norm();
+                let normal = d / distance;
+                let separation = distance - rb;
+                let cb = center - rb * normal;
+                (normal, separation, 0.5 * (v + cb))
+            };
+            // The centre is beyond a vertex (and outside the polygon, so the
+            // direction to it is defined): the vertex is the closest feature.
+            let (normal, separation, point) = if u1 < 0.0 && separation > f64::EPSILON {
+                vertex_point(v1)
+            } else if u2 < 0.0 && separation > f64::EPSILON {
+                vertex_point(v2)
+            } else {
+                let normal = poly.normals[best];
+                let ca = center - (center - v1).dot(&normal) * normal;
+                let cb = center - rb * normal;
+                (normal, separation - rb, 0.5 * (ca + cb))
+            };
+            if separation > speculative {
+                return LocalManifold::default();
+            }
+            LocalManifold {
+                normal,
+                count: 1,
+                points: [
+                    LocalPoint {
+                        point,
+                        separation,
+                        id: 0,
+                    },
+                    LocalPoint::default(),
+                ],
+            }
+        }
     }
 
     fn solver(shape: &Shape) -> SolverShape {
@@ -593,8 +593,8 @@ pub(super) fn collide_polygon_circle(
             0.02,
             &mut scratch,
         );
-        let ids1: Vec<u32> = m1.points[..m1.count].iter().map(|p| p.id).collect();
-        let ids2: Vec<u32> = m2.points[..m2.count].iter().map(|p| p.id).collect();
+        let ids1: Vec<FeatureId> = m1.points[..m1.count].iter().map(|p| p.id).collect();
+        let ids2: Vec<FeatureId> = m2.points[..m2.count].iter().map(|p| p.id).collect();
         assert_eq!(ids1, ids2);
     }
 
