@@ -99,6 +99,9 @@ pub(crate) fn collide(
 /// Two circles of radii `ra`, `rb` (m), B's centre at `pb` in A's frame:
 /// the exact model's circle–circle geometry
 /// ([`circle_circle::proximity_of_centres`]) with A's centre at the origin.
+// Kept out of `collide`, so that the polygon pairs' path there (the
+// common case) compiles as when the circle pairs had their own short code.
+#[inline(never)]
 fn collide_circles(ra: f64, rb: f64, pb: Vector2<f64>, speculative: f64) -> LocalManifold {
     let p = circle_circle::proximity_of_centres(Vector2::zeros(), ra, pb, rb);
     one_point(p.normal, p.distance, p.point_a, p.point_b, speculative)
@@ -107,6 +110,9 @@ fn collide_circles(ra: f64, rb: f64, pb: Vector2<f64>, speculative: f64) -> Loca
 /// Polygon A against a circle of radius `rb` centred at `center` (A's
 /// frame): the exact model's polygon–circle geometry
 /// ([`polygon_circle::closest_polygon_circle_local`]).
+// Kept out of `collide`, so that the polygon pairs' path there (the
+// common case) compiles as when the circle pairs had their own short code.
+#[inline(never)]
 fn collide_polygon_circle(
     poly: &Polygon,
     rb: f64,
@@ -131,7 +137,7 @@ fn one_point(
 ) -> LocalManifold {
     // A NaN separation (non-finite input) gives no point, as in the exact
     // model.
-    if !(separation <= speculative) {
+    if separation.is_nan() || separation > speculative {
         return LocalManifold::default();
     }
     LocalManifold {
