@@ -250,7 +250,7 @@ impl JointType {
             JointType::Weld => "weld",
             JointType::Target => "target",
             JointType::Wheel => "wheel",
-            JointType::Motor => "motor",
+            JointType::Motor => "motor_joint",
         }
     }
 }
