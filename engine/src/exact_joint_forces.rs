@@ -209,8 +209,8 @@ pub(crate) fn apply(
                 if det > 0.0 {
                     let (w, z) = (TAU * j.linear_spring.hertz, j.linear_spring.damping_ratio);
                     let rhs = w * w * e + 2.0 * z * w * e_dot;
-                    force = -Vector2::new(k22 * rhs.x - k12 * rhs.y, k11 * rhs.y - k12 * rhs.x)
-                        / det;
+                    force =
+                        -Vector2::new(k22 * rhs.x - k12 * rhs.y, k11 * rhs.y - k12 * rhs.x) / det;
                     let size = force.norm();
                     if size > j.max_force {
                         force *= j.max_force / size;
@@ -225,11 +225,7 @@ pub(crate) fn apply(
                     torque = (-(w * w * c + 2.0 * z * w * c_dot) / ki)
                         .clamp(-j.max_torque, j.max_torque);
                 }
-                a.push(
-                    accel,
-                    -force,
-                    -(crate::shape::cross(ra, force) + torque),
-                );
+                a.push(accel, -force, -(crate::shape::cross(ra, force) + torque));
                 b.push(accel, force, crate::shape::cross(rb, force) + torque);
                 out.push(AppliedJointForce {
                     joint: id,

@@ -56,7 +56,10 @@ fn an_exact_wheel_suspension_is_the_damped_oscillator() {
     // Read at the last right-hand side RK4 evaluated, its fourth stage at
     // y_n + h k₃, which differs from y_{n+1} by O(h²): measured 8e-8
     // relative; held to 1e-5.
-    assert!((s.force.y - expected).abs() < 1e-5 * expected.abs(), "{s:?}");
+    assert!(
+        (s.force.y - expected).abs() < 1e-5 * expected.abs(),
+        "{s:?}"
+    );
 }
 
 #[test]
@@ -95,14 +98,14 @@ fn a_motor_joint_reaches_its_target_within_its_bounds() {
         let mut w = if method == Method::Rk4 {
             World::new(method).unwrap()
         } else {
-            World::with_model(
-                method,
-                ContactModel::SoftStep(SoftStepSettings::default()),
-            )
-            .unwrap()
+            World::with_model(method, ContactModel::SoftStep(SoftStepSettings::default())).unwrap()
         };
         let body = w
-            .add_body(BodyDef::rigid("box", 1.0, Shape::rectangle(0.5, 0.5).unwrap()))
+            .add_body(BodyDef::rigid(
+                "box",
+                1.0,
+                Shape::rectangle(0.5, 0.5).unwrap(),
+            ))
             .unwrap();
         let target = Vector2::new(0.4, 0.3);
         let joint = w
@@ -117,7 +120,11 @@ fn a_motor_joint_reaches_its_target_within_its_bounds() {
                 },
             ))
             .unwrap();
-        let dt = if method == Method::Rk4 { 1e-3 } else { 1.0 / 60.0 };
+        let dt = if method == Method::Rk4 {
+            1e-3
+        } else {
+            1.0 / 60.0
+        };
         let steps = (3.0 / dt) as usize;
         for _ in 0..steps {
             w.step(dt).unwrap();
@@ -138,11 +145,21 @@ fn a_motor_joint_reaches_its_target_within_its_bounds() {
 fn bad_wheel_and_motor_joints_are_refused_by_name() {
     let mut w = World::new(Method::Rk4).unwrap();
     let body = w
-        .add_body(BodyDef::rigid("box", 1.0, Shape::rectangle(0.5, 0.5).unwrap()))
+        .add_body(BodyDef::rigid(
+            "box",
+            1.0,
+            Shape::rectangle(0.5, 0.5).unwrap(),
+        ))
         .unwrap();
     let bad_axis = Wheel::suspension(Vector2::zeros(), 1.0, 0.5);
     let e = w
-        .add_joint(JointDef::wheel("w", None, Some(body), Vector2::zeros(), bad_axis))
+        .add_joint(JointDef::wheel(
+            "w",
+            None,
+            Some(body),
+            Vector2::zeros(),
+            bad_axis,
+        ))
         .unwrap_err();
     assert!(matches!(e, EngineError::InvalidJoint { .. }), "{e}");
     let motorized = Wheel {
@@ -153,9 +170,18 @@ fn bad_wheel_and_motor_joints_are_refused_by_name() {
         ..Wheel::default()
     };
     let e = w
-        .add_joint(JointDef::wheel("w", None, Some(body), Vector2::zeros(), motorized))
+        .add_joint(JointDef::wheel(
+            "w",
+            None,
+            Some(body),
+            Vector2::zeros(),
+            motorized,
+        ))
         .unwrap_err();
-    assert!(e.to_string().contains("joint 'w' (wheel) with a motor"), "{e}");
+    assert!(
+        e.to_string().contains("joint 'w' (wheel) with a motor"),
+        "{e}"
+    );
     let e = w
         .add_joint(JointDef::motor(
             "m",

@@ -497,28 +497,55 @@ fn bad_wheel_and_motor_joints_are_located() {
         "wheel",
         "body_b = \"bob\"\nanchor = [1.0, 0.0]\naxis = [0.0, 0.0]\n",
     ));
-    check(&e, ErrorKind::InvalidValue, "joints[0].axis", 19, "no direction");
+    check(
+        &e,
+        ErrorKind::InvalidValue,
+        "joints[0].axis",
+        19,
+        "no direction",
+    );
     let e = error(&joint(
         "wheel",
         "body_b = \"bob\"\nanchor = [1.0, 0.0]\nspring = { hertz = -2.0 }\n",
     ));
-    check(&e, ErrorKind::InvalidValue, "joints[0].spring.hertz", 19, "hertz");
+    check(
+        &e,
+        ErrorKind::InvalidValue,
+        "joints[0].spring.hertz",
+        19,
+        "hertz",
+    );
     let e = error(&joint(
         "motor_joint",
         "body_b = \"bob\"\nmax_force = 0.0\nmax_torque = 1.0\n",
     ));
-    check(&e, ErrorKind::InvalidValue, "joints[0].max_force", 18, "max_force");
+    check(
+        &e,
+        ErrorKind::InvalidValue,
+        "joints[0].max_force",
+        18,
+        "max_force",
+    );
     let e = error(&joint(
         "motor_joint",
         "body_b = \"bob\"\nmax_force = 1.0\nmax_torque = 1.0\nlinear_offset = [1.0, nan]\n",
     ));
-    check(&e, ErrorKind::NonFinite, "joints[0].linear_offset[1]", 20, "finite");
+    check(
+        &e,
+        ErrorKind::NonFinite,
+        "joints[0].linear_offset[1]",
+        20,
+        "finite",
+    );
     // A wheel's motor is refused under the exact model, at the joint; its
     // spring runs there.
     let exact = |extra: &str| {
         format!(
             "{}\n[contact]\nmodel = \"exact\"\n",
-            joint("wheel", &format!("body_b = \"bob\"\nanchor = [1.0, 0.0]\n{extra}"))
+            joint(
+                "wheel",
+                &format!("body_b = \"bob\"\nanchor = [1.0, 0.0]\n{extra}")
+            )
         )
         .replace("dt = 0.01", "method = \"rk4\"\ndt = 0.01")
     };

@@ -795,7 +795,10 @@ pub(crate) fn validate_joint(
                     ("angular offset", m.angular_offset),
                 ],
             )?;
-            for (field, v) in [("maximum force", m.max_force), ("maximum torque", m.max_torque)] {
+            for (field, v) in [
+                ("maximum force", m.max_force),
+                ("maximum torque", m.max_torque),
+            ] {
                 if !(v.is_finite() && v > 0.0) {
                     return Err(joint_error(index, field, v, "must be finite and > 0"));
                 }

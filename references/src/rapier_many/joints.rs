@@ -272,16 +272,19 @@ fn generic_joints(
             // 2 (B's centre), each bounded by the largest force or torque
             // (rapier bounds each axis: the linear force up to √2 F_max).
             let target = [la.x + m.linear_offset[0], la.y + m.linear_offset[1]];
-            g.local_frame1 = Pose::from_parts(
-                vector(target),
-                Rotation::new(m.angular_offset),
-            );
+            g.local_frame1 = Pose::from_parts(vector(target), Rotation::new(m.angular_offset));
             g.local_frame2 = Pose::from_parts(lb, Rotation::new(0.0));
             for axis in [JointAxis::LinX, JointAxis::LinY] {
                 spring_motor(&mut g, axis, 0.0, m.linear.hertz, m.linear.damping_ratio);
                 g.set_motor_max_force(axis, m.max_force);
             }
-            spring_motor(&mut g, JointAxis::AngX, 0.0, m.angular.hertz, m.angular.damping_ratio);
+            spring_motor(
+                &mut g,
+                JointAxis::AngX,
+                0.0,
+                m.angular.hertz,
+                m.angular.damping_ratio,
+            );
             g.set_motor_max_force(JointAxis::AngX, m.max_torque);
         }
         JointKind::Distance(d) => {

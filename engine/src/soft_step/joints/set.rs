@@ -18,12 +18,12 @@
 use super::super::contact_events::JointEvent;
 use super::distance::DistanceRows;
 use super::frame::JointFrame;
+use super::motor_joint::MotorJointRows;
 use super::prismatic::PrismaticRows;
 use super::revolute::RevoluteRows;
 use super::target::TargetRows;
 use super::weld::WeldRows;
 use super::wheel::WheelRows;
-use super::motor_joint::MotorJointRows;
 use super::wide_revolute::{self, WideAxial, WideRevolute};
 use super::{
     Distance, JointDef, JointId, JointKind, JointState, JointType, Target, invalid, world_point,
