@@ -69,6 +69,10 @@ impl Closed {
     }
 }
 
+/// One engine's (method id, step s, (frequency, damping ratio) at its step
+/// and at half of it, whether it is Box2D).
+type Measured = (String, f64, [(f64, f64); 2], bool);
+
 /// Measured (frequency Hz, damping ratio) of the heights `y` sampled every
 /// `dt` s about the equilibrium `y_eq`.
 fn measure(y: &[f64], dt: f64, y_eq: f64) -> Result<(f64, f64)> {
@@ -130,7 +134,7 @@ pub fn run() -> Result<CaseReport> {
     let y_eq = y0 - closed.sag;
     let (f_exact, zeta_exact) = (closed.damped_frequency(), closed.zeta);
     let mut report = CaseReport::default();
-    let mut measured: Vec<(String, f64, [(f64, f64); 2], bool)> = Vec::new();
+    let mut measured: Vec<Measured> = Vec::new();
     for &engine in Engine::of_run(true) {
         let config = Config::of(&js.scene, engine)?;
         let half = Config {

@@ -16,8 +16,8 @@
 //! | angular spring | θ_B − θ_A − θ_offset | ω_B − ω_A | 1/(i_A + i_B) | its f, ζ, both passes | \|λ\| ≤ h τ_max |
 //! | linear spring (2 rows) | e | v_B − v_A − ω_A × r_A | K⁻¹ | its f, ζ, both passes | \|λ\| ≤ h F_max |
 //!
-//! K = [[m_A + m_B + i_A r_Ay², −i_A r_Ax r_Ay], [−i_A r_Ax r_Ay, m_A + m_B
-//! + i_A r_Ax²]] (B's arm is 0). The angular impulse is clamped to
+//! K = [[m_A + m_B + i_A r_Ay², −i_A r_Ax r_Ay],
+//!      [−i_A r_Ax r_Ay, m_A + m_B + i_A r_Ax²]] (B's arm is 0). The angular impulse is clamped to
 //! [−h τ_max, h τ_max]; the linear one is scaled back onto the disc
 //! |λ| ≤ h F_max after each increment (as the target joint's): the force
 //! and torque on B never exceed F_max and τ_max. Unbounded (far from the
