@@ -85,9 +85,11 @@
 //!   detection (broad phase, separating axes, time of impact) and the exact
 //!   model's response (impulses with restitution, resting contact, Coulomb
 //!   friction), seed §7, and the event root finder;
-//! - [`joints`]: revolute, prismatic, distance, weld and target joints
-//!   under the soft step, and the revolute, prismatic, rigid distance and
-//!   weld joints as constraints of the exact model ([`World::add_joint`]).
+//! - [`joints`]: revolute, prismatic, distance, weld, target, wheel and
+//!   motor joints under the soft step, and the revolute, prismatic, rigid
+//!   distance, weld and wheel joints as constraints of the exact model,
+//!   with a wheel's spring and motor joints as force laws
+//!   ([`World::add_joint`]).
 //! - [`query`]: ray casts, shape casts, overlap, point and distance
 //!   queries on a world, through the soft step's broad phase.
 //!
@@ -153,7 +155,8 @@ pub use shape::{Circle, Compound, CompoundPart, ConvexPolygon, Shape};
 pub use soft_step::SoftStepSettings;
 pub use soft_step::joints::{
     self as joints, Anchor, Distance, JointDef, JointId, JointKind, JointSpring, JointState,
-    JointType, Prismatic, PrismaticMotor, Revolute, RevoluteMotor, Target, Weld,
+    JointType, MotorJoint, Prismatic, PrismaticMotor, Revolute, RevoluteMotor, Target, Weld, Wheel,
+    WheelMotor,
 };
 pub use soft_step::{
     ContactData, ContactHooks, ContactPointData, HitEvent, JointEvent, PreSolveContact,

@@ -28,8 +28,8 @@ pub use crate::query::{RayHit, ShapeCastHit, ShapeDistance, ShapeRef};
 pub use crate::shape::{Circle, Compound, CompoundPart, ConvexPolygon, Shape};
 pub use crate::soft_step::SoftStepSettings;
 pub use crate::soft_step::joints::{
-    Distance, JointDef, JointId, JointSpring, Prismatic, PrismaticMotor, Revolute, RevoluteMotor,
-    Target, Weld,
+    Distance, JointDef, JointId, JointSpring, MotorJoint, Prismatic, PrismaticMotor, Revolute,
+    RevoluteMotor, Target, Weld, Wheel, WheelMotor,
 };
 pub use crate::soft_step::{
     ContactData, ContactHooks, HitEvent, JointEvent, PreSolveContact, SensorEvent, ShapeId,

@@ -1,4 +1,4 @@
-//! Joints under the exact model (`engine/src/exact_joints.rs`): each
+//! Joints under the exact model (`engine/src/exact/joints.rs`): each
 //! jointed system against the one-degree-of-freedom ODE it reduces to,
 //! integrated by the engine's own integrator on its own coordinates (no
 //! constraint code involved), at a step a tenth of the world's.

@@ -485,8 +485,9 @@ pub enum ToiMethodSpec {
 /// at its defaults (its bodies then collide). Under `model = "exact"` the
 /// revolute, prismatic, rigid distance and weld joints are constraints of
 /// the equations of motion, integrated by `[simulation] method`
-/// (`docs/joints.md`); a limit, motor, spring, rope or target joint there
-/// is refused at the joint, and so is a ragdoll generator.
+/// (`docs/joints.md`), with a wheel's spring and a motor joint as force
+/// laws; a limit, motor, other spring, rope or target joint there is
+/// refused at the joint, and so is a ragdoll generator.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum JointSpec {
@@ -638,6 +639,64 @@ pub enum JointSpec {
         /// Damping ratio, ≥ 0. Default 1 (Box2D's).
         damping_ratio: Option<f64>,
     },
+    /// B's anchor (the axle) on a line fixed in A (the chassis), B turning
+    /// freely about it, with a suspension spring along the line (Box2D's
+    /// wheel joint).
+    Wheel {
+        /// Name. Default `joints[i]`.
+        name: Option<String>,
+        /// The chassis, or `"world"` (default).
+        body_a: Option<String>,
+        /// The wheel, or `"world"` (default).
+        body_b: Option<String>,
+        /// The axle, world coordinates at t = 0 (m).
+        anchor: Option<Xy>,
+        /// The point in A's frame (m), with `local_anchor_b`.
+        local_anchor_a: Option<Xy>,
+        /// The point in B's frame (m), with `local_anchor_a`.
+        local_anchor_b: Option<Xy>,
+        /// The suspension's direction, world frame at t = 0 (any length
+        /// but zero). Default [0, 1].
+        axis: Option<Xy>,
+        /// The suspension spring along the axis (rest: the anchors level).
+        /// Default: none (the axis is free).
+        spring: Option<SpringSpec>,
+        /// `[lower, upper]` translation along the axis (m). Default: none.
+        limits: Option<Range>,
+        /// A motor on the wheel's rotation. Default: none.
+        motor: Option<RevoluteMotorSpec>,
+        /// Default false.
+        collide_connected: Option<bool>,
+        /// Default 60 Hz.
+        constraint_hertz: Option<f64>,
+        /// Default 2.
+        constraint_damping_ratio: Option<f64>,
+    },
+    /// B's centre and angle driven to an offset from A's by a linear and
+    /// an angular spring of bounded force and torque (Box2D v3.2's motor
+    /// joint).
+    MotorJoint {
+        /// Name. Default `joints[i]`.
+        name: Option<String>,
+        /// The reference body, or `"world"` (default: its origin).
+        body_a: Option<String>,
+        /// The body driven, or `"world"` (default).
+        body_b: Option<String>,
+        /// Target of B's centre from A's, in A's frame (m). Default [0, 0].
+        linear_offset: Option<Xy>,
+        /// Target θB − θA (rad). Default 0.
+        angular_offset: Option<f64>,
+        /// Largest force (N), > 0. Required.
+        max_force: f64,
+        /// Largest torque (N·m), > 0. Required.
+        max_torque: f64,
+        /// The linear spring. Default 4 Hz, ζ = 1.
+        linear_spring: Option<SpringSpec>,
+        /// The angular spring. Default 4 Hz, ζ = 1.
+        angular_spring: Option<SpringSpec>,
+        /// Default false.
+        collide_connected: Option<bool>,
+    },
 }
 
 impl JointSpec {
@@ -649,6 +708,8 @@ impl JointSpec {
             JointSpec::Distance { .. } => "distance",
             JointSpec::Weld { .. } => "weld",
             JointSpec::Target { .. } => "target",
+            JointSpec::Wheel { .. } => "wheel",
+            JointSpec::MotorJoint { .. } => "motor_joint",
         }
     }
 
@@ -659,7 +720,9 @@ impl JointSpec {
             | JointSpec::Prismatic { name, .. }
             | JointSpec::Distance { name, .. }
             | JointSpec::Weld { name, .. }
-            | JointSpec::Target { name, .. } => name.as_deref(),
+            | JointSpec::Target { name, .. }
+            | JointSpec::Wheel { name, .. }
+            | JointSpec::MotorJoint { name, .. } => name.as_deref(),
         }
     }
 }

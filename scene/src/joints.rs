@@ -13,8 +13,8 @@ use crate::format::{
 };
 use engine::error::readable;
 use engine::{
-    Anchor, BodyDef, BodyId, BodyKind, Distance, JointDef, JointKind, JointSpring, Prismatic,
-    PrismaticMotor, Revolute, RevoluteMotor, Target, Weld,
+    Anchor, BodyDef, BodyId, BodyKind, Distance, JointDef, JointKind, JointSpring, MotorJoint,
+    Prismatic, PrismaticMotor, Revolute, RevoluteMotor, Target, Weld, Wheel, WheelMotor,
 };
 use nalgebra::Vector2;
 use std::collections::HashMap;
@@ -305,6 +305,96 @@ fn joint(path: &FieldPath, spec: &JointSpec, names: &Names<'_>, index: usize) ->
             let anchors = shared_anchor(path, anchor, local_anchor_a, local_anchor_b)?;
             (common, JointKind::Weld(joint), anchors)
         }
+        JointSpec::Wheel {
+            body_a,
+            body_b,
+            anchor,
+            local_anchor_a,
+            local_anchor_b,
+            axis,
+            spring,
+            limits,
+            motor,
+            collide_connected,
+            constraint_hertz,
+            constraint_damping_ratio,
+            ..
+        } => {
+            let u = match axis {
+                Some(axis) => direction(&path.key("axis"), axis)?,
+                None => Vector2::y(),
+            };
+            let joint = Wheel {
+                axis: u,
+                spring: spring
+                    .map(|s| spring_of(&path.key("spring"), s.hertz, s.damping_ratio))
+                    .transpose()?,
+                limits: limits
+                    .map(|l| range(&path.key("limits"), l, "translation limits", "m"))
+                    .transpose()?,
+                motor: motor
+                    .map(|m| revolute_motor(&path.key("motor"), m))
+                    .transpose()?
+                    .map(|m| WheelMotor {
+                        speed: m.speed,
+                        max_torque: m.max_torque,
+                    }),
+            };
+            let common = Common {
+                body_a: body_a.as_deref(),
+                body_b: body_b.as_deref(),
+                collide_connected: *collide_connected,
+                constraint_hertz: *constraint_hertz,
+                constraint_damping_ratio: *constraint_damping_ratio,
+                reference_angle: None,
+            };
+            let anchors = shared_anchor(path, anchor, local_anchor_a, local_anchor_b)?;
+            (common, JointKind::Wheel(joint), anchors)
+        }
+        JointSpec::MotorJoint {
+            body_a,
+            body_b,
+            linear_offset,
+            angular_offset,
+            max_force,
+            max_torque,
+            linear_spring,
+            angular_spring,
+            collide_connected,
+            ..
+        } => {
+            let d = MotorJoint::new(Vector2::zeros(), 0.0, 1.0, 1.0);
+            let sprung = |key: &str, s: &Option<SpringSpec>, default: JointSpring| {
+                s.map(|s| spring_of(&path.key(key), s.hertz, s.damping_ratio))
+                    .transpose()
+                    .map(|s| s.unwrap_or(default))
+            };
+            let joint = MotorJoint {
+                linear_offset: linear_offset
+                    .as_ref()
+                    .map(|o| xy(&path.key("linear_offset"), o))
+                    .transpose()?
+                    .unwrap_or_else(Vector2::zeros),
+                angular_offset: angular_offset
+                    .map(|a| finite(&path.key("angular_offset"), a))
+                    .transpose()?
+                    .unwrap_or(0.0),
+                max_force: positive(&path.key("max_force"), *max_force, "max_force", "N")?,
+                max_torque: positive(&path.key("max_torque"), *max_torque, "max_torque", "N·m")?,
+                linear_spring: sprung("linear_spring", linear_spring, d.linear_spring)?,
+                angular_spring: sprung("angular_spring", angular_spring, d.angular_spring)?,
+            };
+            let common = Common {
+                body_a: body_a.as_deref(),
+                body_b: body_b.as_deref(),
+                collide_connected: *collide_connected,
+                constraint_hertz: None,
+                constraint_damping_ratio: None,
+                reference_angle: None,
+            };
+            let centre = Anchor::Local(Vector2::zeros());
+            (common, JointKind::Motor(joint), (centre, centre))
+        }
         JointSpec::Target {
             body,
             anchor,
@@ -516,6 +606,23 @@ fn one_anchor(
             ),
         )),
     }
+}
+
+/// A non-zero direction at `path`.
+fn direction(path: &FieldPath, axis: &Xy) -> Checked<Vector2<f64>> {
+    let u = xy(path, axis)?;
+    if u.norm() == 0.0 || !u.normalize().iter().all(|c| c.is_finite()) {
+        return Err(Problem::new(
+            path,
+            ErrorKind::InvalidValue,
+            format!(
+                "the axis [{}, {}] has no direction: give a non-zero vector",
+                readable(u.x),
+                readable(u.y)
+            ),
+        ));
+    }
+    Ok(u)
 }
 
 fn range(path: &FieldPath, r: Range, what: &str, unit: &str) -> Checked<(f64, f64)> {

@@ -490,3 +490,69 @@ fn generated_bodies_can_be_jointed_by_name() {
     assert_eq!(last.name, "joints[0]");
     assert!(last.linear_error < 1e-3, "{last:?}");
 }
+
+#[test]
+fn bad_wheel_and_motor_joints_are_located() {
+    let e = error(&joint(
+        "wheel",
+        "body_b = \"bob\"\nanchor = [1.0, 0.0]\naxis = [0.0, 0.0]\n",
+    ));
+    check(
+        &e,
+        ErrorKind::InvalidValue,
+        "joints[0].axis",
+        19,
+        "no direction",
+    );
+    let e = error(&joint(
+        "wheel",
+        "body_b = \"bob\"\nanchor = [1.0, 0.0]\nspring = { hertz = -2.0 }\n",
+    ));
+    check(
+        &e,
+        ErrorKind::InvalidValue,
+        "joints[0].spring.hertz",
+        19,
+        "hertz",
+    );
+    let e = error(&joint(
+        "motor_joint",
+        "body_b = \"bob\"\nmax_force = 0.0\nmax_torque = 1.0\n",
+    ));
+    check(
+        &e,
+        ErrorKind::InvalidValue,
+        "joints[0].max_force",
+        18,
+        "max_force",
+    );
+    let e = error(&joint(
+        "motor_joint",
+        "body_b = \"bob\"\nmax_force = 1.0\nmax_torque = 1.0\nlinear_offset = [1.0, nan]\n",
+    ));
+    check(
+        &e,
+        ErrorKind::NonFinite,
+        "joints[0].linear_offset[1]",
+        20,
+        "finite",
+    );
+    // A wheel's motor is refused under the exact model, at the joint; its
+    // spring runs there.
+    let exact = |extra: &str| {
+        format!(
+            "{}\n[contact]\nmodel = \"exact\"\n",
+            joint(
+                "wheel",
+                &format!("body_b = \"bob\"\nanchor = [1.0, 0.0]\n{extra}")
+            )
+        )
+        .replace("dt = 0.01", "method = \"rk4\"\ndt = 0.01")
+    };
+    let e = error(&exact("motor = { speed = 1.0, max_torque = 1.0 }\n"));
+    check(&e, ErrorKind::Engine, "joints[0]", 16, "with a motor");
+    let scene = Scene::parse_str("ok.toml", &exact("spring = { hertz = 2.0 }\n")).unwrap();
+    let mut world = scene.build_world(None).unwrap();
+    world.step(0.01).unwrap();
+    assert!(world.joint(0).unwrap().linear_error < 1e-12);
+}

@@ -13,6 +13,8 @@
 //! | distance, rigid | length (1) | (\|d\|² − L²)/(2L), d = p_B − p_A |
 //! | prismatic | line (1), angle (1) | n·d with n A's axis normal; θ_B − θ_A − θref |
 //! | weld | point (2), angle (1) | p_B − p_A; θ_B − θ_A − θref |
+//! | wheel | line (1) | n·d with n A's axis normal (rotation free) |
+//! | motor | none | (its bounded springs are applied forces) |
 //!
 //! with p = c + R(θ) r the anchor of a body (r in its frame). Every row
 //! has a Jacobian J (its partial derivatives in the bodies' x, y, θ) and a
@@ -48,16 +50,23 @@
 //! the order is kept. The largest |C| removed is recorded
 //! ([`ExactJoints::largest_drift`]).
 //!
+//! # Force laws
+//!
+//! A wheel's suspension spring and a motor joint's bounded springs are
+//! applied forces, added to a₀ before the constraint forces are solved
+//! ([`crate::exact::joint_forces`]).
+//!
 //! # Not supported
 //!
 //! Limits (one-sided rows, which need events), motors (velocity rows with
-//! a force bound), springs of any kind, ropes, spring distance joints and
-//! target joints: each is refused when added, by a typed
+//! a force bound), the other joints' springs, ropes, spring distance joints
+//! and target joints: each is refused when added, by a typed
 //! [`EngineError::Unsupported`] naming the joint and the option.
 
 use super::ode::Layout;
 use crate::body::{Body, BodyState};
 use crate::error::{EngineError, Result};
+use crate::exact::joint_forces::{self, AppliedJointForce};
 use crate::soft_step::joints::{
     Distance, JointDef, JointId, JointKind, JointRows, JointSet, JointState, world_point,
     wrap_angle,
@@ -72,8 +81,9 @@ use crate::tunables::REDUNDANT_PIVOT;
 
 /// Why the exact model refuses an option of a joint.
 const EXACT_JOINTS_SUPPORT: &str = "the exact contact model solves revolute, prismatic, rigid \
-     distance and rigid weld joints as holonomic constraints, without limits, motors or springs; \
-     use the soft_step contact model for the rest";
+     distance, rigid weld and wheel joints as holonomic constraints, a wheel's suspension spring \
+     and motor joints as force laws, without limits, motors (velocity rows with a bounded force) \
+     or the other springs; use the soft_step contact model for the rest";
 
 /// One constraint of the exact model, from one joint.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -169,6 +179,8 @@ pub(crate) struct ExactJoints {
     last_lambda: Vec<f64>,
     /// The largest |C| a projection removed (m or rad).
     largest_drift: f64,
+    /// The force laws' forces of the last right-hand side.
+    applied: Vec<AppliedJointForce>,
 }
 
 impl ExactJoints {
@@ -225,6 +237,16 @@ impl ExactJoints {
                 }
             }
             JointKind::Target(_) => return refuse("(a spring to a target)"),
+            JointKind::Wheel(w) => {
+                if w.limits.is_some() {
+                    return refuse("with translation limits");
+                }
+                if w.motor.is_some() {
+                    return refuse("with a motor");
+                }
+            }
+            // Bounded springs: a force law (`joint_forces`).
+            JointKind::Motor(_) => {}
         }
         self.set.know_bodies(core.bodies.len());
         let id = self.set.add(core, def)?;
@@ -270,6 +292,10 @@ impl ExactJoints {
     pub(crate) fn state(&self, id: JointId, states: &[BodyState]) -> Result<JointState> {
         self.set.check(id)?;
         let mut state = self.set.state(id, states);
+        for f in self.applied.iter().filter(|f| f.joint == id) {
+            state.force += f.force;
+            state.torque += f.torque;
+        }
         let mut row = 0;
         for h in &self.held {
             let n = h.rows();
@@ -329,8 +355,11 @@ impl ExactJoints {
                     self.held.push(with(Constraint::Line(perp(u))));
                     self.held.push(with(Constraint::Angle));
                 }
-                // Refused when added.
-                JointRows::Target(_) => {}
+                JointRows::Wheel(w) => {
+                    self.held.push(with(Constraint::Line(perp(w.local_axis))));
+                }
+                // A force law (`joint_forces`); targets are refused.
+                JointRows::Motor(_) | JointRows::Target(_) => {}
             }
         }
         self.rows = self.held.iter().map(Held::rows).sum();
@@ -567,6 +596,12 @@ impl ExactJoints {
         states: &[BodyState],
         accel: &mut [f64],
     ) {
+        joint_forces::apply(
+            &self.set,
+            (bodies, layout, states),
+            accel,
+            &mut self.applied,
+        );
         self.evaluate(bodies, layout, states);
         let n = layout.positions;
         self.rhs.clear();

@@ -55,6 +55,7 @@
 //! [`crate::contact_model`]). Its tunables are in `tunables.rs`.
 
 pub mod contact;
+pub(crate) mod joint_forces;
 pub(crate) mod joints;
 pub(crate) mod ode;
 pub(crate) mod pipeline;

@@ -9,8 +9,8 @@
 use anyhow::{Result, bail};
 use engine::{Anchor, BodyState, Distance, JointDef, JointKind, JointSpring};
 use references::many_body::joints::{
-    DistanceJoint, DistanceMode, JointKind as Neutral, Motor, PrismaticJoint, RevoluteJoint,
-    SceneJoint, Softness, Spring, WeldJoint,
+    DistanceJoint, DistanceMode, JointKind as Neutral, Motor, MotorJoint, PrismaticJoint,
+    RevoluteJoint, SceneJoint, Softness, Spring, WeldJoint, WheelJoint,
 };
 
 /// The neutral joints of `defs`, for bodies whose states at t = 0 are
@@ -127,6 +127,36 @@ fn neutral_joint(def: &JointDef, states: &[BodyState]) -> Result<SceneJoint> {
                     hertz: s.hertz,
                     damping_ratio: s.damping_ratio,
                 }),
+            })
+        }
+        JointKind::Wheel(w) => Neutral::Wheel(WheelJoint {
+            anchor_a,
+            anchor_b,
+            axis: [w.axis.x, w.axis.y],
+            spring: w.spring.map(|s| Softness {
+                hertz: s.hertz,
+                damping_ratio: s.damping_ratio,
+            }),
+            limits: limits(w.limits),
+            motor: w.motor.map(|m| Motor {
+                speed: m.speed,
+                max_force: m.max_torque,
+            }),
+        }),
+        JointKind::Motor(m) => {
+            let soft = |s: JointSpring| Softness {
+                hertz: s.hertz,
+                damping_ratio: s.damping_ratio,
+            };
+            Neutral::Motor(MotorJoint {
+                anchor_a,
+                anchor_b,
+                linear_offset: [m.linear_offset.x, m.linear_offset.y],
+                angular_offset: m.angular_offset,
+                max_force: m.max_force,
+                max_torque: m.max_torque,
+                linear: soft(m.linear_spring),
+                angular: soft(m.angular_spring),
             })
         }
         JointKind::Target(_) => bail!(

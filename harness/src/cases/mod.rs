@@ -80,6 +80,8 @@ registry! {
     chain,
     slider,
     joint_motor_limit,
+    wheel_suspension,
+    motor_joint,
     fuzz_scenes,
     falling_hinges,
     snapshot_restore,

@@ -39,7 +39,18 @@
 //! - weld: rigid is `linearHertz` = `angularHertz` = 0 (Box2D then uses the
 //!   joint's constraint softness, 60 Hz, ζ 2, in the biased pass); soft is
 //!   both set to the scene's frequency and damping ratio (then soft in
-//!   both passes).
+//!   both passes);
+//! - wheel (`b2WheelJointDef`): frame A's x axis along the scene's axis
+//!   (as a prismatic's); `enableSpring` with `hertz`, `dampingRatio` (Box2D
+//!   enables a 1 Hz spring by default: off when the scene has none);
+//!   `enableLimit`, `lowerTranslation`, `upperTranslation`; `enableMotor`,
+//!   `motorSpeed`, `maxMotorTorque`;
+//! - motor (`b2MotorJointDef`, v3.2's): frame A at the linear offset from
+//!   A's centre, turned by the angular offset, frame B at B's centre;
+//!   `linearHertz`, `linearDampingRatio`, `maxSpringForce`,
+//!   `angularHertz`, `angularDampingRatio`, `maxSpringTorque` from the
+//!   scene; the velocity part off (`maxVelocityForce` =
+//!   `maxVelocityTorque` = 0).
 //!
 //! A joint to the world (`None`) is attached to one static body without
 //! shapes at the origin, created for that purpose.
@@ -65,8 +76,8 @@ use super::ENGINE;
 use crate::many_body::joints::{Pose, initial_pose};
 use crate::many_body::{DistanceMode, JointKind, ManyBodyError, ManyBodyScene, SceneJoint};
 use boxdd::{
-    BodyId, BodyType, DistanceJointDef, JointId, PrismaticJointDef, RevoluteJointDef, Transform,
-    WeldJointDef, World,
+    BodyId, BodyType, DistanceJointDef, JointId, MotorJointDef, PrismaticJointDef,
+    RevoluteJointDef, Transform, WeldJointDef, WheelJointDef, World,
 };
 
 /// Box2D's largest revolute limit magnitude (boxdd's check, Box2D's
@@ -162,6 +173,16 @@ fn build_joint(
         }
         JointKind::Weld(_) => (-pa.angle, -pb.angle),
         JointKind::Distance(_) => (0.0, 0.0),
+        JointKind::Wheel(w) => {
+            let world_angle = w.axis[1].atan2(w.axis[0]);
+            (world_angle - pa.angle, world_angle - pb.angle)
+        }
+        JointKind::Motor(m) => (m.angular_offset, 0.0),
+    };
+    // A motor joint's frame A is at the target: the offset from A's centre.
+    let la = match &j.kind {
+        JointKind::Motor(m) => [la[0] + m.linear_offset[0], la[1] + m.linear_offset[1]],
+        _ => la,
     };
     let base = world
         .joint_base(a, b)
@@ -270,6 +291,40 @@ fn build_joint(
                     .angular_damping_ratio(z);
             }
             world.create_weld_joint(&def).map_err(err)
+        }
+        JointKind::Wheel(w) => {
+            let mut def = WheelJointDef::new(base).enable_spring(false);
+            if let Some(s) = w.spring {
+                def = def
+                    .enable_spring(true)
+                    .hertz(jf32(i, "spring frequency", s.hertz)?)
+                    .damping_ratio(jf32(i, "spring damping ratio", s.damping_ratio)?);
+            }
+            if let Some([lo, hi]) = w.limits {
+                def = def
+                    .enable_limit(true)
+                    .lower_translation(jf32(i, "lower translation", lo)?)
+                    .upper_translation(jf32(i, "upper translation", hi)?);
+            }
+            if let Some(m) = w.motor {
+                def = def
+                    .enable_motor(true)
+                    .motor_speed(jf32(i, "motor speed", m.speed)?)
+                    .max_motor_torque(jf32(i, "motor torque", m.max_force)?);
+            }
+            world.create_wheel_joint(&def).map_err(err)
+        }
+        JointKind::Motor(m) => {
+            let def = MotorJointDef::new(base)
+                .max_velocity_force(0.0)
+                .max_velocity_torque(0.0)
+                .linear_hertz(jf32(i, "linear frequency", m.linear.hertz)?)
+                .linear_damping_ratio(jf32(i, "linear damping ratio", m.linear.damping_ratio)?)
+                .max_spring_force(jf32(i, "maximum force", m.max_force)?)
+                .angular_hertz(jf32(i, "angular frequency", m.angular.hertz)?)
+                .angular_damping_ratio(jf32(i, "angular damping ratio", m.angular.damping_ratio)?)
+                .max_spring_torque(jf32(i, "maximum torque", m.max_torque)?);
+            world.create_motor_joint(&def).map_err(err)
         }
     }
 }

@@ -166,6 +166,51 @@ pub struct WeldJoint {
     pub softness: Option<Softness>,
 }
 
+/// A wheel (Box2D's wheel joint): body B's anchor (the axle) stays on
+/// the line through A's anchor along `axis` (fixed in A), B turns freely,
+/// a spring along the axis (rest: the anchors level, translation 0), with
+/// optional limits on the translation and a motor on the rotation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WheelJoint {
+    /// Body A's anchor, world coordinates at t = 0, m.
+    pub anchor_a: [f64; 2],
+    /// Body B's anchor, world coordinates at t = 0, m.
+    pub anchor_b: [f64; 2],
+    /// The suspension's axis, a world direction at t = 0 (normalised by
+    /// the adapters; must not be zero).
+    pub axis: [f64; 2],
+    /// The suspension spring (mass-independent: f and ζ on the axial
+    /// effective mass); `None`: the axis is free.
+    pub spring: Option<Softness>,
+    /// `[lower, upper]` translation, m.
+    pub limits: Option<[f64; 2]>,
+    /// Motor on the relative rotation (speed rad/s, torque N·m).
+    pub motor: Option<Motor>,
+}
+
+/// A motor joint (Box2D v3.2's, its spring part): B's centre driven to
+/// A's centre plus `linear_offset` (A's frame) and θB − θA to
+/// `angular_offset` by springs of bounded force and torque.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MotorJoint {
+    /// A's centre (the world: the origin), world coordinates at t = 0, m.
+    pub anchor_a: [f64; 2],
+    /// B's centre, world coordinates at t = 0, m.
+    pub anchor_b: [f64; 2],
+    /// Target of B's centre from A's in A's frame, m.
+    pub linear_offset: [f64; 2],
+    /// Target θB − θA, rad.
+    pub angular_offset: f64,
+    /// Largest force, N (> 0).
+    pub max_force: f64,
+    /// Largest torque, N·m (> 0).
+    pub max_torque: f64,
+    /// The linear spring.
+    pub linear: Softness,
+    /// The angular spring.
+    pub angular: Softness,
+}
+
 /// The kind of a [`SceneJoint`] and its parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum JointKind {
@@ -177,6 +222,10 @@ pub enum JointKind {
     Distance(DistanceJoint),
     /// A rigid or soft weld.
     Weld(WeldJoint),
+    /// A wheel on a suspension.
+    Wheel(WheelJoint),
+    /// A body driven to an offset from another.
+    Motor(MotorJoint),
 }
 
 /// A joint of a [`super::ManyBodyScene`].
@@ -287,6 +336,8 @@ impl SceneJoint {
             JointKind::Prismatic(j) => (j.anchor_a, j.anchor_b),
             JointKind::Distance(j) => (j.anchor_a, j.anchor_b),
             JointKind::Weld(j) => (j.anchor, j.anchor),
+            JointKind::Wheel(j) => (j.anchor_a, j.anchor_b),
+            JointKind::Motor(j) => (j.anchor_a, j.anchor_b),
         }
     }
 
@@ -297,6 +348,8 @@ impl SceneJoint {
             JointKind::Prismatic(_) => "prismatic",
             JointKind::Distance(_) => "distance",
             JointKind::Weld(_) => "weld",
+            JointKind::Wheel(_) => "wheel",
+            JointKind::Motor(_) => "motor",
         }
     }
 }
@@ -468,6 +521,29 @@ pub fn joint_states(
                     angular_error: held,
                     limit_violation: 0.0,
                 },
+                JointKind::Wheel(w) => {
+                    let n = w.axis[0].hypot(w.axis[1]);
+                    let axis0 = [w.axis[0] / n, w.axis[1] / n];
+                    let axis = pa.to_world_direction(a0.direction_to_local(axis0));
+                    let along = d[0] * axis[0] + d[1] * axis[1];
+                    let across = (d[0] * axis[1] - d[1] * axis[0]).abs();
+                    JointState {
+                        coordinate: along,
+                        separation: across,
+                        angular_error: 0.0,
+                        limit_violation: excess(along, w.limits),
+                    }
+                }
+                JointKind::Motor(m) => {
+                    let o = pa.to_world_direction(m.linear_offset);
+                    let e = [d[0] - o[0], d[1] - o[1]];
+                    JointState {
+                        coordinate: 0.0,
+                        separation: e[0].hypot(e[1]),
+                        angular_error: wrap_angle(relative - m.angular_offset).abs(),
+                        limit_violation: 0.0,
+                    }
+                }
             }
         })
         .collect()
@@ -697,6 +773,38 @@ pub(crate) fn validate_joint(
             if let Some(s) = w.softness {
                 softness(index, s.hertz, s.damping_ratio)?;
             }
+        }
+        JointKind::Wheel(w) => {
+            finite(index, &[("axis x", w.axis[0]), ("axis y", w.axis[1])])?;
+            let n = w.axis[0].hypot(w.axis[1]);
+            if !(n > 0.0 && n.is_finite()) {
+                return Err(joint_error(index, "axis length", n, "must be > 0"));
+            }
+            ordered(index, "translation limits", w.limits, None)?;
+            motor(index, w.motor)?;
+            if let Some(s) = w.spring {
+                softness(index, s.hertz, s.damping_ratio)?;
+            }
+        }
+        JointKind::Motor(m) => {
+            finite(
+                index,
+                &[
+                    ("linear offset x", m.linear_offset[0]),
+                    ("linear offset y", m.linear_offset[1]),
+                    ("angular offset", m.angular_offset),
+                ],
+            )?;
+            for (field, v) in [
+                ("maximum force", m.max_force),
+                ("maximum torque", m.max_torque),
+            ] {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(joint_error(index, field, v, "must be finite and > 0"));
+                }
+            }
+            softness(index, m.linear.hertz, m.linear.damping_ratio)?;
+            softness(index, m.angular.hertz, m.angular.damping_ratio)?;
         }
     }
     Ok(())

@@ -246,6 +246,47 @@ fn generic_joints(
                 g.softness = SpringCoefficients::new(s.hertz, s.damping_ratio);
             }
         }
+        JointKind::Wheel(w) => {
+            // The prismatic's frames with the rotation free: only the
+            // linear axis across the suspension is locked.
+            g.lock_axes(JointAxesMask::LIN_Y);
+            let n = w.axis[0].hypot(w.axis[1]);
+            let axis = [w.axis[0] / n, w.axis[1] / n];
+            g.local_frame1.translation = la;
+            g.local_frame2.translation = lb;
+            g.set_local_axis1(vector(pa.direction_to_local(axis)));
+            g.set_local_axis2(vector(pb.direction_to_local(axis)));
+            if let Some(l) = w.limits {
+                g.set_limits(JointAxis::LinX, l);
+            }
+            if let Some(s) = w.spring {
+                spring_motor(&mut g, JointAxis::LinX, 0.0, s.hertz, s.damping_ratio);
+            }
+            if let Some(m) = w.motor {
+                velocity_motor(&mut g, JointAxis::AngX, m.speed, m.max_force);
+            }
+        }
+        JointKind::Motor(m) => {
+            // Nothing locked: a position motor on each axis of frame 1
+            // (at the offset, turned by the angular offset) toward frame
+            // 2 (B's centre), each bounded by the largest force or torque
+            // (rapier bounds each axis: the linear force up to √2 F_max).
+            let target = [la.x + m.linear_offset[0], la.y + m.linear_offset[1]];
+            g.local_frame1 = Pose::from_parts(vector(target), Rotation::new(m.angular_offset));
+            g.local_frame2 = Pose::from_parts(lb, Rotation::new(0.0));
+            for axis in [JointAxis::LinX, JointAxis::LinY] {
+                spring_motor(&mut g, axis, 0.0, m.linear.hertz, m.linear.damping_ratio);
+                g.set_motor_max_force(axis, m.max_force);
+            }
+            spring_motor(
+                &mut g,
+                JointAxis::AngX,
+                0.0,
+                m.angular.hertz,
+                m.angular.damping_ratio,
+            );
+            g.set_motor_max_force(JointAxis::AngX, m.max_torque);
+        }
         JointKind::Distance(d) => {
             g.coupled_axes = JointAxesMask::LIN_AXES;
             g.local_frame1.translation = la;

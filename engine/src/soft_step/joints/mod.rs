@@ -3,7 +3,7 @@
 //! v3.2's joint solvers (`joint.c`, `revolute_joint.c`, ...), written anew
 //! for f64.
 //!
-//! Five types, one file each, with its constraint rows written out:
+//! Seven types, one file each, with its constraint rows written out:
 //!
 //! | type | holds | options |
 //! |---|---|---|
@@ -12,6 +12,8 @@
 //! | [`Distance`] | the distance of two points (1 row) | rigid, rope (limits only), spring with limits |
 //! | [`Weld`] | the relative pose (3 rows) | linear and angular springs instead of rigid rows |
 //! | [`Target`] | a body point pulled to a target (2 rows) | a spring with a bounded force |
+//! | [`Wheel`] | a point on a line (1 row), free rotation | suspension spring, translation limits, motor |
+//! | [`MotorJoint`] | B's pose relative to A, driven (3 rows) | bounded linear and angular springs |
 //!
 //! Build a [`JointDef`] and give it to [`crate::World::add_joint`], which
 //! validates it (the bodies exist and differ, at least one is dynamic,
@@ -119,25 +121,30 @@
 //!
 //! # Not done
 //!
-//! Box2D's wheel, motor and filter joints; joint breaking (force
+//! Box2D's filter joint; the velocity part of Box2D v3.2's motor joint;
+//! joint breaking (force
 //! thresholds); the spring force bounds of Box2D's distance joint; angular
 //! damping on the target joint (a body pulled by one point swings about it
 //! freely); limits, motors and springs under the exact contact model.
 
 mod distance;
 mod frame;
+mod motor_joint;
 mod prismatic;
 mod revolute;
 mod set;
 mod target;
 mod weld;
+mod wheel;
 mod wide_revolute;
 
 pub use distance::Distance;
+pub use motor_joint::MotorJoint;
 pub use prismatic::{Prismatic, PrismaticMotor};
 pub use revolute::{MAX_LIMIT_ANGLE, Revolute, RevoluteMotor};
 pub use target::Target;
 pub use weld::Weld;
+pub use wheel::{Wheel, WheelMotor};
 
 pub(crate) use set::{JointRows, JointSet};
 
@@ -207,6 +214,10 @@ pub enum JointKind {
     Weld(Weld),
     /// A body point pulled toward a target.
     Target(Target),
+    /// A point on a line, free rotation, a suspension spring.
+    Wheel(Wheel),
+    /// B's pose relative to A driven by bounded springs.
+    Motor(MotorJoint),
 }
 
 /// The type of a joint, without its parameters.
@@ -223,6 +234,10 @@ pub enum JointType {
     Weld,
     /// [`Target`].
     Target,
+    /// [`Wheel`].
+    Wheel,
+    /// [`MotorJoint`].
+    Motor,
 }
 
 impl JointType {
@@ -234,6 +249,8 @@ impl JointType {
             JointType::Distance => "distance",
             JointType::Weld => "weld",
             JointType::Target => "target",
+            JointType::Wheel => "wheel",
+            JointType::Motor => "motor_joint",
         }
     }
 }
@@ -247,6 +264,8 @@ impl JointKind {
             JointKind::Distance(_) => JointType::Distance,
             JointKind::Weld(_) => JointType::Weld,
             JointKind::Target(_) => JointType::Target,
+            JointKind::Wheel(_) => JointType::Wheel,
+            JointKind::Motor(_) => JointType::Motor,
         }
     }
 }
@@ -387,6 +406,28 @@ impl JointDef {
         )
     }
 
+    /// A wheel joint of `a` (the chassis) and `b` (the wheel) at the world
+    /// point `anchor` (m, the axle), its suspension along `joint.axis`.
+    pub fn wheel(
+        name: &str,
+        a: Option<BodyId>,
+        b: Option<BodyId>,
+        anchor: Vector2<f64>,
+        joint: Wheel,
+    ) -> Self {
+        let at = Anchor::World(anchor);
+        Self::base(name, (a, at), (b, at), JointKind::Wheel(joint))
+    }
+
+    /// A motor joint driving `b`'s centre to `joint.linear_offset` from
+    /// `a`'s centre (in A's frame; `None`: the world, its origin) and its
+    /// angle to `joint.angular_offset` from A's. The anchors are the
+    /// bodies' centres (`Anchor::Local` zero).
+    pub fn motor(name: &str, a: Option<BodyId>, b: Option<BodyId>, joint: MotorJoint) -> Self {
+        let at = Anchor::Local(Vector2::zeros());
+        Self::base(name, (a, at), (b, at), JointKind::Motor(joint))
+    }
+
     /// The anchors given in the bodies' frames instead (m, from each
     /// centre of mass; a world point on the world side).
     pub fn with_local_anchors(mut self, a: Vector2<f64>, b: Vector2<f64>) -> Self {
@@ -485,6 +526,8 @@ impl JointDef {
             JointKind::Distance(j) => j.check(name),
             JointKind::Weld(j) => j.check(name),
             JointKind::Target(j) => j.check(name),
+            JointKind::Wheel(j) => j.check(name),
+            JointKind::Motor(j) => j.check(name),
         }
     }
 }
@@ -511,24 +554,28 @@ pub struct JointState {
     pub anchor_b: Vector2<f64>,
     /// The joint angle θB − θA − θref now, in [−π, π) (rad).
     pub angle: f64,
-    /// A prismatic's translation along its axis, or a distance joint's
-    /// length |anchor_b − anchor_a| (m); 0 for the others.
+    /// A prismatic's or wheel's translation along its axis, or a distance
+    /// joint's length |anchor_b − anchor_a| (m); 0 for the others.
     pub translation: f64,
     /// How far the position rows are from holding (m): the anchors'
     /// separation of a revolute or weld, a prismatic's offset across its
     /// axis, a distance joint's length error (a rope's or spring's excess
-    /// beyond its limits), a target joint's distance to its target.
+    /// beyond its limits), a target joint's distance to its target, a
+    /// wheel's offset across its axis (or beyond its limits), a motor
+    /// joint's distance of B's centre from its target.
     pub linear_error: f64,
     /// How far the angular rows are from holding (rad): a prismatic's or
-    /// weld's |angle|, a revolute's angle beyond its limits; else 0.
+    /// weld's |angle|, a revolute's angle beyond its limits, a motor
+    /// joint's |angle error| (its angle is measured from its angular
+    /// offset); else 0.
     pub angular_error: f64,
     /// Force of the joint on B at its anchor in the last substep (N), world
     /// frame (the force on A is its opposite): accumulated impulse / h.
     pub force: Vector2<f64>,
     /// Torque of the joint's angular rows on B in the last substep (N·m).
     pub torque: f64,
-    /// The motor's torque (N·m, revolute) or force (N, prismatic) in the
-    /// last substep; 0 without a motor.
+    /// The motor's torque (N·m, revolute or wheel) or force (N, prismatic)
+    /// in the last substep; 0 without a motor.
     pub motor: f64,
     /// Whether the joint was removed (then it does nothing).
     pub removed: bool,

@@ -18,10 +18,12 @@
 use super::super::contact_events::JointEvent;
 use super::distance::DistanceRows;
 use super::frame::JointFrame;
+use super::motor_joint::MotorJointRows;
 use super::prismatic::PrismaticRows;
 use super::revolute::RevoluteRows;
 use super::target::TargetRows;
 use super::weld::WeldRows;
+use super::wheel::WheelRows;
 use super::wide_revolute::{self, WideAxial, WideRevolute};
 use super::{
     Distance, JointDef, JointId, JointKind, JointState, JointType, Target, invalid, world_point,
@@ -45,6 +47,8 @@ pub(crate) enum JointRows {
     Distance(DistanceRows),
     Weld(WeldRows),
     Target(TargetRows),
+    Wheel(WheelRows),
+    Motor(MotorJointRows),
 }
 
 /// A joint's solver record (its frame for the step is in the scalar list
@@ -291,9 +295,18 @@ impl JointSet {
         }
         let (local_a, local_b) = def.local_anchors(&core.states);
         let angle = |b: Option<BodyId>| b.map_or(0.0, |id| core.states[id].angle);
-        let reference_angle = def
-            .reference_angle
-            .unwrap_or_else(|| angle(def.body_b) - angle(def.body_a));
+        // A motor joint's angle is measured from its angular offset.
+        let reference_angle = match &def.kind {
+            JointKind::Motor(m) => m.angular_offset,
+            _ => def
+                .reference_angle
+                .unwrap_or_else(|| angle(def.body_b) - angle(def.body_a)),
+        };
+        let local_axis = |axis: Vector2<f64>| {
+            let u = axis.normalize();
+            let (s, c) = angle(def.body_a).sin_cos();
+            Vector2::new(c * u.x + s * u.y, -s * u.x + c * u.y)
+        };
         let pa = world_point(def.body_a, local_a, &core.states);
         let pb = world_point(def.body_b, local_b, &core.states);
         let rows = match &def.kind {
@@ -322,6 +335,8 @@ impl JointSet {
             }
             JointKind::Weld(j) => JointRows::Weld(WeldRows::new(*j)),
             JointKind::Target(j) => JointRows::Target(TargetRows::new(*j)),
+            JointKind::Wheel(j) => JointRows::Wheel(WheelRows::new(*j, local_axis(j.axis))),
+            JointKind::Motor(j) => JointRows::Motor(MotorJointRows::new(*j)),
         };
         let id = self.infos.len();
         self.infos.push(JointInfo {
@@ -411,10 +426,14 @@ impl JointSet {
                 joint: super::Prismatic { motor: Some(m), .. },
                 ..
             }) => m.speed = speed,
+            JointRows::Wheel(WheelRows {
+                joint: super::Wheel { motor: Some(m), .. },
+                ..
+            }) => m.speed = speed,
             _ => {
                 return Err(invalid(
                     name,
-                    "it has no motor (only a revolute or prismatic joint with a motor has a speed)"
+                    "it has no motor (only a revolute, prismatic or wheel joint with a motor has a speed)"
                         .into(),
                 ));
             }
@@ -501,6 +520,8 @@ impl JointSet {
                 JointRows::Distance(d) => d.prepare(h, warm),
                 JointRows::Weld(w) => w.prepare(&frame, h, warm),
                 JointRows::Target(t) => t.prepare(h, warm),
+                JointRows::Wheel(w) => w.prepare(h, a.rotation, warm),
+                JointRows::Motor(m) => m.prepare(h, a.rotation, warm),
             }
             self.scalar.push((id as u32, frame));
         }
@@ -564,6 +585,8 @@ impl JointSet {
                 JointRows::Distance(d) => d.warm_start(f, &mut a, &mut b),
                 JointRows::Weld(w) => w.warm_start(f, &mut a, &mut b),
                 JointRows::Target(t) => t.warm_start(f, &mut a, &mut b),
+                JointRows::Wheel(w) => w.warm_start(f, &mut a, &mut b),
+                JointRows::Motor(m) => m.warm_start(f, &mut a, &mut b),
             }
             store(bodies, f, &a, &b);
         }
@@ -587,6 +610,8 @@ impl JointSet {
                 JointRows::Distance(d) => d.solve(f, pair, inv_h, use_bias),
                 JointRows::Weld(w) => w.solve(f, pair, use_bias),
                 JointRows::Target(t) => t.solve(f, pair, h),
+                JointRows::Wheel(w) => w.solve(f, pair, (h, inv_h), use_bias),
+                JointRows::Motor(m) => m.solve(f, pair, h),
             }
             store(bodies, f, &a, &b);
         }
@@ -719,6 +744,41 @@ impl JointSet {
                     0.0,
                     0.0,
                 ),
+                JointRows::Wheel(w) => {
+                    let (s, c) = angle_of(info.body_a).sin_cos();
+                    let u = w.local_axis;
+                    let axis = Vector2::new(c * u.x - s * u.y, s * u.x + c * u.y);
+                    let normal = Vector2::new(-axis.y, axis.x);
+                    let translation = axis.dot(&d);
+                    (
+                        JointType::Wheel,
+                        translation,
+                        normal
+                            .dot(&d)
+                            .abs()
+                            .max(w.joint.limits.map_or(0.0, |l| beyond(translation, l))),
+                        0.0,
+                        inv_h * (w.axial_impulse() * axis + w.perpendicular * normal),
+                        inv_h * w.motor,
+                        inv_h * w.motor,
+                    )
+                }
+                JointRows::Motor(m) => {
+                    // The target of B's centre: A's centre plus the offset
+                    // turned with A.
+                    let (s, c) = angle_of(info.body_a).sin_cos();
+                    let o = m.joint.linear_offset;
+                    let error = d - Vector2::new(c * o.x - s * o.y, s * o.x + c * o.y);
+                    (
+                        JointType::Motor,
+                        0.0,
+                        error.norm(),
+                        angle.abs(),
+                        inv_h * m.linear,
+                        inv_h * m.angular,
+                        0.0,
+                    )
+                }
             };
         Measures {
             joint_type,
