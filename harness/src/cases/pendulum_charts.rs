@@ -15,11 +15,14 @@
 //! its point out, and the caption says so.
 
 use super::joint_common::{Config, Engine, JointScene, SoftRows, crossings, steps};
+use super::pendulum_exact;
 use super::pendulum_swing::Spec;
 use super::{CaseFigure, collision_plots::figure};
 use crate::plots::bench::engine_style;
 use crate::plots::{Chart, Series, palette};
 use anyhow::Result;
+use engine::{Method, Tolerance};
+use std::time::Instant;
 
 /// Runs per configuration; the time is the minimum.
 pub const REPEATS: usize = 3;
@@ -142,10 +145,12 @@ pub fn work_precision(js: &JointScene, specs: &[Spec]) -> Result<CaseFigure> {
             }
         }
     }
+    let exact = exact_points(js, specs, PERIODS * slowest, base.dt, &mut failed)?;
     let panels = specs
         .iter()
         .zip(points)
-        .map(|(p, series)| Chart {
+        .zip(exact)
+        .map(|((p, series), exact)| Chart {
             title: p.title(),
             x_label: format!("wall time of the run (s), min of {REPEATS}"),
             y_label: "|mean period / T(θ0) − 1|".into(),
@@ -155,6 +160,12 @@ pub fn work_precision(js: &JointScene, specs: &[Spec]) -> Result<CaseFigure> {
                 .iter()
                 .zip(series)
                 .map(|(family, pts)| Series::new(family.label, family.style, pts))
+                .chain(
+                    exact_methods()
+                        .iter()
+                        .zip(exact)
+                        .map(|(m, pts)| Series::new(m.label, m.style, pts)),
+                )
                 .collect(),
             y_range: None,
         })
@@ -175,12 +186,122 @@ pub fn work_precision(js: &JointScene, specs: &[Spec]) -> Result<CaseFigure> {
              90° and 170° the error is mostly the energy the joints dissipate, which shortens \
              the period as the amplitude decays. Box2D and the soft step fix their joints at \
              min(60 Hz, 1/(4h)), so beyond 4 substeps their error stops falling as h²; with the \
-             joints at 1/(4h) the soft step's does.{failures}",
+             joints at 1/(4h) the soft step's does. The exact model (joints as constraints of \
+             the equations of motion, docs/joints.md) runs each pendulum in its own world, its \
+             time the sum of the six runs', its period from its apex events over the same span: \
+             RK4, midpoint and velocity Verlet at h = dt/1 to dt/16 (left to right), \
+             Dormand-Prince at rtol = atol = 1e-4 to 1e-12; their errors fall at their orders \
+             to 1e-10 and below.{failures}",
             PERIODS * slowest
         ),
         panels,
         3,
     ))
+}
+
+/// An exact-model series of the work-precision chart.
+struct ExactFamily {
+    label: &'static str,
+    style: crate::plots::Style,
+    /// (method, step s) of each point, left to right.
+    points: Vec<(Method, f64)>,
+}
+
+/// Substep counts whose h = dt/n the exact model's fixed-step methods
+/// run at (its steps are whole integrator steps, no substeps).
+const EXACT_DIVISIONS: [usize; 5] = [1, 2, 4, 8, 16];
+
+fn exact_methods() -> Vec<ExactFamily> {
+    let dt = 1.0 / 60.0;
+    let fixed = |m: Method| -> Vec<(Method, f64)> {
+        EXACT_DIVISIONS
+            .iter()
+            .map(|&n| (m, dt / n as f64))
+            .collect()
+    };
+    vec![
+        ExactFamily {
+            label: "exact model, RK4",
+            style: palette(3),
+            points: fixed(Method::Rk4),
+        },
+        ExactFamily {
+            label: "exact model, midpoint",
+            style: palette(5),
+            points: fixed(Method::Midpoint),
+        },
+        ExactFamily {
+            label: "exact model, velocity Verlet",
+            style: palette(6),
+            points: fixed(Method::VelocityVerlet),
+        },
+        ExactFamily {
+            label: "exact model, Dormand-Prince (tol 1e-4 to 1e-12)",
+            style: palette(7),
+            points: [1e-4, 1e-6, 1e-8, 1e-10, 1e-12]
+                .iter()
+                .map(|&t| (Method::DormandPrince(Tolerance::uniform(t)), dt))
+                .collect(),
+        },
+    ]
+}
+
+/// The exact model's points (wall time, |period error|) per pendulum and
+/// family: each pendulum alone in an exact-model world
+/// ([`pendulum_exact::exact_world`]) for `seconds`, its mean period over
+/// the whole periods between its apex events; the time of a point is the
+/// sum over the pendulums of each run's minimum over [`REPEATS`].
+fn exact_points(
+    js: &JointScene,
+    specs: &[Spec],
+    seconds: f64,
+    sample_dt: f64,
+    failed: &mut Vec<String>,
+) -> Result<Vec<Vec<Vec<(f64, f64)>>>> {
+    let families = exact_methods();
+    let mut points = vec![vec![Vec::new(); families.len()]; specs.len()];
+    for (f, family) in families.iter().enumerate() {
+        'point: for &(method, h) in &family.points {
+            let mut total = 0.0;
+            let mut errors = Vec::new();
+            for p in specs {
+                let mut best = f64::INFINITY;
+                let mut apexes = Vec::new();
+                for _ in 0..REPEATS {
+                    let mut world = pendulum_exact::exact_world(&js.scene, p, method)?;
+                    let dt = if matches!(method, Method::DormandPrince(_)) {
+                        sample_dt
+                    } else {
+                        h
+                    };
+                    let started = Instant::now();
+                    let trace = match world.run(seconds, dt) {
+                        Ok(t) => t,
+                        Err(e) => {
+                            failed.push(format!("{} at h = {h:.5} s ({e:#})", family.label));
+                            continue 'point;
+                        }
+                    };
+                    best = best.min(started.elapsed().as_secs_f64());
+                    apexes = trace.events.iter().map(|e| e.t).collect();
+                }
+                total += best;
+                let periods = apexes.len().saturating_sub(1) / 2;
+                let error = match pendulum_exact::period_of(&apexes, periods.max(1)) {
+                    Ok(t) => (t / p.closed.period() - 1.0).abs(),
+                    Err(e) => {
+                        failed.push(format!("{} at h = {h:.5} s ({e:#})", family.label));
+                        continue 'point;
+                    }
+                };
+                errors.push(error);
+            }
+            for (i, e) in errors.into_iter().enumerate() {
+                points[i][f].push((total, e));
+            }
+        }
+    }
+    Ok(points)
 }
 
 /// The constraint-drift chart.
