@@ -499,7 +499,7 @@ impl ContactPipeline {
             }
             start = end;
         }
-        if let Some(j) = joints.as_deref_mut() {
+        if let Some(j) = joints {
             changed |= constrained::apply_impulses(
                 j,
                 bodies,

@@ -199,6 +199,9 @@ pub fn work_precision(js: &JointScene, specs: &[Spec]) -> Result<CaseFigure> {
     ))
 }
 
+/// The points (x, y) of one series.
+type Points = Vec<(f64, f64)>;
+
 /// An exact-model series of the work-precision chart.
 struct ExactFamily {
     label: &'static str,
@@ -257,7 +260,7 @@ fn exact_points(
     seconds: f64,
     sample_dt: f64,
     failed: &mut Vec<String>,
-) -> Result<Vec<Vec<Vec<(f64, f64)>>>> {
+) -> Result<Vec<Vec<Points>>> {
     let families = exact_methods();
     let mut points = vec![vec![Vec::new(); families.len()]; specs.len()];
     for (f, family) in families.iter().enumerate() {
