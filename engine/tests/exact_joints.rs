@@ -324,7 +324,7 @@ fn an_impact_on_a_pinned_disc_reverses_its_angular_velocity_by_e() {
         ))
         .unwrap();
         // Energies above the hanging disc (its centre at y = −1 m).
-        let above_bottom = |w: &World| w.energy() - w.bodies()[bob].mass * G * -1.0;
+        let above_bottom = |w: &World| w.energy() + w.bodies()[bob].mass * G;
         let e0 = above_bottom(&w);
         // The quarter period of a 0.6 rad swing is about 0.51 s: the
         // impact is inside the first 0.6 s, and nothing else happens.
