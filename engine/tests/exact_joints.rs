@@ -292,3 +292,68 @@ fn a_cradle_of_five_sends_one_ball_out_for_one_in() {
     // e = 1 impulses keep the energy; RK4 over 800 steps to 1e-12.
     assert!(((w.energy() - e0) / e0).abs() < 1e-12);
 }
+
+/// A disc pinned 1 m above its centre strikes a static wall at its lowest
+/// point, the normal along its motion (docs/joints.md, "Impacts on jointed
+/// bodies"): the impulse solved with the joint held maps θ' to −e θ'
+/// exactly (one degree of freedom), where a free impulse projected onto
+/// the joint afterwards gives (I_cm − e m L²)/(I_cm + m L²) θ'.
+#[test]
+fn an_impact_on_a_pinned_disc_reverses_its_angular_velocity_by_e() {
+    for e in [0.0, 0.5, 1.0] {
+        let mut w = world(Method::Rk4);
+        w.set_contact_settings(ContactSettings {
+            restitution: e,
+            ..ContactSettings::default()
+        })
+        .unwrap();
+        let theta0 = -0.6_f64;
+        let bob = w.add_body(disc_at("bob", theta0)).unwrap();
+        w.add_body(BodyDef::fixed(
+            "wall",
+            Vector2::new(0.3, -1.0),
+            Some(Shape::rectangle(0.4, 1.0).unwrap()),
+        ))
+        .unwrap();
+        w.add_joint(JointDef::revolute(
+            "pin",
+            None,
+            Some(bob),
+            Vector2::zeros(),
+            Revolute::default(),
+        ))
+        .unwrap();
+        // Energies above the hanging disc (its centre at y = −1 m).
+        let above_bottom = |w: &World| w.energy() + w.bodies()[bob].mass * G;
+        let e0 = above_bottom(&w);
+        // The quarter period of a 0.6 rad swing is about 0.51 s: the
+        // impact is inside the first 0.6 s, and nothing else happens.
+        w.run(0.6, H).unwrap();
+        // θ' → −e θ' at the bottom keeps e² of the energy (RK4's error
+        // over 600 steps is far below 1e-10); a free impulse projected
+        // afterwards keeps ((I_cm − e m L²)/(I_cm + m L²))², 0.980 at e = 1.
+        let kept = above_bottom(&w) / e0;
+        assert!((kept - e * e).abs() < 1e-10, "e = {e}: {kept}");
+        let impacts: Vec<_> = w
+            .contact_events()
+            .into_iter()
+            .filter(|c| c.kind == etalon2d::ContactEventKind::Impact)
+            .collect();
+        assert_eq!(impacts.len(), 1, "e = {e}: {impacts:?}");
+        let c = &impacts[0];
+        assert!(
+            (c.normal_velocity_after + e * c.normal_velocity_before).abs() < 1e-14,
+            "e = {e}: {c:?}"
+        );
+        // The joint holds the pivot's velocity at zero after the impact:
+        // the disc turns about the pivot at ω = vx / L.
+        let s = w.states()[bob];
+        let arm = -s.position;
+        let pivot_velocity = s.velocity + s.angular_velocity * Vector2::new(-arm.y, arm.x);
+        assert!(pivot_velocity.norm() < 1e-13, "e = {e}: {pivot_velocity:?}");
+        if e > 0.0 {
+            // Rebound to the left and up.
+            assert!(s.velocity.x < 0.0, "e = {e}: {s:?}");
+        }
+    }
+}

@@ -615,6 +615,39 @@ impl ExactJoints {
         self.last_lambda.clone_from(&self.lambda);
     }
 
+    /// The constrained mobility at `states`: each of the `columns.len() / n`
+    /// columns w (n = the layout's positions, a generalised impulse in
+    /// N·s and N·m·s) becomes the velocity change P w it gives the bodies
+    /// while the joints hold, P = M⁻¹ − M⁻¹ Jᵀ (J M⁻¹ Jᵀ)⁻¹ J M⁻¹, so that
+    /// J P w = 0 (a redundant row dropped as in the right-hand side).
+    /// Used by the constrained impact ([`crate::contact::constrained`]).
+    pub(crate) fn mobility(
+        &mut self,
+        bodies: &[Body],
+        layout: &Layout,
+        states: &[BodyState],
+        columns: &mut [f64],
+    ) {
+        self.evaluate(bodies, layout, states);
+        let n = layout.positions;
+        if n == 0 {
+            return;
+        }
+        for w in columns.chunks_mut(n) {
+            for (x, m) in w.iter_mut().zip(&self.inv_mass) {
+                *x *= m;
+            }
+            self.rhs.clear();
+            for i in 0..self.at.len() {
+                let r = &self.jac[i * n..(i + 1) * n];
+                self.rhs
+                    .push(-r.iter().zip(w.iter()).map(|(j, x)| j * x).sum::<f64>());
+            }
+            self.solve(n);
+            self.apply(n, w);
+        }
+    }
+
     /// Projects the state `y` = [q, v] back onto C(q) = 0 and J v = 0
     /// (see the module docs); `states` is scratch (every body's state,
     /// static ones fixed). Returns whether `y` changed.

@@ -46,6 +46,7 @@
 //! rest of the step: several contacts in one step are handled in time order.
 
 use super::ode::{Layout, WorldOde};
+use super::joints::ExactJoints;
 use crate::body::{Body, BodyState};
 use crate::collision::features::ContactFeatures;
 use crate::collision::features::{collide_on_face, equally_deep};
@@ -53,6 +54,7 @@ use crate::collision::narrow_phase::rotation_radius;
 use crate::collision::polygon_polygon::Face;
 use crate::collision::{Aabb, Manifold, SweepAndPrune};
 use crate::contact::ContactSettings;
+use crate::contact::constrained;
 use crate::contact::resting::{
     FrictionMode, RestingContacts, RestingPair, features_of, islands, manifold_rows, pose,
 };
@@ -119,6 +121,8 @@ pub(crate) struct ContactPipeline {
     b: Vec<f64>,
     lambda: Vec<f64>,
     out: Vec<(Vector2<f64>, f64)>,
+    /// Scratch of the constrained impact: the columns P W_cᵀ.
+    columns: Vec<f64>,
     pub(super) states_a: Vec<BodyState>,
     pub(super) states_b: Vec<BodyState>,
     pub(super) probe_states: Vec<BodyState>,
@@ -151,6 +155,7 @@ impl ContactPipeline {
             b: Vec::new(),
             lambda: Vec::new(),
             out: Vec::new(),
+            columns: Vec::new(),
             states_a: Vec::new(),
             states_b: Vec::new(),
             probe_states: Vec::new(),
@@ -244,7 +249,10 @@ impl ContactPipeline {
             .contacts
             .as_deref_mut()
             .expect("a world with contacts carries its resting pairs");
-        let changed = self.respond(bodies, layout, sys.states, &mut found, y, t, resting)?;
+        let joints = sys.joints.as_deref_mut().filter(|j| j.any());
+        let changed = self.respond(
+            bodies, layout, sys.states, &mut found, y, t, resting, joints,
+        )?;
         profiler.stop(Phase::Respond, started);
         Ok(changed || moved)
     }
@@ -288,6 +296,7 @@ impl ContactPipeline {
         y: &mut [f64],
         t: f64,
         resting: &mut RestingContacts,
+        mut joints: Option<&mut ExactJoints>,
     ) -> Result<bool> {
         let s = self.settings;
         let mut changed = false;
@@ -336,7 +345,12 @@ impl ContactPipeline {
         }
         self.lambda.clear();
         self.lambda.resize(self.rows.len(), 0.0);
-        let keys: Vec<(usize, usize)> = found.iter().map(|f| (f.a, f.b)).collect();
+        let mut keys: Vec<(usize, usize)> = found.iter().map(|f| (f.a, f.b)).collect();
+        // Jointed bodies share an island: an impulse on one moves the
+        // others through the joints (module `constrained`).
+        if let Some(j) = joints.as_deref() {
+            keys.extend(constrained::joint_pairs(j));
+        }
         let island = islands(&self.views, &keys);
         let mut order: Vec<usize> = (0..found.len()).collect();
         order.sort_by_key(|&i| island[i]);
@@ -372,7 +386,19 @@ impl ContactPipeline {
             self.b.clear();
             self.b
                 .extend(rows.iter().map(|r| r.velocity(&self.views) - r.target));
-            effective_mass(&rows, &self.views, &mut self.k);
+            match joints.as_deref_mut() {
+                // The joints held through the impact: K = J_c P W_cᵀ.
+                Some(j) => constrained::effective_mass(
+                    j,
+                    bodies,
+                    layout,
+                    states,
+                    &rows,
+                    &mut self.k,
+                    &mut self.columns,
+                ),
+                None => effective_mass(&rows, &self.views, &mut self.k),
+            }
             solve(&rows, &self.k, &self.b, &mut lambda);
             // A touching point the impulses leave separating slower than the
             // resting speed (and faster than the sliding speed, the speed
@@ -410,6 +436,18 @@ impl ContactPipeline {
                 }
             }
             start = end;
+        }
+        if let Some(j) = joints {
+            changed |= constrained::apply_impulses(
+                j,
+                bodies,
+                layout,
+                states,
+                &mut self.views,
+                &self.out,
+                y,
+            );
+            self.out.clear();
         }
         for (i, (dv, dw)) in self.out.iter().enumerate() {
             let v = &mut self.views[i];

@@ -77,6 +77,7 @@ registry! {
     physical_pendulum,
     double_pendulum,
     newtons_cradle,
+    pendulum_wall,
     chain,
     slider,
     joint_motor_limit,

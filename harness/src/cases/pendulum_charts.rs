@@ -15,11 +15,14 @@
 //! its point out, and the caption says so.
 
 use super::joint_common::{Config, Engine, JointScene, SoftRows, crossings, steps};
+use super::pendulum_exact;
 use super::pendulum_swing::Spec;
 use super::{CaseFigure, collision_plots::figure};
 use crate::plots::bench::engine_style;
 use crate::plots::{Chart, Series, palette};
 use anyhow::Result;
+use engine::{Method, Tolerance};
+use std::time::Instant;
 
 /// Runs per configuration; the time is the minimum.
 pub const REPEATS: usize = 3;
@@ -142,10 +145,12 @@ pub fn work_precision(js: &JointScene, specs: &[Spec]) -> Result<CaseFigure> {
             }
         }
     }
+    let exact = exact_points(js, specs, PERIODS * slowest, base.dt, &mut failed)?;
     let panels = specs
         .iter()
         .zip(points)
-        .map(|(p, series)| Chart {
+        .zip(exact)
+        .map(|((p, series), exact)| Chart {
             title: p.title(),
             x_label: format!("wall time of the run (s), min of {REPEATS}"),
             y_label: "|mean period / T(θ0) − 1|".into(),
@@ -155,6 +160,12 @@ pub fn work_precision(js: &JointScene, specs: &[Spec]) -> Result<CaseFigure> {
                 .iter()
                 .zip(series)
                 .map(|(family, pts)| Series::new(family.label, family.style, pts))
+                .chain(
+                    exact_methods()
+                        .iter()
+                        .zip(exact)
+                        .map(|(m, pts)| Series::new(m.label, m.style, pts)),
+                )
                 .collect(),
             y_range: None,
         })
@@ -175,12 +186,125 @@ pub fn work_precision(js: &JointScene, specs: &[Spec]) -> Result<CaseFigure> {
              90° and 170° the error is mostly the energy the joints dissipate, which shortens \
              the period as the amplitude decays. Box2D and the soft step fix their joints at \
              min(60 Hz, 1/(4h)), so beyond 4 substeps their error stops falling as h²; with the \
-             joints at 1/(4h) the soft step's does.{failures}",
+             joints at 1/(4h) the soft step's does. The exact model (joints as constraints of \
+             the equations of motion, docs/joints.md) runs each pendulum in its own world, its \
+             time the sum of the six runs', its period from its apex events over the same span: \
+             RK4, midpoint and velocity Verlet at h = dt/1 to dt/16 (left to right), \
+             Dormand-Prince at rtol = atol = 1e-4 to 1e-12; their errors fall at their orders \
+             to 1e-10 and below.{failures}",
             PERIODS * slowest
         ),
         panels,
         3,
     ))
+}
+
+/// The points (x, y) of one series.
+type Points = Vec<(f64, f64)>;
+
+/// An exact-model series of the work-precision chart.
+struct ExactFamily {
+    label: &'static str,
+    style: crate::plots::Style,
+    /// (method, step s) of each point, left to right.
+    points: Vec<(Method, f64)>,
+}
+
+/// Substep counts whose h = dt/n the exact model's fixed-step methods
+/// run at (its steps are whole integrator steps, no substeps).
+const EXACT_DIVISIONS: [usize; 5] = [1, 2, 4, 8, 16];
+
+fn exact_methods() -> Vec<ExactFamily> {
+    let dt = 1.0 / 60.0;
+    let fixed = |m: Method| -> Vec<(Method, f64)> {
+        EXACT_DIVISIONS
+            .iter()
+            .map(|&n| (m, dt / n as f64))
+            .collect()
+    };
+    vec![
+        ExactFamily {
+            label: "exact model, RK4",
+            style: palette(3),
+            points: fixed(Method::Rk4),
+        },
+        ExactFamily {
+            label: "exact model, midpoint",
+            style: palette(5),
+            points: fixed(Method::Midpoint),
+        },
+        ExactFamily {
+            label: "exact model, velocity Verlet",
+            style: palette(6),
+            points: fixed(Method::VelocityVerlet),
+        },
+        ExactFamily {
+            label: "exact model, Dormand-Prince (tol 1e-4 to 1e-12)",
+            style: palette(7),
+            points: [1e-4, 1e-6, 1e-8, 1e-10, 1e-12]
+                .iter()
+                .map(|&t| (Method::DormandPrince(Tolerance::uniform(t)), dt))
+                .collect(),
+        },
+    ]
+}
+
+/// The exact model's points (wall time, |period error|) per pendulum and
+/// family: each pendulum alone in an exact-model world
+/// ([`pendulum_exact::exact_world`]) for `seconds`, its mean period over
+/// the whole periods between its apex events; the time of a point is the
+/// sum over the pendulums of each run's minimum over [`REPEATS`].
+fn exact_points(
+    js: &JointScene,
+    specs: &[Spec],
+    seconds: f64,
+    sample_dt: f64,
+    failed: &mut Vec<String>,
+) -> Result<Vec<Vec<Points>>> {
+    let families = exact_methods();
+    let mut points = vec![vec![Vec::new(); families.len()]; specs.len()];
+    for (f, family) in families.iter().enumerate() {
+        'point: for &(method, h) in &family.points {
+            let mut total = 0.0;
+            let mut errors = Vec::new();
+            for p in specs {
+                let mut best = f64::INFINITY;
+                let mut apexes = Vec::new();
+                for _ in 0..REPEATS {
+                    let mut world = pendulum_exact::exact_world(&js.scene, p, method)?;
+                    let dt = if matches!(method, Method::DormandPrince(_)) {
+                        sample_dt
+                    } else {
+                        h
+                    };
+                    let started = Instant::now();
+                    let trace = match world.run(seconds, dt) {
+                        Ok(t) => t,
+                        Err(e) => {
+                            failed.push(format!("{} at h = {h:.5} s ({e:#})", family.label));
+                            continue 'point;
+                        }
+                    };
+                    best = best.min(started.elapsed().as_secs_f64());
+                    apexes = trace.events.iter().map(|e| e.t).collect();
+                }
+                total += best;
+                let periods = apexes.len().saturating_sub(1) / 2;
+                let error = match pendulum_exact::period_of(&apexes, periods.max(1)) {
+                    Ok(t) => (t / p.closed.period() - 1.0).abs(),
+                    Err(e) => {
+                        failed.push(format!("{} at h = {h:.5} s ({e:#})", family.label));
+                        continue 'point;
+                    }
+                };
+                errors.push(error);
+            }
+            for (i, e) in errors.into_iter().enumerate() {
+                points[i][f].push((total, e));
+            }
+        }
+    }
+    Ok(points)
 }
 
 /// The constraint-drift chart.
@@ -207,10 +331,29 @@ pub fn drift_against_step(js: &JointScene, specs: &[Spec]) -> Result<CaseFigure>
             }
         }
     }
+    // The exact model: RK4 at h = dt/4 (the soft engines' substep), each
+    // pendulum alone; the largest constraint error its projection removed
+    // after a step (what the integrator drifts by; after the projection
+    // the error is round-off).
+    let mut exact: Vec<Vec<(f64, f64)>> = vec![Vec::new(); specs.len()];
+    for dt in STEPS {
+        for (i, p) in specs.iter().enumerate() {
+            let mut world = pendulum_exact::exact_world(&js.scene, p, Method::Rk4)?;
+            match world.run(DRIFT_SECONDS, dt / 4.0) {
+                Ok(_) => {
+                    if let Some(d) = world.joint_drift() {
+                        exact[i].push((dt, d));
+                    }
+                }
+                Err(e) => failed.push(format!("exact model, RK4 at dt = {dt:.4} s ({e:#})")),
+            }
+        }
+    }
     let panels = specs
         .iter()
         .zip(points)
-        .map(|(p, series)| {
+        .zip(exact)
+        .map(|((p, series), exact)| {
             let g = p.closed.gravity;
             let bound: Vec<(f64, f64)> = STEPS
                 .iter()
@@ -237,6 +380,11 @@ pub fn drift_against_step(js: &JointScene, specs: &[Spec]) -> Result<CaseFigure>
                         Series::new(engine.label(), style, pts)
                     }),
             );
+            all.push(Series::new(
+                "exact model, RK4 at h = dt/4: drift per step before projection",
+                palette(3),
+                exact,
+            ));
             Chart {
                 title: p.title(),
                 x_label: "step dt (s), 4 substeps".into(),
@@ -261,7 +409,10 @@ pub fn drift_against_step(js: &JointScene, specs: &[Spec]) -> Result<CaseFigure>
              {DRIFT_SECONDS:.0} s of scenes/pendulum.toml at dt from 1/480 to 1/10 s, 4 substeps, \
              per engine; the pale line is the soft rows' bound (a_load + a_c (1 + 1/(2 a3)))/ω_c² \
              at each step, with the rows at min(60 Hz, 1/(4h)) as in the soft step and Box2D: \
-             it grows as h² once 1/(4h) < 60 Hz (dt > 1/60 s).{failures}"
+             it grows as h² once 1/(4h) < 60 Hz (dt > 1/60 s). The exact model (each pendulum \
+             alone, RK4 at h = dt/4, joints as constraints) is drawn by the largest constraint \
+             error its projection removed after a step, RK4's local error, O(h^5); the error \
+             left after the projection is round-off.{failures}"
         ),
         panels,
         3,

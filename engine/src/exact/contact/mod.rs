@@ -38,6 +38,7 @@
 //! world that did not ask, or has fewer than two shapes, or no moving one,
 //! runs none of it.
 
+pub(crate) mod constrained;
 mod events;
 mod impulse;
 mod persistent;

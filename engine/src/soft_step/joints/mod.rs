@@ -25,7 +25,7 @@
 //! [`crate::World::set_joint_target`] and
 //! [`crate::World::set_motor_speed`]. The exact contact model solves the
 //! revolute, prismatic, rigid distance and rigid weld joints as constraints
-//! of its equations of motion (module `exact_joints`) and refuses the rest
+//! of its equations of motion (module `exact::joints`) and refuses the rest
 //! by name ([`crate::EngineError::Unsupported`]).
 //!
 //! A bead on a massless rod of 1 m, released horizontal:
