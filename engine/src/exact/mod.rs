@@ -97,7 +97,7 @@ pub(crate) struct ExactModel {
     /// Contact events of pipelines replaced when bodies were added.
     earlier_contact_events: Vec<ContactEvent>,
     /// The joints, held by constraint forces in the right-hand side and
-    /// projected after every accepted step ([`crate::exact_joints`]).
+    /// projected after every accepted step ([`crate::exact::joints`]).
     pub(crate) joints: ExactJoints,
     // Scratch buffers reused by every step.
     y: Vec<f64>,

@@ -109,7 +109,7 @@ pub(crate) struct ActiveForce<'a> {
 /// `ẍ = F/m`, `θ̈ = τ/I` (seed §4.2.3–4.2.4), the forces including the
 /// contact forces of resting pairs when the world has contacts (seed §7.1,
 /// [`crate::contact`]) and the constraint forces of the joints
-/// ([`crate::exact_joints`]).
+/// ([`crate::exact::joints`]).
 pub(crate) struct WorldOde<'a> {
     pub bodies: &'a [Body],
     pub forces: Vec<ActiveForce<'a>>,
@@ -121,7 +121,7 @@ pub(crate) struct WorldOde<'a> {
     /// The resting pairs and their contact forces; `None` in a world
     /// without contacts (no collision code runs then).
     pub contacts: Option<&'a mut RestingContacts>,
-    /// The joints, held by constraint forces ([`crate::exact_joints`]);
+    /// The joints, held by constraint forces ([`crate::exact::joints`]);
     /// `None` in a world without joints.
     pub joints: Option<&'a mut ExactJoints>,
 }
