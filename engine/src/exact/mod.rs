@@ -566,7 +566,7 @@ fn stage_cut(
     sys: &mut WorldOde<'_>,
     (t, h, segment_end): (f64, f64, f64),
     y_start: &[f64],
-    y: &mut Vec<f64>,
+    y: &mut [f64],
     y_probe: &mut Vec<f64>,
     profiler: &mut Profiler,
 ) -> Result<f64> {
