@@ -34,6 +34,7 @@ use nalgebra::Vector2;
 use std::sync::Arc;
 
 mod control;
+pub(crate) mod islands;
 mod snapshot;
 
 #[cfg(feature = "serde")]
