@@ -78,7 +78,7 @@ impl Overlays {
 /// Contact points.
 const CONTACT: Rgb = rgb(220, 30, 30);
 /// Contact normals.
-const NORMAL: Rgb = rgb(30, 160, 30);
+const NORMAL: Rgb = rgb(0, 150, 40);
 /// Bounding boxes.
 const AABB: Rgb = rgb(200, 60, 200);
 /// Joints.
@@ -87,7 +87,9 @@ const JOINT: Rgb = rgb(40, 140, 200);
 const CENTRE: Rgb = rgb(20, 20, 20);
 /// The drag's line and target.
 const DRAG: Rgb = rgb(0, 170, 0);
-/// A normal's length on screen (px).
+/// Half the width of a contact point's mark (m), 1 to 2.5 px.
+const CONTACT_MARK_M: f64 = 0.025;
+/// A normal's length on screen (px) where the model gives no impulse.
 const NORMAL_PX: f64 = 12.0;
 
 /// Recent paths, under the bodies.
@@ -134,16 +136,25 @@ pub fn over_bodies(canvas: &mut Canvas, frame: &Frame, camera: &Camera, on: &Ove
                 _ => NORMAL_PX,
             };
             let tip = camera.to_screen(c.point + c.normal * (length_px / camera.scale));
-            canvas.line(p.0, p.1, tip.0, tip.1, NORMAL);
+            // A point's mark: 5 cm across, 2 to 5 px.
+            let r = (CONTACT_MARK_M * camera.scale).clamp(1.0, 2.5);
             canvas.fill_convex(
                 &[
-                    (p.0 - 2.0, p.1 - 2.0),
-                    (p.0 + 2.0, p.1 - 2.0),
-                    (p.0 + 2.0, p.1 + 2.0),
-                    (p.0 - 2.0, p.1 + 2.0),
+                    (p.0 - r, p.1 - r),
+                    (p.0 + r, p.1 - r),
+                    (p.0 + r, p.1 + r),
+                    (p.0 - r, p.1 + r),
                 ],
                 CONTACT,
             );
+            // 3 px wide, to be seen over the bodies.
+            let (dx, dy) = (tip.0 - p.0, tip.1 - p.1);
+            let norm = dx.hypot(dy).max(1e-9);
+            let (ox, oy) = (-dy / norm, dx / norm);
+            for k in [-1.0, 0.0, 1.0] {
+                let (x, y) = (ox * k, oy * k);
+                canvas.line(p.0 + x, p.1 + y, tip.0 + x, tip.1 + y, NORMAL);
+            }
         }
     }
     if on.centres {
