@@ -43,8 +43,6 @@ pub fn rust_build() -> &'static str {
 /// The reference engine's run.
 pub struct Reference {
     engine: Box<dyn ManyBodyEngine>,
-    /// `rapier` or `box2d`, as `--compare` names it.
-    option: &'static str,
     /// Engine and version.
     name: &'static str,
     /// How it was built.
@@ -138,7 +136,6 @@ impl Reference {
         };
         let mut reference = Self {
             engine,
-            option,
             name: prepared.name,
             build,
             substeps: prepared.substeps,
@@ -163,11 +160,6 @@ impl Reference {
             velocity: Vector2::new(s.velocity[0], s.velocity[1]),
             angular_velocity: s.angular_velocity,
         }));
-    }
-
-    /// `--compare`'s name of the engine.
-    pub fn option(&self) -> &'static str {
-        self.option
     }
 
     /// One step of the scene's dt; a failure stops the reference (the
@@ -250,12 +242,6 @@ impl Reference {
             message: self.failure.clone().unwrap_or_default(),
             impulse_scale: None,
         };
-    }
-
-    /// The means per step of every step since the start (for
-    /// `--screenshot`, whose steps are taken at once).
-    pub fn whole_run_step_ms(&self) -> Option<f64> {
-        (self.steps > 0).then(|| 1e3 * self.stepping.as_secs_f64() / self.steps as f64)
     }
 
     /// The state for `--state-out`.

@@ -610,19 +610,6 @@ impl Simulation {
             None => frame.reference = None,
         }
     }
-
-    /// `--compare`'s name of the reference engine, if one runs.
-    pub fn reference_option(&self) -> Option<&'static str> {
-        self.reference.as_ref().map(Reference::option)
-    }
-
-    /// The reference's mean step time over the whole run (ms), for
-    /// `--screenshot`.
-    pub fn reference_step_ms(&self) -> Option<f64> {
-        self.reference
-            .as_ref()
-            .and_then(Reference::whole_run_step_ms)
-    }
 }
 
 /// The world's contact model as the engine names it, `off` without.
