@@ -165,4 +165,5 @@ pub use soft_step::{
 pub use time_grid::{MAX_RUN_STEPS, step_count};
 pub use trace::{Sample, Trace};
 pub use world::World;
+pub use world::islands::{Island, IslandId};
 pub use world_core::ForceId;

@@ -36,6 +36,7 @@ use std::sync::Arc;
 
 mod control;
 mod dynamics;
+pub(crate) mod islands;
 mod snapshot;
 
 #[cfg(feature = "serde")]

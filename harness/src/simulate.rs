@@ -52,7 +52,7 @@
 //! ([`crate::pictures::axis_range`]). A failure of the adaptive method
 //! names the force that makes the problem stiff.
 
-mod compare;
+pub(crate) mod compare;
 mod contacts_off;
 mod diagnosis;
 mod linear_test;

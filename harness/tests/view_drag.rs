@@ -182,6 +182,176 @@ fn the_screenshot_draws_each_body_where_the_engine_has_it() {
     assert_ne!(at(ax, ay), BOX, "above the ground, 2 m right of the box");
 }
 
+/// A ground and a box dropped tilted onto it, under the soft step (the
+/// scene of `--compare box2d`'s test: the box falls, lands and tumbles).
+const COMPARE_SCENE: &str = r##"
+[simulation]
+dt = 0.016666666666666666
+duration = 100.0
+gravity = [0.0, -10.0]
+
+[contact]
+friction = 0.6
+
+[[bodies]]
+name = "ground"
+kind = "static"
+shape = { type = "box", width = 12.0, height = 1.0 }
+position = [0.0, -0.5]
+colour = "#7f7f7f"
+
+[[bodies]]
+name = "box"
+density = 1.0
+shape = { type = "box", width = 1.0, height = 1.0 }
+position = [0.0, 1.5]
+angle = 0.4
+colour = "#d62728"
+"##;
+
+/// The test scene built by hand in Box2D through the adapter, stepped
+/// `steps` times: the bodies' (x, y, angle).
+fn box2d_by_hand(steps: usize) -> Vec<[f64; 3]> {
+    use references::box2d_world::Box2dWorld;
+    use references::many_body::{BodyKind, ManyBodyEngine, ManyBodyScene, SceneBody};
+    let rectangle = |w, h| engine::Shape::rectangle(w, h).unwrap();
+    let ground = SceneBody {
+        kind: BodyKind::Static,
+        ..SceneBody::dynamic(rectangle(12.0, 1.0), [0.0, -0.5], 0.0)
+    };
+    let tilted = SceneBody {
+        angle: 0.4,
+        ..SceneBody::dynamic(rectangle(1.0, 1.0), [0.0, 1.5], 1.0)
+    };
+    // The soft step's defaults the scene leaves: 4 substeps, friction 0.6
+    // (the scene's), restitution 0.
+    let scene = ManyBodyScene {
+        gravity: [0.0, -10.0],
+        dt: 0.016666666666666666,
+        substeps: 4,
+        bodies: vec![ground, tilted],
+        joints: Vec::new(),
+    };
+    let mut world = Box2dWorld::new(&scene).unwrap();
+    for _ in 0..steps {
+        world.step().unwrap();
+    }
+    let mut samples = Vec::new();
+    world.samples(&mut samples).unwrap();
+    samples
+        .iter()
+        .map(|s| [s.position[0], s.position[1], s.angle])
+        .collect()
+}
+
+#[test]
+fn the_compare_screenshot_draws_both_engines_and_box2d_moves_as_its_adapter() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("compare.toml");
+    std::fs::write(&scene, COMPARE_SCENE).unwrap();
+    let png_path = dir.path().join("shot.png");
+    let state_path = dir.path().join("state.json");
+    const STEPS: usize = 50;
+    let out = Command::new(BIN)
+        .args(["view", scene.to_str().unwrap(), "--compare", "box2d"])
+        .args(["--steps", &STEPS.to_string(), "--size", "800x400"])
+        .arg("--screenshot")
+        .arg(&png_path)
+        .arg("--state-out")
+        .arg(&state_path)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let state = read_json(&state_path);
+    let reference = &state["reference"];
+    assert_eq!(state["steps"], STEPS);
+    assert_eq!(reference["steps"], STEPS, "in sync: as many steps");
+    assert_eq!(reference["substeps"], 4);
+    // The view's Box2D bodies are those of the adapter stepped alone from
+    // the scene written by hand: Box2D is deterministic on one thread, so
+    // the same bits, read back from JSON (serde_json's parser may round
+    // the last bit: 2 ulps allowed).
+    let expected = box2d_by_hand(STEPS);
+    let got = reference["bodies"].as_array().unwrap();
+    assert_eq!(got.len(), expected.len());
+    for (g, e) in got.iter().zip(&expected) {
+        for k in 0..3 {
+            let g = g[k].as_f64().unwrap();
+            assert!(
+                (g - e[k]).abs() <= 2.0 * f64::EPSILON * e[k].abs(),
+                "view's Box2D {g} against the adapter's {}",
+                e[k]
+            );
+        }
+    }
+    // The box has moved: it fell 1 m and more in 50 steps.
+    assert!(expected[1][1] < 1.0, "{expected:?}");
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(&png_path).unwrap(),
+    ));
+    let mut reader = decoder.read_info().unwrap();
+    let mut pixels = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut pixels).unwrap();
+    assert_eq!((info.width, info.height), (800, 400));
+    // The camera written is the left panel's; the right panel is the same
+    // camera 400 px to the right.
+    assert_eq!(state["camera"]["width"], 400);
+    let at = |px: f64, py: f64| {
+        let i = 3 * (py as usize * info.width as usize + px as usize);
+        [pixels[i], pixels[i + 1], pixels[i + 2]]
+    };
+    let (x, y) = xy(body(&state, "box"));
+    let (px, py) = to_screen(&state, x, y);
+    assert!(px < 400.0);
+    assert_eq!(at(px, py), BOX, "our box's centre, pixel ({px}, {py})");
+    let (rx, ry) = to_screen(&state, expected[1][0], expected[1][1]);
+    assert_eq!(
+        at(rx + 400.0, ry),
+        BOX,
+        "Box2D's box, pixel ({rx} + 400, {ry})"
+    );
+    let (gx, gy) = to_screen(&state, 4.0, -0.5);
+    for offset in [0.0, 400.0] {
+        assert_eq!(at(gx + offset, gy), [0x7f, 0x7f, 0x7f], "the ground");
+    }
+    // Each half holds the box's colour: both panels drew their bodies.
+    for half in [0..400, 400..800] {
+        let boxes = (0..400)
+            .flat_map(|y| half.clone().map(move |x| (x, y)))
+            .filter(|&(x, y)| at(f64::from(x), f64::from(y)) == BOX)
+            .count();
+        assert!(boxes > 100, "{boxes} box pixels in {half:?}");
+    }
+}
+
+#[test]
+fn a_scene_the_reference_refuses_is_refused_with_the_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    // Contacts off (no [contact]) with two bodies: Box2D's adapter takes
+    // one body only then.
+    let scene = dir.path().join("no_contact.toml");
+    std::fs::write(&scene, SCENE.replace("[contact]\nfriction = 0.6\n", "")).unwrap();
+    let out = Command::new(BIN)
+        .args(["view", scene.to_str().unwrap(), "--compare", "box2d"])
+        .args(["--screenshot", dir.path().join("x.png").to_str().unwrap()])
+        .env_remove("DISPLAY")
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        err.contains("--compare box2d") && err.contains("single body only"),
+        "{err}"
+    );
+    assert!(!dir.path().join("x.png").exists());
+}
+
 /// `name` on the PATH, if any.
 fn which(name: &str) -> Option<PathBuf> {
     let path = std::env::var_os("PATH")?;

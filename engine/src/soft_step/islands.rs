@@ -127,6 +127,15 @@ impl Islands {
         }
     }
 
+    /// The islands in use (with at least one body): index, bodies, asleep.
+    pub(crate) fn in_use(&self) -> impl Iterator<Item = (usize, &[BodyId], bool)> + '_ {
+        self.islands
+            .iter()
+            .enumerate()
+            .filter(|(_, island)| !island.bodies.is_empty())
+            .map(|(i, island)| (i, island.bodies.as_slice(), island.asleep))
+    }
+
     pub(crate) fn set_asleep(&mut self, i: usize, asleep: bool) {
         self.islands[i].asleep = asleep;
     }
@@ -209,6 +218,13 @@ impl Islands {
             self.island_of[body] = island;
         }
         self.islands[i].removals = 0;
+    }
+}
+
+impl super::SoftStep {
+    /// The islands, read-only (for `World::islands`).
+    pub(crate) fn islands(&self) -> &Islands {
+        &self.islands
     }
 }
 

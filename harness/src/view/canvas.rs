@@ -79,6 +79,19 @@ impl Canvas {
         (x < self.width && y < self.height).then(|| self.pixels[y * self.width + x])
     }
 
+    /// Copies `src` in with its left edge at column `x0` (clipped).
+    pub fn blit(&mut self, src: &Canvas, x0: u32) {
+        let x0 = x0 as usize;
+        if x0 >= self.width {
+            return;
+        }
+        let n = src.width.min(self.width - x0);
+        for y in 0..src.height.min(self.height) {
+            let to = y * self.width + x0;
+            self.pixels[to..to + n].copy_from_slice(&src.pixels[y * src.width..y * src.width + n]);
+        }
+    }
+
     /// Fills the whole canvas.
     pub fn clear(&mut self, colour: Rgb) {
         self.pixels.fill(colour);

@@ -101,18 +101,54 @@ pub struct JointLine {
 }
 
 /// A contact point with its unit normal (from the first body to the
-/// second).
+/// second) and, under the soft step, the impulses the solver gave it.
 #[derive(Debug, Clone, Copy)]
 pub struct ContactMark {
     /// World point (m).
     pub point: Vector2<f64>,
     /// Unit normal.
     pub normal: Vector2<f64>,
+    /// Normal impulse delivered over the last step (N·s; ÷ dt is the mean
+    /// normal force), `None` where the engine gives none (exact model).
+    pub normal_impulse: Option<f64>,
+    /// Friction impulse of the last substep along (n.y, −n.x) (N·s).
+    pub tangent_impulse: Option<f64>,
 }
+
+/// How contact normals are drawn: a length proportional to the normal
+/// impulse.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImpulseScale {
+    /// Pixels per N·s (a round 1, 2, 5 × 10ⁿ).
+    pub px_per_newton_second: f64,
+    /// The largest normal impulse of the frame (N·s).
+    pub largest: f64,
+}
+
+/// An island of the soft step (`World::islands`): its id, the box around
+/// its bodies and whether it sleeps.
+#[derive(Debug, Clone, Copy)]
+pub struct IslandMark {
+    /// The engine's island id (its colour is picked from it).
+    pub id: usize,
+    /// Lower corner of the union of its bodies' boxes (m).
+    pub lo: Vector2<f64>,
+    /// Upper corner (m).
+    pub hi: Vector2<f64>,
+    /// Its bodies.
+    pub bodies: usize,
+    /// Whether it sleeps.
+    pub asleep: bool,
+}
+
+/// No island (a static, kinematic or removed body, or no islands kept).
+pub const NO_ISLAND: u32 = u32::MAX;
 
 /// The live numbers shown in the corner.
 #[derive(Debug, Clone, Default)]
 pub struct Status {
+    /// The engine and its build, the panel's title.
+    pub label: String,
     /// Simulated time (s).
     pub time: f64,
     /// Steps taken since the start or the last reset.
@@ -147,6 +183,8 @@ pub struct Status {
     /// The last thing the simulation has to say (a refusal, a switch, an
     /// error), empty when none.
     pub message: String,
+    /// The contact normals' scale, when they show impulses.
+    pub impulse_scale: Option<ImpulseScale>,
 }
 
 /// One picture's worth of simulation.
@@ -165,6 +203,14 @@ pub struct Frame {
     pub joints: Vec<JointLine>,
     /// Contact points (when the contacts overlay is on).
     pub contacts: Vec<ContactMark>,
+    /// Each body's island, by id, [`NO_ISLAND`] for none (when the
+    /// sleeping overlay is on and the engine keeps islands).
+    pub island_of: Vec<u32>,
+    /// The islands (as `island_of`).
+    pub islands: Vec<IslandMark>,
+    /// Why islands are not shown, if they are not (the exact model,
+    /// sleeping off).
+    pub islands_missing: Option<String>,
     /// Recent paths of the first dynamic bodies (when the paths overlay is
     /// on), oldest point first.
     pub paths: Vec<(usize, Vec<Vector2<f64>>)>,
@@ -172,6 +218,8 @@ pub struct Frame {
     pub drag: Option<(Vector2<f64>, Vector2<f64>)>,
     /// The numbers.
     pub status: Status,
+    /// The reference engine's side, with `--compare`.
+    pub reference: Option<Box<Frame>>,
 }
 
 /// The colour of a scene colour.

@@ -9,7 +9,7 @@ pub const HELP: &str = "Space run/pause · S step · R reset · +/− speed · w
                         F fit · B box · C circle · M contact model · D dump · H help · Q quit";
 
 /// An overlay a key toggles.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum Overlay {
     /// Contact points and normals.
     Contacts,
@@ -113,5 +113,32 @@ impl super::overlays::Overlays {
             Overlay::Help => &mut self.help,
         };
         *flag = !*flag;
+    }
+
+    /// Turns `overlay` on (left on if it was).
+    pub fn show(&mut self, overlay: Overlay) {
+        let before = *self;
+        self.toggle(overlay);
+        if before
+            .flags()
+            .iter()
+            .zip(self.flags())
+            .any(|(&b, a)| b && !a)
+        {
+            *self = before;
+        }
+    }
+
+    fn flags(&self) -> [bool; 8] {
+        [
+            self.contacts,
+            self.boxes,
+            self.joints,
+            self.sleeping,
+            self.centres,
+            self.paths,
+            self.profile,
+            self.help,
+        ]
     }
 }

@@ -13,6 +13,7 @@
 //! - [`simulation`]: the world, stepped in real time, and the commands;
 //!   [`drag`] (the target joint), [`snapshot`] (the world copied into a
 //!   [`frame::Frame`]), [`meter`] (the live numbers);
+//! - [`reference`]: the engine of `--compare` beside the world, in sync;
 //! - [`physics_thread`]: the simulation on its own thread;
 //! - [`window`]: the winit window, the mouse, frame pacing; [`input`]: the
 //!   keys; [`pick`]: the body under the cursor;
@@ -32,6 +33,7 @@ pub mod meter;
 pub mod overlays;
 pub mod physics_thread;
 pub mod pick;
+pub mod reference;
 pub mod renderer;
 pub mod screenshot;
 pub mod simulation;
@@ -70,6 +72,15 @@ pub struct ViewArgs {
     /// closing, and after --screenshot.
     #[arg(long, value_name = "FILE")]
     pub state_out: Option<PathBuf>,
+    /// Overlays to turn on besides the defaults (joints, sleeping,
+    /// profile, help), e.g. `--show contacts,boxes`: in the window at the
+    /// start, and in --screenshot.
+    #[arg(long, value_name = "OVERLAYS", value_enum, value_delimiter = ',')]
+    pub show: Vec<input::Overlay>,
+    /// Run this engine beside ours on the same scene, in sync (same steps,
+    /// dt and substeps as `simulate --compare`), in a second panel.
+    #[arg(long, value_name = "ENGINE", value_enum)]
+    pub compare: Option<crate::simulate::CompareWith>,
 }
 
 /// `WIDTHxHEIGHT`, each 64 to 8192 px.
@@ -96,7 +107,7 @@ pub fn run(args: &ViewArgs) -> Result<()> {
                 out.display()
             );
         }
-        let sim = simulation::Simulation::new(scene, false)?;
+        let sim = simulation::Simulation::new(scene, false, args.compare)?;
         return screenshot::write(
             sim,
             &screenshot::ScreenshotOptions {
@@ -105,11 +116,14 @@ pub fn run(args: &ViewArgs) -> Result<()> {
                 steps: args.steps,
                 out: out.clone(),
                 state_out: args.state_out.clone(),
+                show: args.show.clone(),
             },
         );
     }
-    let sim = simulation::Simulation::new(scene, !args.paused)?;
-    let physics = physics_thread::PhysicsThread::spawn(sim)?;
+    let (running, compare) = (!args.paused, args.compare);
+    let physics = physics_thread::PhysicsThread::spawn(move || {
+        simulation::Simulation::new(scene, running, compare)
+    })?;
     window::run(
         physics,
         window::WindowOptions {
@@ -117,6 +131,8 @@ pub fn run(args: &ViewArgs) -> Result<()> {
             size: args.size,
             frames: args.frames,
             state_out: args.state_out.clone(),
+            compare: args.compare.is_some(),
+            show: args.show.clone(),
         },
     )
 }

@@ -17,7 +17,8 @@ pub struct Overlays {
     pub boxes: bool,
     /// Joints: anchors and the lines to the bodies' centres.
     pub joints: bool,
-    /// Sleeping bodies greyed.
+    /// Islands coloured (the soft step's, where it keeps them) and
+    /// sleeping bodies greyed.
     pub sleeping: bool,
     /// Centres of mass.
     pub centres: bool,
@@ -51,6 +52,7 @@ impl Overlays {
             contacts: self.contacts,
             joints: self.joints,
             paths: self.paths,
+            islands: self.sleeping,
             profile: self.profile,
         }
     }
@@ -76,7 +78,7 @@ impl Overlays {
 /// Contact points.
 const CONTACT: Rgb = rgb(220, 30, 30);
 /// Contact normals.
-const NORMAL: Rgb = rgb(30, 160, 30);
+const NORMAL: Rgb = rgb(0, 150, 40);
 /// Bounding boxes.
 const AABB: Rgb = rgb(200, 60, 200);
 /// Joints.
@@ -85,7 +87,9 @@ const JOINT: Rgb = rgb(40, 140, 200);
 const CENTRE: Rgb = rgb(20, 20, 20);
 /// The drag's line and target.
 const DRAG: Rgb = rgb(0, 170, 0);
-/// A normal's length on screen (px).
+/// Half the width of a contact point's mark (m), 1 to 2.5 px.
+const CONTACT_MARK_M: f64 = 0.025;
+/// A normal's length on screen (px) where the model gives no impulse.
 const NORMAL_PX: f64 = 12.0;
 
 /// Recent paths, under the bodies.
@@ -125,17 +129,32 @@ pub fn over_bodies(canvas: &mut Canvas, frame: &Frame, camera: &Camera, on: &Ove
     if on.contacts {
         for c in &frame.contacts {
             let p = camera.to_screen(c.point);
-            let tip = camera.to_screen(c.point + c.normal * (NORMAL_PX / camera.scale));
-            canvas.line(p.0, p.1, tip.0, tip.1, NORMAL);
+            // Under the soft step, the normal's length is its impulse
+            // (the frame's scale); otherwise a fixed length.
+            let length_px = match (c.normal_impulse, frame.status.impulse_scale) {
+                (Some(j), Some(scale)) => j.max(0.0) * scale.px_per_newton_second,
+                _ => NORMAL_PX,
+            };
+            let tip = camera.to_screen(c.point + c.normal * (length_px / camera.scale));
+            // A point's mark: 5 cm across, 2 to 5 px.
+            let r = (CONTACT_MARK_M * camera.scale).clamp(1.0, 2.5);
             canvas.fill_convex(
                 &[
-                    (p.0 - 2.0, p.1 - 2.0),
-                    (p.0 + 2.0, p.1 - 2.0),
-                    (p.0 + 2.0, p.1 + 2.0),
-                    (p.0 - 2.0, p.1 + 2.0),
+                    (p.0 - r, p.1 - r),
+                    (p.0 + r, p.1 - r),
+                    (p.0 + r, p.1 + r),
+                    (p.0 - r, p.1 + r),
                 ],
                 CONTACT,
             );
+            // 3 px wide, to be seen over the bodies.
+            let (dx, dy) = (tip.0 - p.0, tip.1 - p.1);
+            let norm = dx.hypot(dy).max(1e-9);
+            let (ox, oy) = (-dy / norm, dx / norm);
+            for k in [-1.0, 0.0, 1.0] {
+                let (x, y) = (ox * k, oy * k);
+                canvas.line(p.0 + x, p.1 + y, tip.0 + x, tip.1 + y, NORMAL);
+            }
         }
     }
     if on.centres {
@@ -153,6 +172,37 @@ pub fn over_bodies(canvas: &mut Canvas, frame: &Frame, camera: &Camera, on: &Ove
         canvas.line(a.0, a.1, b.0, b.1, DRAG);
         canvas.circle(b.0, b.1, 4.0, DRAG);
         canvas.fill_circle(a.0, a.1, 2.5, DRAG);
+    }
+}
+
+/// A distinct colour for island `id` (hues a golden angle apart).
+pub fn island_colour(id: usize) -> Rgb {
+    let hue = (id as f64 * 0.618_033_988_749_895).fract() * 6.0;
+    let x = 1.0 - (hue % 2.0 - 1.0).abs();
+    let (r, g, b) = match hue as u32 {
+        0 => (1.0, x, 0.0),
+        1 => (x, 1.0, 0.0),
+        2 => (0.0, 1.0, x),
+        3 => (0.0, x, 1.0),
+        4 => (x, 0.0, 1.0),
+        _ => (1.0, 0.0, x),
+    };
+    // Saturation 0.75, value 0.85.
+    let channel = |c: f64| (255.0 * 0.85 * (1.0 - 0.75 * (1.0 - c))).round() as u8;
+    rgb(channel(r), channel(g), channel(b))
+}
+
+/// The soft step's islands of two or more bodies: the box around each in
+/// its colour, greyed while it sleeps.
+pub fn islands(canvas: &mut Canvas, frame: &Frame, camera: &Camera) {
+    for island in frame.islands.iter().filter(|i| i.bodies >= 2) {
+        let colour = if island.asleep {
+            super::canvas::mix(island_colour(island.id), rgb(160, 160, 160), 0.7)
+        } else {
+            island_colour(island.id)
+        };
+        let (a, b) = (camera.to_screen(island.lo), camera.to_screen(island.hi));
+        canvas.rect(a.0 - 2.0, a.1 + 2.0, b.0 + 2.0, b.1 - 2.0, colour);
     }
 }
 

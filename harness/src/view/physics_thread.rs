@@ -34,14 +34,35 @@ pub struct PhysicsThread {
 }
 
 impl PhysicsThread {
-    /// Starts `sim` on its own thread.
-    pub fn spawn(sim: Simulation) -> std::io::Result<Self> {
+    /// Builds the simulation with `build` on its own thread (a reference
+    /// engine of `--compare` may not be sent between threads) and runs it
+    /// there; returns `build`'s error if it fails.
+    pub fn spawn(
+        build: impl FnOnce() -> anyhow::Result<Simulation> + Send + 'static,
+    ) -> anyhow::Result<Self> {
         let (commands, inbox) = channel();
         let slot = Arc::new(Mutex::new(Slot::default()));
         let shared = Arc::clone(&slot);
+        let (built, outcome) = channel();
         let handle = std::thread::Builder::new()
             .name("view physics".into())
-            .spawn(move || run(sim, &inbox, &shared))?;
+            .spawn(move || match build() {
+                Ok(sim) => {
+                    let _ = built.send(Ok(()));
+                    run(sim, &inbox, &shared);
+                }
+                Err(e) => {
+                    let _ = built.send(Err(e));
+                }
+            })?;
+        match outcome.recv() {
+            Ok(Ok(())) => {}
+            Ok(Err(e)) => {
+                let _ = handle.join();
+                return Err(e);
+            }
+            Err(_) => anyhow::bail!("the view's physics thread ended while building the world"),
+        }
         Ok(Self {
             commands,
             slot,

@@ -1,11 +1,14 @@
 //! Drawing a [`Frame`] into the [`Canvas`]: a light grid in metres with a
 //! scale bar, every body at its pose and true size (static ones first),
 //! the overlays, and the text: the live numbers at the top, the keys at
-//! the bottom. The same code draws the window and `--screenshot`.
+//! the bottom. The same code draws the window and `--screenshot`. With
+//! `--compare`, two panels side by side through the same camera: the
+//! engine's on the left, the reference's on the right, each titled with
+//! its engine and build.
 
 use super::camera::Camera;
 use super::canvas::{Canvas, Rgb, mix, rgb};
-use super::frame::Frame;
+use super::frame::{Frame, NO_ISLAND};
 use super::glyphs::Glyphs;
 use super::input::HELP;
 use super::overlays::{self, Overlays};
@@ -36,11 +39,16 @@ pub struct Hud {
     pub note: String,
 }
 
+/// The divider between the two panels of `--compare`.
+const DIVIDER: Rgb = rgb(60, 60, 60);
+
 /// Draws frames; keeps its glyphs and scratch buffers between them.
 #[derive(Debug)]
 pub struct Renderer {
     glyphs: Glyphs,
     points: Vec<(f64, f64)>,
+    /// The two panels of `--compare`, drawn apart and copied side by side.
+    panels: Option<(Canvas, Canvas)>,
 }
 
 impl Default for Renderer {
@@ -48,13 +56,79 @@ impl Default for Renderer {
         Self {
             glyphs: Glyphs::new(TEXT_PX),
             points: Vec::new(),
+            panels: None,
         }
     }
 }
 
+/// The width (px) of one panel of a canvas `width` wide: the whole, or
+/// the left half with `--compare` (the right one takes the rest).
+pub fn panel_width(width: u32, compare: bool) -> u32 {
+    if compare { (width / 2).max(1) } else { width }
+}
+
 impl Renderer {
-    /// Draws `frame` as `camera` sees it with the overlays `on`.
+    /// Draws `frame` as `camera` sees it with the overlays `on`; with a
+    /// reference frame, the two panels side by side, `camera` being a
+    /// panel's ([`panel_width`] wide).
     pub fn draw(
+        &mut self,
+        canvas: &mut Canvas,
+        frame: &Frame,
+        camera: &Camera,
+        on: &Overlays,
+        hud: &Hud,
+    ) {
+        let Some(reference) = &frame.reference else {
+            self.draw_panel(canvas, frame, camera, on, hud);
+            return;
+        };
+        let (w, h) = (canvas.width(), canvas.height());
+        let half = panel_width(w, true);
+        let (mut left, mut right) = self
+            .panels
+            .take()
+            .unwrap_or_else(|| (Canvas::new(1, 1), Canvas::new(1, 1)));
+        if (left.width(), left.height()) != (half, h) {
+            left.resize(half, h);
+        }
+        if (right.width(), right.height()) != (w - half, h) {
+            right.resize(w - half, h);
+        }
+        self.draw_panel(&mut left, frame, camera, on, hud);
+        // The reference has its states only: no contacts, joints, sleep or
+        // paths to show; its numbers without the window's.
+        let reference_on = Overlays {
+            contacts: false,
+            joints: false,
+            sleeping: false,
+            paths: false,
+            profile: false,
+            help: false,
+            ..*on
+        };
+        let reference_hud = Hud {
+            scene: hud.scene.clone(),
+            ..Hud::default()
+        };
+        let mut right_camera = *camera;
+        right_camera.resize(w - half, h);
+        self.draw_panel(
+            &mut right,
+            reference,
+            &right_camera,
+            &reference_on,
+            &reference_hud,
+        );
+        canvas.blit(&left, 0);
+        canvas.blit(&right, half);
+        let x = f64::from(half) - 0.5;
+        canvas.line(x, 0.0, x, f64::from(h), DIVIDER);
+        self.panels = Some((left, right));
+    }
+
+    /// Draws one panel.
+    fn draw_panel(
         &mut self,
         canvas: &mut Canvas,
         frame: &Frame,
@@ -75,9 +149,12 @@ impl Renderer {
                 }
             }
         }
+        if on.sleeping {
+            overlays::islands(canvas, frame, camera);
+        }
         overlays::over_bodies(canvas, frame, camera, on);
-        self.scale_bar(canvas, camera);
-        self.text(canvas, frame, on, hud);
+        let help_top = self.text(canvas, frame, on, hud);
+        self.scale_bar(canvas, camera, help_top);
     }
 
     fn body(
@@ -97,12 +174,21 @@ impl Renderer {
             return;
         }
         let asleep = on.sleeping && frame.asleep.get(id).copied().unwrap_or(false);
-        let fill = if asleep {
-            mix(look.colour, ASLEEP, 0.7)
-        } else {
-            look.colour
+        let island = frame
+            .island_of
+            .get(id)
+            .copied()
+            .filter(|&i| on.sleeping && i != NO_ISLAND);
+        // An island's bodies are tinted and outlined in its colour.
+        let own = match island {
+            Some(i) => mix(look.colour, overlays::island_colour(i as usize), 0.45),
+            None => look.colour,
         };
-        let outline = mix(fill, rgb(0, 0, 0), 0.45);
+        let fill = if asleep { mix(own, ASLEEP, 0.7) } else { own };
+        let outline = match island {
+            Some(i) if !asleep => mix(overlays::island_colour(i as usize), rgb(0, 0, 0), 0.3),
+            _ => mix(fill, rgb(0, 0, 0), 0.45),
+        };
         let detailed = look.radius * camera.scale >= 4.0;
         if look.is_particle() {
             canvas.fill_circle(cx, cy, 4.0, fill);
@@ -139,12 +225,14 @@ impl Renderer {
         }
     }
 
-    /// A bar of a round length in metres, bottom right.
-    fn scale_bar(&mut self, canvas: &mut Canvas, camera: &Camera) {
+    /// A bar of a round length in metres, bottom right, above the help
+    /// text (whose top is `help_top` px, if shown).
+    fn scale_bar(&mut self, canvas: &mut Canvas, camera: &Camera, help_top: Option<f32>) {
         let metres = nice_step(100.0 / camera.scale);
         let px = metres * camera.scale;
         let (w, h) = (f64::from(canvas.width()), f64::from(canvas.height()));
-        let (x1, y) = (w - 16.0, h - 60.0);
+        let y = help_top.map_or(h - 60.0, |top| (h - 60.0).min(f64::from(top) - 12.0));
+        let x1 = w - 16.0;
         let x0 = x1 - px;
         canvas.line(x0, y, x1, y, INK);
         canvas.line(x0, y - 4.0, x0, y + 4.0, INK);
@@ -160,9 +248,20 @@ impl Renderer {
         );
     }
 
-    fn text(&mut self, canvas: &mut Canvas, frame: &Frame, on: &Overlays, hud: &Hud) {
+    /// The numbers at the top and the help at the bottom; returns the
+    /// help's top (px), if shown.
+    fn text(
+        &mut self,
+        canvas: &mut Canvas,
+        frame: &Frame,
+        on: &Overlays,
+        hud: &Hud,
+    ) -> Option<f32> {
         let s = &frame.status;
         let mut lines: Vec<(String, Rgb)> = Vec::new();
+        if !s.label.is_empty() {
+            lines.push((s.label.clone(), INK));
+        }
         let state = if s.running {
             format!("running ×{}", short(s.speed))
         } else {
@@ -213,6 +312,35 @@ impl Renderer {
                 lines.push((format!("per step: {}", counters.join(" · ")), INK));
             }
         }
+        if on.contacts {
+            if let Some(scale) = s.impulse_scale {
+                lines.push((
+                    format!(
+                        "contact normals: length = normal impulse over the last step, {} px per \
+                         N·s (largest {:.3} N·s)",
+                        short(scale.px_per_newton_second),
+                        scale.largest
+                    ),
+                    INK,
+                ));
+            } else if !frame.contacts.is_empty() {
+                lines.push((
+                    "contact normals: unit length (this model reports no impulses)".into(),
+                    INK,
+                ));
+            }
+        }
+        if on.sleeping && !frame.islands.is_empty() {
+            let asleep = frame.islands.iter().filter(|i| i.asleep).count();
+            lines.push((
+                format!(
+                    "{} islands ({asleep} asleep): each its own colour, boxed when of 2 or more \
+                     bodies, greyed asleep",
+                    frame.islands.len()
+                ),
+                INK,
+            ));
+        }
         for message in [&s.message, &hud.note] {
             if !message.is_empty() {
                 lines.push((message.clone(), WARNING));
@@ -221,20 +349,26 @@ impl Renderer {
         let line_h = self.glyphs.line_height();
         self.panel(canvas, &lines, Some(6.0), line_h);
         if on.help {
-            let help = [(HELP.to_owned(), INK), (on.legend(), INK)];
-            self.panel(canvas, &help, None, line_h);
+            let mut legend = on.legend();
+            if let (true, Some(why)) = (on.sleeping, &frame.islands_missing) {
+                legend.push_str(&format!(" (islands: none, {why})"));
+            }
+            let help = [(HELP.to_owned(), INK), (legend, INK)];
+            return Some(self.panel(canvas, &help, None, line_h));
         }
+        None
     }
 
     /// Lines of text on a pale band from `top` (px; `None`: ending at the
-    /// bottom), each wrapped at spaces to the canvas's width.
+    /// bottom), each wrapped at spaces to the canvas's width; returns the
+    /// band's top (px).
     fn panel(
         &mut self,
         canvas: &mut Canvas,
         lines: &[(String, Rgb)],
         top: Option<f32>,
         line_h: f32,
-    ) {
+    ) -> f32 {
         let room = (canvas.width() as f32 - 24.0).max(40.0);
         let mut wrapped: Vec<(String, Rgb)> = Vec::new();
         for (line, colour) in lines {
@@ -272,6 +406,7 @@ impl Renderer {
             self.glyphs
                 .draw(canvas, line, 8.0, top + i as f32 * line_h, *colour);
         }
+        top
     }
 }
 

@@ -1,14 +1,14 @@
 //! `--screenshot out.png --steps N`: the view's picture after N steps,
 //! drawn by the window's renderer into a canvas and written as PNG, with
 //! no window and no display (for docs and tests). The overlays are the
-//! window's defaults; the numbers in the corner are this run's, its
+//! window's defaults and those of `--show`; the numbers in the corner are this run's, its
 //! counters but not its wall times.
 
 use super::camera::Camera;
 use super::canvas::Canvas;
 use super::frame::Frame;
 use super::overlays::Overlays;
-use super::renderer::{Hud, Renderer};
+use super::renderer::{Hud, Renderer, panel_width};
 use super::simulation::{Command, Simulation};
 use super::state_out;
 use anyhow::{Context, Result};
@@ -28,11 +28,16 @@ pub struct ScreenshotOptions {
     pub out: PathBuf,
     /// Also write the state here.
     pub state_out: Option<PathBuf>,
+    /// Overlays turned on besides the defaults.
+    pub show: Vec<super::input::Overlay>,
 }
 
 /// Steps `sim`, draws it, writes the PNG (and the state).
 pub fn write(mut sim: Simulation, options: &ScreenshotOptions) -> Result<()> {
-    let overlays = Overlays::default();
+    let mut overlays = Overlays::default();
+    for &overlay in &options.show {
+        overlays.show(overlay);
+    }
     sim.apply(Command::Needs(overlays.needs()));
     sim.step_n(options.steps)?;
     let mut frame = Frame::default();
@@ -43,8 +48,11 @@ pub fn write(mut sim: Simulation, options: &ScreenshotOptions) -> Result<()> {
     // measures times).
     frame.status.step_ms = None;
     frame.status.phases.clear();
+    if let Some(reference) = &mut frame.reference {
+        reference.status.step_ms = None;
+    }
     let (w, h) = options.size;
-    let camera = Camera::fit_frame(&frame, w, h);
+    let camera = Camera::fit_frame(&frame, panel_width(w, frame.reference.is_some()), h);
     let mut canvas = Canvas::new(w, h);
     let hud = Hud {
         scene: options.scene.clone(),

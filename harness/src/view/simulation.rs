@@ -17,7 +17,9 @@ use super::cpu_time::thread_cpu;
 use super::drag::Drag;
 use super::frame::{BodyLook, Frame, colour_of};
 use super::meter::Meter;
+use super::reference::{Reference, ReferenceDump};
 use super::snapshot;
+use crate::simulate::CompareWith;
 use engine::{BodyDef, BodyKind, ContactModel, ContactSettings, Shape, SoftStepSettings, World};
 use nalgebra::Vector2;
 use scene::{Colour, Scene};
@@ -48,6 +50,8 @@ pub struct Needs {
     pub joints: bool,
     /// Recent paths.
     pub paths: bool,
+    /// The soft step's islands (the sleeping overlay).
+    pub islands: bool,
     /// The step profile's timings (the engine reads the clock around every
     /// phase only when asked).
     pub profile: bool,
@@ -151,6 +155,9 @@ pub struct StateDump {
     pub stepping_cpu_seconds: Option<f64>,
     /// Every body.
     pub bodies: Vec<BodyDump>,
+    /// The reference engine's run, with `--compare`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reference: Option<ReferenceDump>,
 }
 
 /// A scene's world and the view's control of it.
@@ -184,11 +191,16 @@ pub struct Simulation {
     stepping_cpu: Option<Duration>,
     /// Whether anything changed since the last frame was published.
     dirty: bool,
+    /// The engine of `--compare`, stepped after each of the world's steps.
+    compare: Option<CompareWith>,
+    reference: Option<Reference>,
 }
 
 impl Simulation {
-    /// The world of `scene` at t = 0, paused or running.
-    pub fn new(scene: Scene, running: bool) -> anyhow::Result<Self> {
+    /// The world of `scene` at t = 0, paused or running, and the engine of
+    /// `compare` beside it (refused, with the reason, where its adapter
+    /// cannot run the scene step by step: [`super::reference`]).
+    pub fn new(scene: Scene, running: bool, compare: Option<CompareWith>) -> anyhow::Result<Self> {
         if scene.is_linear_test() {
             anyhow::bail!(
                 "{}: a [linear_test] scene has no bodies to view (`harness simulate` draws its curve)",
@@ -196,6 +208,9 @@ impl Simulation {
             );
         }
         let world = scene.build_world(None)?;
+        let reference = compare
+            .map(|with| Reference::new(&scene, with))
+            .transpose()?;
         let drop_size = median_body(&world);
         let joined = scene
             .joints()
@@ -224,6 +239,8 @@ impl Simulation {
             stepping: Duration::ZERO,
             stepping_cpu: Some(Duration::ZERO),
             dirty: true,
+            compare,
+            reference,
         };
         sim.rebuild_looks();
         Ok(sim)
@@ -288,6 +305,9 @@ impl Simulation {
         match result {
             Ok(_) => {
                 self.steps += 1;
+                if let Some(reference) = &mut self.reference {
+                    reference.step();
+                }
                 if self.world.is_stopped() {
                     self.message = format!(
                         "a terminal event stopped the world at t = {:.6} s",
@@ -404,6 +424,15 @@ impl Simulation {
                 self.stepping_cpu = Some(Duration::ZERO);
                 self.rebuild_looks();
                 self.message = "reset to t = 0".into();
+                if let Some(with) = self.compare {
+                    match Reference::new(&self.scene, with) {
+                        Ok(reference) => self.reference = Some(reference),
+                        Err(e) => {
+                            self.reference = None;
+                            self.message = format!("reset: {e:#}");
+                        }
+                    }
+                }
             }
             Err(e) => self.message = format!("reset: {e}"),
         }
@@ -527,6 +556,7 @@ impl Simulation {
                     asleep: self.world.is_asleep(id),
                 })
                 .collect(),
+            reference: self.reference.as_ref().map(Reference::dump),
         }
     }
 
@@ -564,8 +594,21 @@ impl Simulation {
         status.speed = self.speed;
         status.model = format!("{} ({})", model_name(&self.world), self.world.method().id());
         status.message.clone_from(&self.message);
+        status.label = format!(
+            "etalon2d (this engine) · {}",
+            super::reference::rust_build()
+        );
+        let now = Instant::now();
         self.meter
-            .report(&self.world, self.needs.profile, status, Instant::now());
+            .report(&self.world, self.needs.profile, status, now);
+        match &mut self.reference {
+            Some(reference) => {
+                let mut side = frame.reference.take().unwrap_or_default();
+                reference.publish(&mut side, frame, now);
+                frame.reference = Some(side);
+            }
+            None => frame.reference = None,
+        }
     }
 }
 

@@ -2,13 +2,19 @@
 //! frame; the joints, the contact points and the paths only while their
 //! overlay is on.
 //!
-//! The contact points are the narrow phase's manifolds of the shapes as
-//! they are now (`engine::validation::collision`, the engine's own
-//! functions, over a sort-and-sweep of the bodies' boxes), touching or
-//! within [`CONTACT_MARGIN`]: the contacts the next step will solve, not
-//! the solver's stored points (which the engine keeps private).
+//! The contact points: under the soft step, the solver's own manifolds
+//! after the last step (`World::contact_data`: every touching pair's
+//! points with the normal impulse delivered over the step and the
+//! friction impulse); under the exact model, which keeps no such record,
+//! the narrow phase's manifolds of the shapes as they are now
+//! (`engine::validation::collision`, the engine's own functions, over a
+//! sort-and-sweep of the bodies' boxes), touching or within
+//! [`CONTACT_MARGIN`], without impulses.
+//!
+//! The islands (with the sleeping overlay): the soft step's own
+//! (`World::islands`), each with the union of its bodies' boxes.
 
-use super::frame::{ContactMark, Frame, JointLine};
+use super::frame::{ContactMark, Frame, ImpulseScale, IslandMark, JointLine, NO_ISLAND};
 use super::simulation::{Needs, PATH_BODIES, PATH_POINTS};
 use engine::validation::collision::{Aabb, SweepAndPrune, collide};
 use engine::{BodyKind, ContactModel, World};
@@ -63,8 +69,20 @@ pub fn fill(
     }
     frame.status.joints = live_joints;
     frame.contacts.clear();
+    frame.status.impulse_scale = None;
     if needs.contacts {
-        contacts(world, joined, &mut frame.contacts);
+        if world.contact_data().is_ok() {
+            solver_contacts(world, &mut frame.contacts);
+            frame.status.impulse_scale = impulse_scale(&frame.contacts);
+        } else {
+            contacts(world, joined, &mut frame.contacts);
+        }
+    }
+    frame.island_of.clear();
+    frame.islands.clear();
+    frame.islands_missing = None;
+    if needs.islands {
+        islands(frame, world);
     }
     frame.paths.clear();
     frame.paths.extend(
@@ -72,6 +90,99 @@ pub fn fill(
             .iter()
             .map(|(id, p)| (*id, p.iter().copied().collect())),
     );
+}
+
+/// The soft step's contact points after the last step, with their
+/// impulses.
+fn solver_contacts(world: &World, out: &mut Vec<ContactMark>) {
+    let Ok(data) = world.contact_data() else {
+        return;
+    };
+    for c in data {
+        out.extend(c.points().iter().map(|p| ContactMark {
+            point: p.point,
+            normal: c.normal,
+            normal_impulse: Some(p.total_normal_impulse),
+            tangent_impulse: Some(p.tangent_impulse),
+        }));
+        if out.len() >= MAX_CONTACTS {
+            return;
+        }
+    }
+}
+
+/// The longest normal drawn (px) at the frame's largest impulse.
+pub const LONGEST_NORMAL_PX: f64 = 40.0;
+
+/// Pixels per N·s: the largest round 1, 2, 5 × 10ⁿ that draws the
+/// largest normal impulse at most [`LONGEST_NORMAL_PX`] long; `None`
+/// without impulses.
+fn impulse_scale(contacts: &[ContactMark]) -> Option<ImpulseScale> {
+    let largest = contacts
+        .iter()
+        .filter_map(|c| c.normal_impulse)
+        .filter(|j| j.is_finite())
+        .fold(0.0, f64::max);
+    if contacts.iter().all(|c| c.normal_impulse.is_none()) {
+        return None;
+    }
+    if largest <= 0.0 {
+        return Some(ImpulseScale {
+            px_per_newton_second: 0.0,
+            largest,
+        });
+    }
+    let ideal = LONGEST_NORMAL_PX / largest;
+    let base = 10f64.powf(ideal.log10().floor());
+    let px = [5.0, 2.0, 1.0]
+        .iter()
+        .map(|m| m * base)
+        .find(|&v| v <= ideal)
+        .unwrap_or(base);
+    Some(ImpulseScale {
+        px_per_newton_second: px,
+        largest,
+    })
+}
+
+/// The soft step's islands: each body's, and each island's box.
+fn islands(frame: &mut Frame, world: &World) {
+    let islands = match world.islands() {
+        Ok(islands) => islands,
+        Err(e) => {
+            frame.islands_missing = Some(match e {
+                engine::EngineError::Unsupported { reason, .. } => reason.to_owned(),
+                other => other.to_string(),
+            });
+            return;
+        }
+    };
+    frame.island_of.resize(frame.states.len(), NO_ISLAND);
+    for island in islands {
+        let mut lo = Vector2::repeat(f64::INFINITY);
+        let mut hi = Vector2::repeat(f64::NEG_INFINITY);
+        for &b in island.bodies {
+            if let (Some(slot), Some(look), Some(state)) = (
+                frame.island_of.get_mut(b),
+                frame.looks.get(b),
+                frame.states.get(b),
+            ) {
+                *slot = island.id.0 as u32;
+                let (a, z) = look.aabb(state);
+                lo = lo.inf(&a);
+                hi = hi.sup(&z);
+            }
+        }
+        if lo.x <= hi.x {
+            frame.islands.push(IslandMark {
+                id: island.id.0,
+                lo,
+                hi,
+                bodies: island.bodies.len(),
+                asleep: island.asleep,
+            });
+        }
+    }
 }
 
 /// The contact points and normals of the world's shapes now; `joined`
@@ -118,6 +229,8 @@ fn contacts(world: &World, joined: &HashSet<(usize, usize)>, out: &mut Vec<Conta
             out.extend(m.contacts().map(|c| ContactMark {
                 point: c.point,
                 normal: c.normal,
+                normal_impulse: None,
+                tangent_impulse: None,
             }));
         }
         if out.len() >= MAX_CONTACTS {

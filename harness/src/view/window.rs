@@ -15,7 +15,7 @@ use super::input::{self, Action, Overlay};
 use super::overlays::Overlays;
 use super::physics_thread::PhysicsThread;
 use super::pick;
-use super::renderer::{Hud, Renderer};
+use super::renderer::{Hud, Renderer, panel_width};
 use super::simulation::{Command, Drop, StateDump};
 use super::state_out;
 use anyhow::{Context as _, Result};
@@ -53,6 +53,11 @@ pub struct WindowOptions {
     pub frames: Option<u64>,
     /// Where D and closing write the state.
     pub state_out: Option<PathBuf>,
+    /// Whether a reference engine runs beside (`--compare`): two panels,
+    /// the engine's on the left.
+    pub compare: bool,
+    /// Overlays turned on at the start besides the defaults.
+    pub show: Vec<super::input::Overlay>,
 }
 
 /// What the left button is doing.
@@ -134,6 +139,9 @@ pub fn run(physics: PhysicsThread, options: WindowOptions) -> Result<()> {
         },
         error: None,
     };
+    for overlay in app.options.show.clone() {
+        app.overlays.show(overlay);
+    }
     app.send(Command::Needs(app.overlays.needs()));
     event_loop.run_app(&mut app)?;
     if let Some(physics) = app.physics.take() {
@@ -180,9 +188,20 @@ impl App {
         event_loop.exit();
     }
 
+    /// The cursor in its panel's pixels, and whether that panel is the
+    /// reference's (the right one of `--compare`).
+    fn local_cursor(&self) -> (f64, f64, bool) {
+        let half = f64::from(panel_width(self.canvas.width(), true));
+        if self.options.compare && self.cursor.0 >= half {
+            (self.cursor.0 - half, self.cursor.1, true)
+        } else {
+            (self.cursor.0, self.cursor.1, false)
+        }
+    }
+
     fn world_at_cursor(&self) -> Option<Vector2<f64>> {
-        self.camera
-            .map(|c| c.to_world(self.cursor.0, self.cursor.1))
+        let (x, y, _) = self.local_cursor();
+        self.camera.map(|c| c.to_world(x, y))
     }
 
     fn on_action(&mut self, action: Action, event_loop: &ActiveEventLoop) {
@@ -231,7 +250,13 @@ impl App {
                 let Some(camera) = self.camera else {
                     return;
                 };
-                let at = camera.to_world(self.cursor.0, self.cursor.1);
+                let (x, y, in_reference) = self.local_cursor();
+                if in_reference {
+                    // The reference's bodies are not dragged: a pan.
+                    self.gesture = Gesture::Panning(self.cursor.0, self.cursor.1);
+                    return;
+                }
+                let at = camera.to_world(x, y);
                 let body = pick::body_at(
                     &self.frame.looks,
                     &self.frame.states,
@@ -281,8 +306,9 @@ impl App {
     fn resize(&mut self, size: PhysicalSize<u32>) {
         let (w, h) = (size.width.max(1), size.height.max(1));
         self.canvas.resize(w, h);
+        let panel = panel_width(w, self.options.compare);
         if let Some(c) = &mut self.camera {
-            c.resize(w, h);
+            c.resize(panel, h);
         }
         if let Some(surface) = &mut self.surface {
             let nz = |v: u32| NonZeroU32::new(v).unwrap_or(NonZeroU32::MIN);
@@ -299,9 +325,10 @@ impl App {
         if self.frame.looks.is_empty() {
             return;
         }
-        let camera = *self.camera.get_or_insert_with(|| {
-            Camera::fit_frame(&self.frame, self.canvas.width(), self.canvas.height())
-        });
+        let panel = panel_width(self.canvas.width(), self.options.compare);
+        let camera = *self
+            .camera
+            .get_or_insert_with(|| Camera::fit_frame(&self.frame, panel, self.canvas.height()));
         let started = Instant::now();
         let cpu = thread_cpu();
         self.renderer.draw(
@@ -427,6 +454,22 @@ fn print_measure(m: &Measure, end: &StateDump, frame: &Frame) {
         sim,
         sim / wall
     );
+    if let (Some(b), Some(a)) = (&end.reference, &start.reference) {
+        let steps = b.steps.saturating_sub(a.steps);
+        let per_step = steps.max(1) as f64;
+        let cpu_seconds = b
+            .stepping_cpu_seconds
+            .zip(a.stepping_cpu_seconds)
+            .map(|(b, a)| b - a);
+        println!(
+            "  reference (same thread, one step after each of ours): {} ({}), {steps} steps, \
+             {:.2} ms{} per step",
+            b.engine,
+            b.build,
+            1e3 * (b.stepping_seconds - a.stepping_seconds) / per_step,
+            cpu(cpu_seconds, per_step),
+        );
+    }
     println!(
         "  wall times include waiting for a core: on a machine shared with other work, \
          the CPU times say what the view costs"
@@ -492,8 +535,9 @@ impl ApplicationHandler for App {
                     MouseScrollDelta::LineDelta(_, y) => f64::from(y),
                     MouseScrollDelta::PixelDelta(p) => p.y / 40.0,
                 };
+                let (x, y, _) = self.local_cursor();
                 if let Some(c) = &mut self.camera {
-                    c.zoom_at(self.cursor.0, self.cursor.1, WHEEL_ZOOM.powf(lines));
+                    c.zoom_at(x, y, WHEEL_ZOOM.powf(lines));
                 }
             }
             _ => {}

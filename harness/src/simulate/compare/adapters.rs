@@ -27,7 +27,7 @@ use scene::Scene;
 use scene::format::ForceSpec;
 
 /// How a reference engine runs the scene.
-pub(super) enum Adapter {
+pub(crate) enum Adapter {
     /// `references::rapier_world`: one dynamic body, the whole run at once.
     SingleBody(SingleBody),
     /// `references::rapier_contacts`: the exact model's scenes, the whole
@@ -39,17 +39,17 @@ pub(super) enum Adapter {
 }
 
 /// A reference engine set up for the scene.
-pub(super) struct Prepared {
+pub(crate) struct Prepared {
     /// The adapter.
-    pub(super) adapter: Adapter,
+    pub(crate) adapter: Adapter,
     /// The engine's name and version.
-    pub(super) name: &'static str,
+    pub(crate) name: &'static str,
     /// Its substeps per step.
-    pub(super) substeps: usize,
+    pub(crate) substeps: usize,
     /// How it is configured (printed with `--verbose`).
-    pub(super) configuration: String,
+    pub(crate) configuration: String,
     /// What the translation left out or assumed, for the reader.
-    pub(super) note: String,
+    pub(crate) note: String,
 }
 
 /// The adapter's name in refusals.
@@ -253,7 +253,7 @@ fn joint_note(scene: &Scene) -> String {
 /// it), so it goes to the many-body adapters, which take its joints as
 /// [`crate::bench::neutral_joints`] converts them (a target joint, which
 /// they cannot carry, is refused by name).
-pub(super) fn prepare(scene: &Scene, with: CompareWith, dt: f64) -> Result<Prepared> {
+pub(crate) fn prepare(scene: &Scene, with: CompareWith, dt: f64) -> Result<Prepared> {
     let adapter = adapter_words(with, scene);
     let settings = RapierSettings::new(dt);
     let prepared = match (with, scene.contact()) {

@@ -13,7 +13,7 @@
 //! `--verbose` prints each engine's configuration. With `--html`, the
 //! references' runs go into the replay beside the engine's.
 
-mod adapters;
+pub(crate) mod adapters;
 
 use super::CompareWith;
 use crate::replay::ReplayRun;
