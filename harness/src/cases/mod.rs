@@ -32,7 +32,7 @@ pub mod pendulum_swing;
 pub mod soft_step_common;
 
 pub use case::{
-    Case, CaseFigure, CaseReport, FigureOutput, FigureSection, Headline, MethodTrace, Snapshots,
+    Case, CaseFigure, CaseRecord, CaseReport, FigureOutput, FigureRecord, FigureSection, Headline, MethodTrace, Snapshots,
     StudyFigure,
 };
 pub use common::{
