@@ -331,8 +331,7 @@ pub fn copy_files(from: &Path, to: &Path) -> Result<()> {
 }
 
 fn copy_under(root: &Path, from: &Path, to: &Path) -> Result<()> {
-    let entries =
-        std::fs::read_dir(from).with_context(|| format!("reading {}", from.display()))?;
+    let entries = std::fs::read_dir(from).with_context(|| format!("reading {}", from.display()))?;
     let mut entries: Vec<_> = entries.collect::<std::io::Result<_>>()?;
     entries.sort_by_key(|e| e.file_name());
     for entry in entries {
@@ -347,7 +346,8 @@ fn copy_under(root: &Path, from: &Path, to: &Path) -> Result<()> {
                 .with_context(|| format!("creating {}", target.display()))?;
             copy_under(root, &path, to)?;
         } else {
-            let bytes = std::fs::read(&path).with_context(|| format!("reading {}", path.display()))?;
+            let bytes =
+                std::fs::read(&path).with_context(|| format!("reading {}", path.display()))?;
             if let Ok(there) = std::fs::read(&target) {
                 if there != bytes {
                     bail!(
@@ -387,7 +387,11 @@ mod tests {
             }
             assert_eq!(got.len(), all.len(), "count {count}");
             for u in &all {
-                assert_eq!(got.iter().filter(|g| *g == u).count(), 1, "{u:?} of {count}");
+                assert_eq!(
+                    got.iter().filter(|g| *g == u).count(),
+                    1,
+                    "{u:?} of {count}"
+                );
             }
         }
     }
@@ -406,10 +410,7 @@ mod tests {
 
     #[test]
     fn shard_arguments_are_checked() {
-        assert_eq!(
-            "2/3".parse::<Shard>(),
-            Ok(Shard { index: 2, count: 3 })
-        );
+        assert_eq!("2/3".parse::<Shard>(), Ok(Shard { index: 2, count: 3 }));
         for bad in ["0/2", "3/2", "1/0", "1", "a/2", "1/b"] {
             assert!(bad.parse::<Shard>().is_err(), "{bad}");
         }

@@ -35,9 +35,8 @@ fn mutated_and_random_scenes_are_refused_clearly_or_run_finite() {
         .unwrap_or(0x5ce4e);
     let (index, count) = match std::env::var("FUZZ_SHARD") {
         Ok(v) => {
-            let shard: harness::shard::Shard = v
-                .parse()
-                .unwrap_or_else(|e| panic!("FUZZ_SHARD={v}: {e}"));
+            let shard: harness::shard::Shard =
+                v.parse().unwrap_or_else(|e| panic!("FUZZ_SHARD={v}: {e}"));
             (shard.index as u64, shard.count as u64)
         }
         Err(_) => (1, 1),
