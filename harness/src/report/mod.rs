@@ -452,7 +452,7 @@ mod tests {
                 "the | pipe stays out of the table",
             ),
         ];
-        let report = CaseReport {
+        let report = crate::cases::CaseReport {
             rows,
             notes: vec![long],
             figures: vec![CaseFigure {
@@ -471,15 +471,10 @@ mod tests {
                 columns: 1,
                 panel_size: (200, 150),
             }],
-            ..CaseReport::default()
+            ..crate::cases::CaseReport::default()
         };
-        write(
-            dir.path(),
-            &[("collision_parry", report)],
-            None,
-            "Provenance.",
-        )
-        .unwrap();
+        let record = report.record("collision_parry", Some(dir.path())).unwrap();
+        write(dir.path(), &[record], None, "Provenance.").unwrap();
         dir
     }
 
