@@ -481,17 +481,28 @@ impl FuzzSummary {
 /// Runs `cases` fuzz cases of the deterministic sequence `seed`, from the
 /// scene files `seeds` ([`seeds`]).
 pub fn run(cases: u64, seed: u64, seeds: &[String]) -> FuzzSummary {
+    run_share(cases, seed, seeds, 1, 1)
+}
+
+/// Share `index` (from 1) of `count` of [`run`]'s campaign: every case of
+/// the sequence is drawn (drawing is cheap, and case k depends on the
+/// draws before it), and the k-th (from 0) is checked when k mod `count`
+/// is `index` − 1. The shares of `count` together check exactly the cases
+/// of the whole campaign, each once; `summary.cases` counts this share's.
+/// An `index` out of 1..=`count` checks nothing.
+pub fn run_share(cases: u64, seed: u64, seeds: &[String], index: u64, count: u64) -> FuzzSummary {
     let mut seed_bytes = [0u8; 32];
     seed_bytes[..8].copy_from_slice(&seed.to_le_bytes());
     let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &seed_bytes);
     let mut runner = TestRunner::new_with_rng(Config::default(), rng);
     let strategy = input();
-    let mut summary = FuzzSummary {
-        cases,
-        ..FuzzSummary::default()
-    };
-    for _ in 0..cases {
+    let mut summary = FuzzSummary::default();
+    for k in 0..cases {
         let tree = strategy.new_tree(&mut runner).expect("a case");
+        if count == 0 || k % count != index.wrapping_sub(1) {
+            continue;
+        }
+        summary.cases += 1;
         let case = tree.current();
         let world = matches!(case, Input::World(_));
         let bytes = bytes_of(&case, seeds);

@@ -20,6 +20,7 @@ pub mod replay_cases;
 pub mod report;
 pub mod row;
 pub mod scenes;
+pub mod shard;
 pub mod simulate;
 pub mod snapshot;
 pub mod stability;

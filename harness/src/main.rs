@@ -1,9 +1,11 @@
 //! `cargo run --release -p harness`: runs every case and writes `reports/`.
 //! Exits non-zero when a row fails.
 
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand};
-use harness::cases::{CASES, Case, CaseReport, find};
+use harness::cases::{CASES, Case, CaseRecord, find};
+use harness::shard::{Joined, Shard, ShardRecord, Unit};
+use harness::study::StudySummary;
 use harness::sweep::SweepSettings;
 use harness::{report, workspace};
 use std::path::{Path, PathBuf};
@@ -36,6 +38,23 @@ enum Command {
         quick: bool,
         /// Print every row's reason under it (by default only the rows
         /// whose verdict is not obvious from their numbers show theirs).
+        #[arg(long)]
+        reasons: bool,
+        /// Run only share I of N of the run (`1/2`, `2/2`), into the folder
+        /// `--out DIR` (required): the cases, the studies and the benchmark
+        /// are split by a fixed rule; `merge` joins the shards' folders into
+        /// the report the whole run writes (docs/sharding.md).
+        #[arg(long, value_name = "I/N")]
+        shard: Option<Shard>,
+    },
+    /// Joins the folders of `run --shard i/n` (every shard of one run, once)
+    /// into the report the whole run writes: into `--out DIR`, or where the
+    /// whole run would write (`reports/` for every case, not `--quick`).
+    Merge {
+        /// The shards' folders, in any order.
+        #[arg(required = true, value_name = "DIR")]
+        shards: Vec<PathBuf>,
+        /// Print every row's reason under it.
         #[arg(long)]
         reasons: bool,
     },
@@ -150,7 +169,15 @@ fn real_main() -> Result<bool> {
             cases,
             quick,
             reasons,
+            shard: Some(shard),
+        }) => run_shard(&cases, quick, reasons, shard, cli.out),
+        Some(Command::Run {
+            cases,
+            quick,
+            reasons,
+            shard: None,
         }) => run(&cases, quick, reasons, cli.out),
+        Some(Command::Merge { shards, reasons }) => merge(&shards, reasons, cli.out),
         Some(Command::Bench {
             scenes,
             full,
@@ -266,9 +293,75 @@ fn select(ids: &[String]) -> Result<Vec<&'static Case>> {
     Ok(selected)
 }
 
-/// `run`: the selected cases, then, on a full run, the studies; writes the
-/// report into `out` (or the default folder of a full run) and, after a
-/// full run into `reports/`, the README's headline table.
+/// Where a run of `selected` cases writes its report when `--out` does not
+/// say: a full run into `reports/` (`target/quick-report/` with `--quick`),
+/// a partial run nowhere.
+fn default_out(full: bool, quick: bool) -> Option<PathBuf> {
+    full.then(|| {
+        if quick {
+            workspace::quick_report_dir()
+        } else {
+            workspace::reports_dir()
+        }
+    })
+}
+
+/// Runs `cases` in parallel over the cores (rayon's pool, one thread per
+/// core), each whole on one thread; returns their records in the order of
+/// `cases`, their charts saved into `dir` when there is one. A case's rows
+/// depend on nothing but the case (no state is shared between cases), so
+/// they are the bits of a serial run; only the timing notes some cases
+/// write (ms per step) see the other threads' load. The first error in the
+/// order of `cases` is the one reported.
+fn run_cases(cases: &[&'static Case], dir: Option<&Path>) -> Result<Vec<CaseRecord>> {
+    use rayon::prelude::*;
+    let progress = harness::progress::bar(cases.len() as u64, "cases");
+    let records: Vec<Result<CaseRecord>> = cases
+        .par_iter()
+        .map(|case| {
+            let started = Instant::now();
+            let record = (case.run)()
+                .and_then(|report| report.record(case.id, dir))
+                .with_context(|| format!("case {}", case.id));
+            tracing::info!(
+                "case {} in {:.2} s",
+                case.id,
+                started.elapsed().as_secs_f64()
+            );
+            progress.inc(1);
+            record
+        })
+        .collect();
+    progress.finish_and_clear();
+    records.into_iter().collect()
+}
+
+/// Runs the studies into `dir` (serially: their sweeps are timed) and
+/// writes their pages.
+fn run_studies(dir: &Path, settings: SweepSettings) -> Result<StudySummary> {
+    let started = Instant::now();
+    let study = harness::study::run(dir, settings)?;
+    let summary = report::write_study_pages(dir, &study)?;
+    tracing::info!("studies in {:.2} s", started.elapsed().as_secs_f64());
+    Ok(summary)
+}
+
+/// The many-body benchmark into `dir`, at the short settings of
+/// `BenchSettings::DEFAULT` (the benchmark proper, at Box2D's step counts
+/// and 10 repeats, is `harness bench`, which rewrites benchmarks.md and the
+/// README's table after). Run alone, after the parallel cases: its timings
+/// share the machine with nothing of this process.
+fn run_bench(dir: &Path) -> Result<()> {
+    let started = Instant::now();
+    harness::bench::run(dir, harness::bench::BenchSettings::DEFAULT)?;
+    tracing::info!("benchmark in {:.2} s", started.elapsed().as_secs_f64());
+    Ok(())
+}
+
+/// `run`: the selected cases (in parallel), then, on a full run, the
+/// studies and the benchmark (serially); writes the report into `out` (or
+/// the default folder of a full run) and, after a full run into
+/// `reports/`, the README's headline table.
 fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Result<bool> {
     let settings = if quick {
         SweepSettings::QUICK
@@ -277,30 +370,8 @@ fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Resu
     };
     let selected = select(ids)?;
     let full = selected.len() == CASES.len();
-    let out = out.or_else(|| {
-        full.then(|| {
-            if quick {
-                workspace::quick_report_dir()
-            } else {
-                workspace::reports_dir()
-            }
-        })
-    });
-    let into_reports = out
-        .as_deref()
-        .is_some_and(|d| workspace::same_dir(d, &workspace::reports_dir()));
-    let readme_too = full && !quick && into_reports;
-    if let Some(dir) = &out {
-        println!(
-            "run: writes the report into {}{} at the end (its files are replaced;              an interrupted run leaves it as it was).",
-            dir.display(),
-            if readme_too {
-                ", and the headline table of README.md"
-            } else {
-                ""
-            }
-        );
-    }
+    let out = out.or_else(|| default_out(full, quick));
+    announce(out.as_deref(), full, quick);
     // Read before anything is written, so the commit's state is the code's.
     let provenance = harness::provenance::paragraph(settings.timing_runs);
     // The report is written into a staging folder next to `out`, moved
@@ -312,39 +383,200 @@ fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Resu
     };
     let stage = staging.as_ref().map(|s| s.dir().to_path_buf());
     let started = Instant::now();
-    let mut results: Vec<(&str, CaseReport)> = Vec::new();
-    for case in selected {
-        let report = (case.run)()?;
-        print!("{}", report::console_table(case.id, &report.rows, reasons));
-        results.push((case.id, report));
+    let results = run_cases(&selected, stage.as_deref())?;
+    for r in &results {
+        print!("{}", report::console_table(&r.id, &r.rows, reasons));
     }
     // The studies (sweeps, orders, stability, energy, trajectories) run with
     // every full run that writes a report; a run of selected cases checks
     // only those.
     let study = match (&stage, full) {
-        (Some(dir), true) => Some(harness::study::run(dir, settings)?),
+        (Some(dir), true) => Some(run_studies(dir, settings)?),
         _ => None,
     };
     // The many-body benchmark runs with a full (not quick) run that writes
-    // a report, at the short settings of `BenchSettings::DEFAULT` (the
-    // benchmark proper, at Box2D's step counts and 10 repeats, is `harness
-    // bench`, which rewrites benchmarks.md and the README's table after).
+    // a report.
     if let (Some(dir), true) = (&stage, full && !quick) {
-        harness::bench::run(dir, harness::bench::BenchSettings::DEFAULT)?;
+        run_bench(dir)?;
     }
-    if let Some(dir) = &stage {
+    let joined = Joined {
+        selection: selected.iter().map(|c| c.id.to_string()).collect(),
+        full,
+        quick,
+        provenance,
+        cases: results,
+        studies: study,
+    };
+    finish(joined, staging, out, reasons, started)
+}
+
+/// Prints where the report goes.
+fn announce(out: Option<&Path>, full: bool, quick: bool) {
+    if let Some(dir) = out {
+        let readme_too = full && !quick && workspace::same_dir(dir, &workspace::reports_dir());
+        println!(
+            "run: writes the report into {}{} at the end (its files are replaced; \
+             an interrupted run leaves it as it was).",
+            dir.display(),
+            if readme_too {
+                ", and the headline table of README.md"
+            } else {
+                ""
+            }
+        );
+    }
+}
+
+/// `run --shard i/n`: the units of the run that fall to shard `shard`
+/// (`harness::shard::assign`), their files and `shard.cbor` into `out`.
+fn run_shard(
+    ids: &[String],
+    quick: bool,
+    reasons: bool,
+    shard: Shard,
+    out: Option<PathBuf>,
+) -> Result<bool> {
+    let Some(out) = out else {
+        bail!(
+            "run --shard {shard}: a shard writes its part into a folder of its own; give --out DIR \
+             (then `harness merge DIR...` writes the report)"
+        );
+    };
+    if workspace::same_dir(&out, &workspace::reports_dir()) {
+        bail!(
+            "run --shard {shard} --out {}: a shard's folder is not a report; give another folder \
+             and merge the shards into reports/",
+            out.display()
+        );
+    }
+    let settings = if quick {
+        SweepSettings::QUICK
+    } else {
+        SweepSettings::FULL
+    };
+    let selected = select(ids)?;
+    let full = selected.len() == CASES.len();
+    let ids: Vec<&'static str> = selected.iter().map(|c| c.id).collect();
+    let mine = harness::shard::assign(&harness::shard::units(&ids, full, quick), shard);
+    let cases: Vec<&'static Case> = mine
+        .iter()
+        .filter_map(|u| match u {
+            Unit::Case(id) => find(id),
+            _ => None,
+        })
+        .collect();
+    let studies = mine.contains(&Unit::Studies);
+    let bench = mine.contains(&Unit::Bench);
+    println!(
+        "run --shard {shard}: {} of the {} cases{}{}, into {} (merge every shard's folder with \
+         `harness merge`).",
+        cases.len(),
+        selected.len(),
+        if studies { ", the studies" } else { "" },
+        if bench { ", the benchmark" } else { "" },
+        out.display()
+    );
+    let provenance = harness::provenance::paragraph(settings.timing_runs);
+    let staging = harness::interrupt::Staging::new(&out)?;
+    let stage = staging.dir().to_path_buf();
+    let started = Instant::now();
+    let results = run_cases(&cases, Some(&stage))?;
+    for r in &results {
+        print!("{}", report::console_table(&r.id, &r.rows, reasons));
+    }
+    let study = if studies {
+        Some(run_studies(&stage, settings)?)
+    } else {
+        None
+    };
+    if bench {
+        run_bench(&stage)?;
+    }
+    if let Some(study) = &study {
+        print!("{}", report::console_table("studies", &study.rows, reasons));
+    }
+    let mut rows: Vec<&harness::row::Row> = results.iter().flat_map(|r| &r.rows).collect();
+    if let Some(study) = &study {
+        rows.extend(&study.rows);
+    }
+    let failed = rows.iter().filter(|r| !r.pass).count();
+    let record = ShardRecord::new(
+        shard,
+        ids.iter().map(|s| s.to_string()).collect(),
+        full,
+        quick,
+        provenance,
+        results.clone(),
+        study.clone(),
+        bench,
+    );
+    record.write(&stage)?;
+    drop(staging.commit()?);
+    println!(
+        "\nshard {shard}: {} rows, {} passed, {failed} failed ({:.1} s). Written to {}.",
+        rows.len(),
+        rows.len() - failed,
+        started.elapsed().as_secs_f64(),
+        out.display()
+    );
+    Ok(failed == 0)
+}
+
+/// `merge DIR...`: the shards of one run joined into its report.
+fn merge(dirs: &[PathBuf], reasons: bool, out: Option<PathBuf>) -> Result<bool> {
+    let started = Instant::now();
+    let mut records = Vec::new();
+    for dir in dirs {
+        records.push((dir.display().to_string(), ShardRecord::read(dir)?));
+    }
+    let joined = harness::shard::join(records)?;
+    let Some(out) = out.or_else(|| default_out(joined.full, joined.quick)) else {
+        bail!(
+            "merge: these shards are of a run of selected cases, whose report goes nowhere by \
+             default; give --out DIR"
+        );
+    };
+    announce(Some(&out), joined.full, joined.quick);
+    let staging = harness::interrupt::Staging::new(&out)?;
+    for dir in dirs {
+        harness::shard::copy_files(dir, staging.dir())?;
+    }
+    for r in &joined.cases {
+        print!("{}", report::console_table(&r.id, &r.rows, reasons));
+    }
+    finish(joined, Some(staging), Some(out), reasons, started)
+}
+
+/// The end of a run or a merge: the pictures and replays of the cases'
+/// scenes, the report, into place; the README's headline table after a
+/// full run into `reports/`; the summary on the console.
+fn finish(
+    joined: Joined,
+    staging: Option<harness::interrupt::Staging>,
+    out: Option<PathBuf>,
+    reasons: bool,
+    started: Instant,
+) -> Result<bool> {
+    let into_reports = out
+        .as_deref()
+        .is_some_and(|d| workspace::same_dir(d, &workspace::reports_dir()));
+    let readme_too = joined.full && !joined.quick && into_reports;
+    let results = &joined.cases;
+    let study = joined.studies.as_ref();
+    if let Some(staging) = &staging {
+        let dir = staging.dir();
         // The pictures index has one section per scene drawn: each case's
         // first scene file (the parry comparison has none).
-        let scenes: Vec<(&str, CaseReport)> = results
+        let scenes: Vec<(&str, harness::cases::CaseReport)> = results
             .iter()
-            .filter_map(|(id, _)| find(id)?.scenes.first())
-            .map(|scene| (*scene, CaseReport::default()))
+            .filter_map(|r| find(&r.id)?.scenes.first())
+            .map(|scene| (*scene, harness::cases::CaseReport::default()))
             .collect();
         harness::pictures::write_case_pictures(dir, &scenes)?;
         let ids: Vec<&str> = scenes.iter().map(|(id, _)| *id).collect();
         harness::replay_cases::write_case_replays(dir, &ids)?;
         // After the pictures, so that the pages can link them.
-        report::write(dir, &results, study.as_ref(), &provenance)?;
+        report::write(dir, results, study, &joined.provenance)?;
     }
     // Into place; a signal waits until the README is written too.
     let _hold = staging.map(|s| s.commit()).transpose()?;
@@ -364,15 +596,15 @@ fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Resu
     // The README's speed table is `bench`'s alone: rewriting it on every
     // run would change a tracked file by timing noise only.
     if readme_too {
-        let mut all: Vec<&harness::row::Row> = results.iter().flat_map(|(_, r)| &r.rows).collect();
-        if let Some(study) = &study {
+        let mut all: Vec<&harness::row::Row> = results.iter().flat_map(|r| &r.rows).collect();
+        if let Some(study) = study {
             all.extend(&study.rows);
         }
         report::update_readme(&workspace::readme(), &all)?;
     }
     drop(_hold);
-    let mut rows: Vec<_> = results.iter().flat_map(|(_, r)| &r.rows).collect();
-    if let Some(study) = &study {
+    let mut rows: Vec<_> = results.iter().flat_map(|r| &r.rows).collect();
+    if let Some(study) = study {
         print!("{}", report::console_table("studies", &study.rows, reasons));
         rows.extend(&study.rows);
     }

@@ -2,10 +2,10 @@
 //! tolerance and why, and the verdict. Rows are what `reports/summary.json`
 //! holds and what the harness's exit code is judged on.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// How `value` is judged against `expected`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Comparison {
     /// `|value − expected| ≤ tolerance`.
@@ -20,7 +20,7 @@ pub enum Comparison {
 /// come from. The report and the console count each kind, so "n rows pass"
 /// never mixes a check against an independent reference with a check
 /// against the code's own numbers.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum RowKind {
     /// Against an independent closed form or a high-precision reference
@@ -91,7 +91,7 @@ pub fn count_kinds(rows: &[Row]) -> Vec<(RowKind, usize, usize)> {
 }
 
 /// A validation row of `reports/summary.json`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Row {
     /// Case id (`spring`, `projectile`, ...).
     pub case: String,

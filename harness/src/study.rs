@@ -49,7 +49,7 @@ pub struct SpeedComparison {
 }
 
 /// The sections of the studies.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Section {
     /// Error against wall time and evaluations.
     WorkPrecision,
@@ -105,6 +105,39 @@ pub struct StudyResults {
     pub speed: Vec<SpeedComparison>,
     /// Wall time of the studies (s).
     pub seconds: f64,
+}
+
+/// What the report's pages of the cases and its summary need of the
+/// studies once their own pages are written (`report::write_study_pages`):
+/// a single run makes it from the [`StudyResults`]; the shard that runs
+/// the studies writes it to its folder for `harness merge`.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct StudySummary {
+    /// Rows: observed orders, stability limits, energy bands.
+    pub rows: Vec<Row>,
+    /// The section of each row of `rows`.
+    pub row_sections: Vec<Section>,
+    /// Figures written: section, case id, file name.
+    pub figures: Vec<(Section, String, String)>,
+    /// The study pages written: one line each of the report's table.
+    pub pages: Vec<StudyPageLine>,
+    /// Wall time of the studies (s).
+    pub seconds: f64,
+}
+
+/// A study page, as the report's summary table lists it.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct StudyPageLine {
+    /// File name inside `studies/`.
+    pub file: String,
+    /// Title.
+    pub title: String,
+    /// One line on what it shows.
+    pub summary: String,
+    /// Its rows: how many, how many pass.
+    pub rows: usize,
+    /// How many of them pass.
+    pub passed: usize,
 }
 
 impl StudyResults {

@@ -33,9 +33,18 @@ fn mutated_and_random_scenes_are_refused_clearly_or_run_finite() {
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(0x5ce4e);
-    let mut summary = fuzz::run(cases, seed, &fuzz::seeds());
+    let (index, count) = match std::env::var("FUZZ_SHARD") {
+        Ok(v) => {
+            let shard: harness::shard::Shard =
+                v.parse().unwrap_or_else(|e| panic!("FUZZ_SHARD={v}: {e}"));
+            (shard.index as u64, shard.count as u64)
+        }
+        Err(_) => (1, 1),
+    };
+    let mut summary = fuzz::run_share(cases, seed, &fuzz::seeds(), index, count);
+    let cases = summary.cases;
     println!(
-        "fuzz: {cases} cases ({} loaded, {} refused; {} random worlds, {} of them loaded), {} \
+        "fuzz: shard {index}/{count}, {cases} cases ({} loaded, {} refused; {} random worlds, {} of them loaded), {} \
          failures",
         summary.loaded,
         summary.refused,

@@ -47,8 +47,9 @@ fn the_bench_files_load_with_their_bodies_and_joints() {
         // less the 6 between the 7 static circles.
         ("bench/joint_grid.toml", 3600, 2 * 60 * 59 - 6),
         ("bench/full/joint_grid.toml", 10_000, 2 * 100 * 99 - 6),
-        // 201 tiles, 200 ragdolls of 11 bones and 10 joints.
-        ("bench/ragdoll_rain.toml", 201 + 200 * 11, 200 * 10),
+        // 201 tiles, two walls of 40 tiles, 200 ragdolls of 11 bones and
+        // 10 joints.
+        ("bench/ragdoll_rain.toml", 201 + 2 * 40 + 200 * 11, 200 * 10),
         (
             "bench/full/ragdoll_rain.toml",
             5 * 501 + 1000 * 11,

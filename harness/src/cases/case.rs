@@ -14,6 +14,7 @@ use crate::row::Row;
 use crate::stability::Axis;
 use crate::sweep::SweepCase;
 use anyhow::Result;
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 /// A validation case.
@@ -224,4 +225,57 @@ pub struct CaseReport {
     pub notes: Vec<String>,
     /// Charts for the report.
     pub figures: Vec<CaseFigure>,
+}
+
+/// What the report keeps of a case's run: its rows, notes and the charts
+/// it saved (by name). A single run makes it from the [`CaseReport`]; a
+/// shard of a run (`harness run --shard i/n`) writes it to its folder and
+/// `harness merge` reads it back, so the two write the same report.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct CaseRecord {
+    /// Case id.
+    pub id: String,
+    /// Its rows.
+    pub rows: Vec<Row>,
+    /// Its remarks for the report.
+    pub notes: Vec<String>,
+    /// Its charts, saved in the report folder.
+    pub figures: Vec<FigureRecord>,
+}
+
+/// A chart of a case, saved: file name, alternative text and caption.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FigureRecord {
+    /// File name (`.svg`) inside the report folder.
+    pub file: String,
+    /// The image's alternative text.
+    pub alt: String,
+    /// What to read in it.
+    pub caption: String,
+}
+
+impl CaseReport {
+    /// The record of case `id`'s report; its charts saved into `dir` when
+    /// there is one (a run without a report folder writes nothing).
+    pub fn record(self, id: &str, dir: Option<&Path>) -> Result<CaseRecord> {
+        if let Some(dir) = dir {
+            for figure in &self.figures {
+                figure.save(dir)?;
+            }
+        }
+        Ok(CaseRecord {
+            id: id.to_string(),
+            rows: self.rows,
+            notes: self.notes,
+            figures: self
+                .figures
+                .into_iter()
+                .map(|f| FigureRecord {
+                    file: f.file,
+                    alt: f.alt,
+                    caption: f.caption,
+                })
+                .collect(),
+        })
+    }
 }

@@ -32,8 +32,8 @@ pub mod pendulum_swing;
 pub mod soft_step_common;
 
 pub use case::{
-    Case, CaseFigure, CaseReport, FigureOutput, FigureSection, Headline, MethodTrace, Snapshots,
-    StudyFigure,
+    Case, CaseFigure, CaseRecord, CaseReport, FigureOutput, FigureRecord, FigureSection, Headline,
+    MethodTrace, Snapshots, StudyFigure,
 };
 pub use common::{
     DP_TOLERANCE, all_methods, dp_global_bound, dp_reason, failing_rows, sample_at, thin,

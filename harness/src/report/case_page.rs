@@ -5,9 +5,9 @@
 
 use super::format::wrap;
 use super::table;
-use crate::cases::{Case, CaseReport};
+use crate::cases::{Case, CaseRecord};
 use crate::row::Row;
-use crate::study::{Section, StudyResults};
+use crate::study::{Section, StudySummary};
 use std::fmt::Write as _;
 
 /// The pages of the studies, in report order, as (name, link from a case
@@ -38,7 +38,7 @@ const STUDY_PAGES: [(&str, &str, &[Section]); 5] = [
 
 /// Where case `id` appears in the studies: one list item per study page
 /// holding its rows or figures.
-fn in_the_studies(id: &str, study: &StudyResults) -> String {
+fn in_the_studies(id: &str, study: &StudySummary) -> String {
     let mut md = String::new();
     for (name, link, sections) in STUDY_PAGES {
         let rows: Vec<&Row> = study
@@ -51,8 +51,8 @@ fn in_the_studies(id: &str, study: &StudyResults) -> String {
         let figures: Vec<String> = study
             .figures
             .iter()
-            .filter(|f| f.case == id && sections.contains(&f.section))
-            .map(|f| format!("[{}](../{})", f.file, f.file))
+            .filter(|(section, case, _)| case == id && sections.contains(section))
+            .map(|(_, _, file)| format!("[{file}](../{file})"))
             .collect();
         if rows.is_empty() && figures.is_empty() {
             continue;
@@ -85,8 +85,8 @@ fn section(md: &mut String, title: &str) {
 /// `replays/` when there are.
 pub fn markdown(
     case: &Case,
-    report: &CaseReport,
-    study: Option<&StudyResults>,
+    report: &CaseRecord,
+    study: Option<&StudySummary>,
     pictures: bool,
     replay: bool,
 ) -> String {

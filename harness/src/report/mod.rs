@@ -19,9 +19,9 @@ pub mod table;
 
 pub use format::{fmt_dt, fmt_num};
 
-use crate::cases::{CASES, CaseReport, find};
+use crate::cases::{CASES, CaseRecord, find};
 use crate::row::{Row, RowKind, count_kinds};
-use crate::study::StudyResults;
+use crate::study::{StudyPageLine, StudyResults, StudySummary};
 use anyhow::{Context, Result};
 use format::{cell, condition, wrap};
 use std::fmt::Write as _;
@@ -137,15 +137,18 @@ fn headline_cell(r: &Row) -> String {
 /// Writes the report of `results` (and, after a full run, of `study`) into
 /// `dir`: `summary.json`, the pages and the cases' charts. The pages link
 /// the pictures of `scenes/` when its index is already there.
+///
+/// The cases' charts are already there ([`crate::cases::CaseReport::record`]),
+/// and so are the pages of the studies ([`write_study_pages`]).
 pub fn write(
     dir: &Path,
-    results: &[(&str, CaseReport)],
-    study: Option<&StudyResults>,
+    results: &[CaseRecord],
+    study: Option<&StudySummary>,
     provenance: &str,
 ) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let pictures = dir.join("scenes").join("README.md").is_file();
-    let mut rows: Vec<&Row> = results.iter().flat_map(|(_, r)| &r.rows).collect();
+    let mut rows: Vec<&Row> = results.iter().flat_map(|r| &r.rows).collect();
     if let Some(study) = study {
         rows.extend(&study.rows);
     }
@@ -202,11 +205,9 @@ pub fn write(
     ));
     md.push('\n');
     md.push_str("| case | rows | passed | headline row |\n|---|---|---|---|\n");
-    for (id, report) in results {
+    for report in results {
+        let id = report.id.as_str();
         let case = find(id).with_context(|| format!("no case '{id}' in the registry"))?;
-        for figure in &report.figures {
-            figure.save(dir)?;
-        }
         write_file(
             &dir.join("cases").join(format!("{id}.md")),
             &case_page::markdown(
@@ -248,10 +249,9 @@ pub fn write(
             "",
         ));
         md.push_str("\n| study | rows | passed | what it shows |\n|---|---|---|---|\n");
-        for page in studies::pages(study) {
-            write_file(&dir.join("studies").join(page.file), &page.markdown)?;
-            let passed = page.rows.iter().filter(|r| r.pass).count();
-            let (rows, passed) = match page.rows.len() {
+        for page in &study.pages {
+            let passed = page.passed;
+            let (rows, passed) = match page.rows {
                 0 => ("-".to_string(), "-".to_string()),
                 n if n == passed => (n.to_string(), passed.to_string()),
                 n => (n.to_string(), format!("**{passed}**")),
@@ -316,6 +316,33 @@ pub fn write(
         md.push_str(&wrap(item, "- ", "  "));
     }
     write_file(&dir.join("README.md"), &md)
+}
+
+/// Writes the pages of the studies (`studies/<name>.md`) into `dir` and
+/// returns what the rest of the report needs of them.
+pub fn write_study_pages(dir: &Path, study: &StudyResults) -> Result<StudySummary> {
+    let mut lines = Vec::new();
+    for page in studies::pages(study) {
+        write_file(&dir.join("studies").join(page.file), &page.markdown)?;
+        lines.push(StudyPageLine {
+            file: page.file.to_string(),
+            title: page.title.to_string(),
+            summary: page.summary.to_string(),
+            rows: page.rows.len(),
+            passed: page.rows.iter().filter(|r| r.pass).count(),
+        });
+    }
+    Ok(StudySummary {
+        rows: study.rows.clone(),
+        row_sections: study.row_sections.clone(),
+        figures: study
+            .figures
+            .iter()
+            .map(|f| (f.section, f.case.to_string(), f.file.clone()))
+            .collect(),
+        pages: lines,
+        seconds: study.seconds,
+    })
 }
 
 /// Marker lines between which the harness writes the README's headline table.
@@ -425,7 +452,7 @@ mod tests {
                 "the | pipe stays out of the table",
             ),
         ];
-        let report = CaseReport {
+        let report = crate::cases::CaseReport {
             rows,
             notes: vec![long],
             figures: vec![CaseFigure {
@@ -444,15 +471,10 @@ mod tests {
                 columns: 1,
                 panel_size: (200, 150),
             }],
-            ..CaseReport::default()
+            ..crate::cases::CaseReport::default()
         };
-        write(
-            dir.path(),
-            &[("collision_parry", report)],
-            None,
-            "Provenance.",
-        )
-        .unwrap();
+        let record = report.record("collision_parry", Some(dir.path())).unwrap();
+        write(dir.path(), &[record], None, "Provenance.").unwrap();
         dir
     }
 
