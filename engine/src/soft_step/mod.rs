@@ -181,6 +181,8 @@ mod lanes;
 #[cfg(target_arch = "x86_64")]
 mod lanes_avx;
 mod manifold;
+mod parallel;
+mod pool;
 mod prepare;
 mod report;
 mod settings;
@@ -295,6 +297,9 @@ pub struct SoftStep {
     touching_pairs: Vec<(BodyId, BodyId)>,
     #[cfg_attr(feature = "serde", serde(skip))]
     resting: Vec<usize>,
+    /// The threads of the parallel stages (none for one thread).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    pool: pool::PoolCell,
 }
 
 impl SoftStep {
@@ -326,6 +331,7 @@ impl SoftStep {
             substep_start: Vec::new(),
             touching_pairs: Vec::new(),
             resting: Vec::new(),
+            pool: pool::PoolCell::default(),
         };
         for id in 0..core.bodies.len() {
             model.body_added(core, id);
@@ -487,8 +493,32 @@ impl SoftStep {
             .any(|f| f.window.contains(middle) && f.force.uniform_acceleration().is_none());
         let watch_events = !core.events.is_empty();
 
+        let pool = self.pool.get(settings.threads);
         for k in 0..n {
             let t_sub = t0 + k as f64 * h;
+            if let Some(pool) = &pool {
+                // The same stages on the pool's threads (`parallel.rs`),
+                // timed as one.
+                let started = core.profiler.start();
+                if watch_events {
+                    self.substep_start.clone_from(&self.bodies);
+                }
+                if general {
+                    self.integrate_velocities(core, h, gravity, Some((t_sub, middle)));
+                }
+                self.parallel_substep(pool, core, (h, inv_h), gravity, general);
+                core.profiler.stop(Phase::Solve, started);
+                self.stats.evaluations += 1;
+                if watch_events {
+                    let t_end = if k + 1 == n { t1 } else { t_sub + h };
+                    if self.locate_events(core, (t_sub, t_end), found) {
+                        self.joints.store_impulses();
+                        self.report_touches();
+                        return Ok(());
+                    }
+                }
+                continue;
+            }
             let started = core.profiler.start();
             if watch_events {
                 self.substep_start.clone_from(&self.bodies);
@@ -530,21 +560,28 @@ impl SoftStep {
         }
 
         let started = core.profiler.start();
-        contact_solver::restitution(
-            &mut self.constraints,
-            &mut self.bodies,
-            settings.restitution_threshold,
-        );
-        wide_solver::restitution(
-            &mut self.wide,
-            &self.wide_extra,
-            &mut self.bodies,
-            settings.restitution_threshold,
-        );
+        if let Some(pool) = &pool {
+            // Restitution and the impulses' store on the threads.
+            self.parallel_restitution_and_store(pool, settings.restitution_threshold);
+        } else {
+            contact_solver::restitution(
+                &mut self.constraints,
+                &mut self.bodies,
+                settings.restitution_threshold,
+            );
+            wide_solver::restitution(
+                &mut self.wide,
+                &self.wide_extra,
+                &mut self.bodies,
+                settings.restitution_threshold,
+            );
+        }
         core.profiler.stop(Phase::Restitution, started);
 
         let started = core.profiler.start();
-        self.store_impulses();
+        if pool.is_none() {
+            self.store_impulses();
+        }
         self.joints.store_impulses();
         self.report_touches();
         let step = self.stats.steps;
