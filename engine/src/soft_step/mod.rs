@@ -278,6 +278,10 @@ pub struct SoftStep {
     /// order).
     #[cfg_attr(feature = "serde", serde(skip))]
     constrained: Vec<usize>,
+    /// Per lane of the records, the constraint (position in `constrained`)
+    /// it holds, `u32::MAX` for padding (the parallel prepare's).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    lane_source: Vec<u32>,
     /// Per world body, the push-out speed (m/s) its contacts with other
     /// dynamic bodies ask for this step (prepare's sum, for sharing the
     /// push-out speed among them).
@@ -322,6 +326,7 @@ impl SoftStep {
             constraints: Vec::new(),
             colouring: Colouring::default(),
             constrained: Vec::new(),
+            lane_source: Vec::new(),
             push_demand: Vec::new(),
             islands: islands::Islands::default(),
             joints: joints::JointSet::default(),
@@ -462,6 +467,8 @@ impl SoftStep {
         let h = dt / n as f64;
         let inv_h = 1.0 / h;
 
+        let pool = self.pool.get(settings.threads);
+
         let started = core.profiler.start();
         self.update_pairs();
         core.profiler.stop(Phase::Pairs, started);
@@ -472,7 +479,7 @@ impl SoftStep {
 
         let started = core.profiler.start();
         self.load_bodies(core);
-        self.prepare(core, h);
+        self.prepare(core, h, pool.as_deref());
         let warm = settings.warm_starting;
         self.joints
             .prepare(core, (&self.masses, &self.sims), h, warm);
@@ -493,7 +500,6 @@ impl SoftStep {
             .any(|f| f.window.contains(middle) && f.force.uniform_acceleration().is_none());
         let watch_events = !core.events.is_empty();
 
-        let pool = self.pool.get(settings.threads);
         for k in 0..n {
             let t_sub = t0 + k as f64 * h;
             if let Some(pool) = &pool {
