@@ -109,7 +109,10 @@ fn settled_pile_allocations(threads: usize, count: fn() -> usize) {
         world.step(dt).unwrap();
     }
     let made = count() - before;
-    assert_eq!(made, 0, "{made} allocations in 100 steady steps on {threads} threads");
+    assert_eq!(
+        made, 0,
+        "{made} allocations in 100 steady steps on {threads} threads"
+    );
     // The pile is still standing: the counting did not change the physics.
     let top = world.states().last().unwrap().position.y;
     assert!((top - 19.5).abs() < 0.05, "top box at {top}");

@@ -586,7 +586,9 @@ impl ManyBodyEngine for Box2dWorld {
             shz = 2.0 * hertz,
             workers = match self.world.worker_count().map_or(1, |w| w.get()) {
                 1 => "serial (one worker, no task system)".to_string(),
-                n => format!("{n} workers (Box2D's built-in scheduler, through boxdd's worker_count)"),
+                n => format!(
+                    "{n} workers (Box2D's built-in scheduler, through boxdd's worker_count)"
+                ),
             },
             precision = if build::Box2dBuild::linked().precision == "f32" {
                 "single precision (f32 positions, velocities and impulses)"

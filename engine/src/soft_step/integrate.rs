@@ -51,7 +51,14 @@ impl SoftStep {
         let controls = core.controls_act.then_some(core.controls.as_slice());
         let wrenches = general.is_some().then_some(self.wrenches.as_slice());
         for (id, sim) in self.sims.iter().enumerate() {
-            integrate_velocity(id, sim, &mut self.bodies[id + 1], (controls, wrenches), h, gravity);
+            integrate_velocity(
+                id,
+                sim,
+                &mut self.bodies[id + 1],
+                (controls, wrenches),
+                h,
+                gravity,
+            );
         }
     }
 

@@ -20,8 +20,8 @@
 //! the soft step.
 
 use super::bodies::SolverBody;
-use super::wide_solver::{Bodies, FIXED};
 use super::lanes::{F64x4, LANES, Lanes};
+use super::wide_solver::{Bodies, FIXED};
 use std::arch::x86_64::{
     __m256d, _CMP_EQ_OQ, _CMP_GT_OQ, _mm256_add_pd, _mm256_blendv_pd, _mm256_cmp_pd, _mm256_div_pd,
     _mm256_load_pd, _mm256_loadu_pd, _mm256_max_pd, _mm256_min_pd, _mm256_movemask_pd,
@@ -304,7 +304,11 @@ mod tests {
             Bodies::new(&mut expected),
             &index,
         );
-        Avx4::scatter_head([head[0], head[1], head[2], dpx], Bodies::new(&mut bodies), &index);
+        Avx4::scatter_head(
+            [head[0], head[1], head[2], dpx],
+            Bodies::new(&mut bodies),
+            &index,
+        );
         assert_eq!(bodies, expected);
         // Body 4 is lane 2: v.x, v.y, ω = 10, 20, 30.
         assert_eq!(

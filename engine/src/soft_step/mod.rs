@@ -41,6 +41,12 @@
 //! 8. **sleep** (when on): islands at rest fall asleep (`islands.rs`;
 //!    jointed bodies share an island).
 //!
+//! With [`SoftStepSettings::threads`] above one, prepare, the substeps'
+//! integration and passes (each colour's records split among the threads),
+//! restitution and the store run on a pool of threads (`pool.rs`,
+//! `parallel.rs`), with the serial stages' bits (docs/soft_step.md,
+//! "Threads").
+//!
 //! Events (landing, apex) are located inside each substep by linear
 //! interpolation, exact for positions (they move linearly in a substep;
 //! `events.rs`).

@@ -131,7 +131,8 @@ impl SoftStep {
         pool.run(&|w: &Worker<'_>| {
             if w.index == 0 {
                 // SAFETY: the other threads wait at the next barrier.
-                let (all, overflow) = unsafe { (bodies.slice(0..bodies.len()), overflow.get_mut(0)) };
+                let (all, overflow) =
+                    unsafe { (bodies.slice(0..bodies.len()), overflow.get_mut(0)) };
                 contact_solver::restitution(overflow, all, threshold);
             }
             w.sync();
@@ -151,7 +152,8 @@ impl SoftStep {
             // the lanes, each constraint's contact its own.
             if w.index == 0 {
                 // SAFETY: the other threads wait at the next barrier.
-                let (overflow, all) = unsafe { (overflow.get(0), contacts.slice(0..contacts.len())) };
+                let (overflow, all) =
+                    unsafe { (overflow.get(0), contacts.slice(0..contacts.len())) };
                 contact_solver::store_impulses(overflow, all);
             }
             w.sync();
@@ -160,7 +162,11 @@ impl SoftStep {
                     // SAFETY: one constraint per contact; the records are
                     // only read in this phase.
                     let (contact, record, extra) = unsafe {
-                        (contacts.get_mut(constrained[i]), wide.get(record), &extras[record])
+                        (
+                            contacts.get_mut(constrained[i]),
+                            wide.get(record),
+                            &extras[record],
+                        )
                     };
                     wide_solver::store_lane((record, extra), lane, contact);
                 }

@@ -203,11 +203,11 @@ impl SoftStep {
             for (i, &index) in self.constrained.iter().enumerate() {
                 let constraint = constraint_of(index);
                 match self.colouring.slot(i) {
-                Slot::Lane { record, lane } => wide_solver::set_lane(
-                    (&mut self.wide[record], &mut self.wide_extra[record]),
-                    lane,
-                    &constraint,
-                ),
+                    Slot::Lane { record, lane } => wide_solver::set_lane(
+                        (&mut self.wide[record], &mut self.wide_extra[record]),
+                        lane,
+                        &constraint,
+                    ),
                     // Overflow positions come in order.
                     Slot::Overflow(_) => self.constraints.push(constraint),
                 }

@@ -251,7 +251,9 @@ impl Contender {
         match self {
             Contender::Ours(n) => format!("this engine on {n} thread(s)"),
             Contender::Rapier(n) => format!("rapier2d on {n} thread(s)"),
-            Contender::Box2d(n) => format!("{} with {n} worker(s)", Box2dBuild::linked().bench_name()),
+            Contender::Box2d(n) => {
+                format!("{} with {n} worker(s)", Box2dBuild::linked().bench_name())
+            }
             Contender::Child(build, _) => format!("Box2D's {} build", build.label()),
         }
     }
@@ -506,7 +508,9 @@ pub fn measure(
             .iter()
             .position(|c| *c == Contender::Ours(threads))
             .or_else(|| (threads != 1).then_some(0))
-            .map_or(f64::NAN, |i| times[i].iter().copied().fold(f64::INFINITY, f64::min))
+            .map_or(f64::NAN, |i| {
+                times[i].iter().copied().fold(f64::INFINITY, f64::min)
+            })
     };
     let mut rows = Vec::new();
     let mut configurations = Vec::new();

@@ -205,7 +205,11 @@ pub fn targets(results: &[SceneResult]) -> Vec<Target> {
 
 /// The row of `engine_prefix` at `threads` threads in a scene (the linked
 /// Box2D's f32 AVX2 build for "Box2D").
-fn row_at<'a>(result: &'a SceneResult, engine_prefix: &str, threads: usize) -> Option<&'a BenchRow> {
+fn row_at<'a>(
+    result: &'a SceneResult,
+    engine_prefix: &str,
+    threads: usize,
+) -> Option<&'a BenchRow> {
     result.rows.iter().find(|b| {
         b.threads == threads
             && b.engine.starts_with(engine_prefix)
@@ -254,7 +258,8 @@ pub fn thread_targets(results: &[SceneResult]) -> Vec<Target> {
                      thread: ours {speedup:.2}×, Box2D {:.2}×)",
                     many.ms_per_step_min,
                     b2.ms_per_step_min,
-                    row_at(r, "Box2D", 1).map_or(f64::NAN, |b| b.ms_per_step_min / b2.ms_per_step_min)
+                    row_at(r, "Box2D", 1)
+                        .map_or(f64::NAN, |b| b.ms_per_step_min / b2.ms_per_step_min)
                 ),
                 met: ratio < 1.0,
             });

@@ -102,7 +102,11 @@ pub fn draw(dir: &Path, results: &[SceneResult]) -> Result<Vec<(String, String)>
 /// A row's engine, with its thread count when above one.
 fn label(row: &crate::bench::BenchRow) -> String {
     if row.threads > 1 {
-        format!("{} on {} threads", crate::bench::short(&row.engine), row.threads)
+        format!(
+            "{} on {} threads",
+            crate::bench::short(&row.engine),
+            row.threads
+        )
     } else {
         row.engine.clone()
     }
@@ -133,7 +137,10 @@ fn threads_chart(results: &[SceneResult]) -> Option<Chart> {
                             .find(|b| b.threads == n && b.engine.starts_with(prefix))
                     };
                     let (one, many) = (at(1)?, at(threads)?);
-                    Some((one.bodies as f64, one.ms_per_step_min / many.ms_per_step_min))
+                    Some((
+                        one.bodies as f64,
+                        one.ms_per_step_min / many.ms_per_step_min,
+                    ))
                 })
                 .collect();
             points.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -141,7 +148,11 @@ fn threads_chart(results: &[SceneResult]) -> Option<Chart> {
                 .first()
                 .and_then(|r| r.rows.iter().find(|b| b.engine.starts_with(prefix)))
                 .map_or(prefix.to_string(), |b| crate::bench::short(&b.engine));
-            Series::new(format!("{name}: 1 → {threads} threads"), engine_style(e), points)
+            Series::new(
+                format!("{name}: 1 → {threads} threads"),
+                engine_style(e),
+                points,
+            )
         })
         .filter(|s| !s.points.is_empty())
         .collect();
