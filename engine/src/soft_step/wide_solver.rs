@@ -756,9 +756,9 @@ mod tests {
             let (mut wide, mut wide_bodies) = (wide.clone(), bodies.clone());
             for _ in 0..3 {
                 if sse2 {
-                    warm_start_with::<F64x4>(&mut wide, &mut wide_bodies, true);
-                    solve_with::<F64x4>(&mut wide, &mut wide_bodies, inv_h);
-                    relax_with::<F64x4>(&mut wide, &mut wide_bodies, inv_h, true);
+                    warm_start_with::<F64x4>(&mut wide, Bodies::new(&mut wide_bodies), true);
+                    solve_with::<F64x4>(&mut wide, Bodies::new(&mut wide_bodies), inv_h);
+                    relax_with::<F64x4>(&mut wide, Bodies::new(&mut wide_bodies), inv_h, true);
                 } else {
                     warm_start(&mut wide, &mut wide_bodies, true);
                     solve(&mut wide, &mut wide_bodies, inv_h);
@@ -766,7 +766,7 @@ mod tests {
                 }
             }
             if sse2 {
-                restitution_with::<F64x4>(&mut wide, &extra, &mut wide_bodies, 1.0);
+                restitution_with::<F64x4>(&mut wide, &extra, Bodies::new(&mut wide_bodies), 1.0);
             } else {
                 restitution(&mut wide, &extra, &mut wide_bodies, 1.0);
             }
