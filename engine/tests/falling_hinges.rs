@@ -24,8 +24,14 @@ use etalon2d as engine;
 include!("falling_hinges/expected.rs");
 
 fn falling_hinges() -> World {
+    falling_hinges_on(1)
+}
+
+/// The scene, stepped on `threads` threads.
+fn falling_hinges_on(threads: usize) -> World {
     let settings = SoftStepSettings {
         sleeping: true,
+        threads,
         ..SoftStepSettings::default()
     };
     let mut world =
@@ -104,4 +110,29 @@ fn the_falling_hinges_come_to_rest_with_the_same_bits() {
         "the falling hinges came to rest at step {step} with pose hash {hash:#018x}; the test \
          expects step {REST_STEP} and {HINGES_HASH:#018x}: {UPDATE}"
     );
+}
+
+#[test]
+fn the_falling_hinges_give_the_same_bits_on_1_2_3_and_4_threads() {
+    // Every step's pose hash, until the boxes rest (the serial run's rest
+    // step), on 1 to 4 threads: the parallel stages must give the serial
+    // stages' bits (docs/soft_step.md, "Threads").
+    let mut worlds: Vec<World> = (1..=4).map(falling_hinges_on).collect();
+    for step in 0..=REST_STEP {
+        for world in &mut worlds {
+            world.step(1.0 / 60.0).unwrap();
+        }
+        let serial = worlds[0].state_hash();
+        for (k, world) in worlds.iter().enumerate().skip(1) {
+            assert_eq!(
+                world.state_hash(),
+                serial,
+                "step {step}: {} threads differ from 1",
+                k + 1
+            );
+        }
+    }
+    for world in &worlds {
+        assert!((1..world.bodies().len()).all(|id| world.is_asleep(id)));
+    }
 }

@@ -3,12 +3,15 @@
 //! reached their counts), 100 more steps of a 210-body pyramid make no
 //! heap allocation, nor 100 steps of a swinging chain and one joint of
 //! every type. Counted by a global allocator in this test binary
-//! only, per thread.
+//! only, per thread; and on two threads, the pile again counted over
+//! every thread of the process (the pool's worker included).
 
 use etalon2d::{BodyDef, ContactModel, Method, Shape, SoftStepSettings, World};
 use nalgebra::Vector2;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The system allocator, counting the allocations of each thread.
 struct Counting;
@@ -17,12 +20,20 @@ thread_local! {
     static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
 }
 
+/// Allocations by every thread of the process.
+static ALL_THREADS: AtomicUsize = AtomicUsize::new(0);
+
+/// The tests of this binary one at a time, so that the count over every
+/// thread sees only the test that reads it.
+static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
+
 // SAFETY: every call is forwarded unchanged to the system allocator; the
-// counter is a const-initialised thread-local `Cell`, which allocates
-// nothing and cannot re-enter the allocator.
+// counters are a const-initialised thread-local `Cell` and a static
+// atomic, which allocate nothing and cannot re-enter the allocator.
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
         ALLOCATIONS.with(|n| n.set(n.get() + 1));
+        ALL_THREADS.fetch_add(1, Ordering::Relaxed);
         // SAFETY: the caller's contract is passed on as is.
         unsafe { System.alloc(layout) }
     }
@@ -34,6 +45,7 @@ unsafe impl GlobalAlloc for Counting {
 
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
         ALLOCATIONS.with(|n| n.set(n.get() + 1));
+        ALL_THREADS.fetch_add(1, Ordering::Relaxed);
         // SAFETY: the caller's contract is passed on as is.
         unsafe { System.realloc(ptr, layout, new_size) }
     }
@@ -44,9 +56,27 @@ static GLOBAL: Counting = Counting;
 
 #[test]
 fn a_settled_pile_steps_without_allocating() {
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    settled_pile_allocations(1, || ALLOCATIONS.with(Cell::get));
+}
+
+#[test]
+fn a_settled_pile_steps_without_allocating_on_two_threads() {
+    // Every thread's allocations: the pool's worker must not allocate
+    // either (the pool is made on the first step, before the count).
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    settled_pile_allocations(2, || ALL_THREADS.load(Ordering::SeqCst));
+}
+
+/// The pyramid settled on `threads` threads, then 100 steps counted by
+/// `count`.
+fn settled_pile_allocations(threads: usize, count: fn() -> usize) {
     let mut world = World::with_model(
         Method::SemiImplicitEuler,
-        ContactModel::SoftStep(SoftStepSettings::default()),
+        ContactModel::SoftStep(SoftStepSettings {
+            threads,
+            ..SoftStepSettings::default()
+        }),
     )
     .unwrap();
     world.set_gravity(Vector2::new(0.0, -10.0)).unwrap();
@@ -74,12 +104,15 @@ fn a_settled_pile_steps_without_allocating() {
     for _ in 0..120 {
         world.step(dt).unwrap();
     }
-    let before = ALLOCATIONS.with(Cell::get);
+    let before = count();
     for _ in 0..100 {
         world.step(dt).unwrap();
     }
-    let made = ALLOCATIONS.with(Cell::get) - before;
-    assert_eq!(made, 0, "{made} allocations in 100 steady steps");
+    let made = count() - before;
+    assert_eq!(
+        made, 0,
+        "{made} allocations in 100 steady steps on {threads} threads"
+    );
     // The pile is still standing: the counting did not change the physics.
     let top = world.states().last().unwrap().position.y;
     assert!((top - 19.5).abs() < 0.05, "top box at {top}");
@@ -87,6 +120,7 @@ fn a_settled_pile_steps_without_allocating() {
 
 #[test]
 fn jointed_bodies_step_without_allocating() {
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     // A chain of 20 boxes hanging from a static bar by revolute joints
     // (with limits, a motor and a spring on every other one), a distance
     // pendulum, a rope, a spring, a prismatic slider, a weld and a target
@@ -231,6 +265,7 @@ fn jointed_bodies_step_without_allocating() {
 
 #[test]
 fn events_hooks_and_contact_data_step_without_allocating() {
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     // Balls bouncing (restitution 0.9) on a ground, each through a static
     // sensor band above it: every bounce begins and ends touching, hits,
     // and enters and leaves the sensor; a pre-solve hook sees every

@@ -86,6 +86,12 @@ enum Command {
         /// the same way.
         #[arg(long)]
         box2d_double: bool,
+        /// Threads of the multi-threaded rows: this engine, rapier2d
+        /// (`parallel`) and Box2D (its scheduler) again at this count,
+        /// after the one-thread rows (1: the one-thread rows only).
+        #[arg(long, value_name = "N", default_value_t = 2,
+              value_parser = clap::value_parser!(u8).range(1..=32))]
+        threads: u8,
     },
     /// Runs a scene file live in a window: pause, step, drag bodies,
     /// overlays (docs/view.md). Built with `--features view`.
@@ -124,6 +130,9 @@ fn main() -> std::process::ExitCode {
     harness::interrupt::install();
     die_quietly_on_a_closed_pipe();
     harness::progress::init_tracing();
+    // rapier2d is built with `parallel`: its uses outside the benchmark's
+    // multi-threaded rows stay on one thread.
+    references::serial_rayon();
     match real_main() {
         Ok(true) => std::process::ExitCode::SUCCESS,
         Ok(false) => std::process::ExitCode::from(1),
@@ -183,6 +192,7 @@ fn real_main() -> Result<bool> {
             full,
             box2d_sse2,
             box2d_double,
+            threads,
         }) => {
             if !scenes.is_empty() && cli.out.is_none() {
                 bail!(
@@ -195,6 +205,7 @@ fn real_main() -> Result<bool> {
             let settings = harness::bench::BenchSettings {
                 box2d_sse2,
                 box2d_double,
+                threads: usize::from(threads),
                 ..if full {
                     harness::bench::BenchSettings::FULL
                 } else {

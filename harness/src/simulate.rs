@@ -66,7 +66,7 @@ pub use outputs::{refuse_special, write_atomically};
 use crate::pictures::{self, Film, GifOptions};
 use crate::progress::{Budget, Ticker};
 use crate::report::fmt_num;
-use anyhow::{Result, anyhow};
+use anyhow::{Result, anyhow, bail};
 use clap::{Args, ValueEnum};
 use engine::time_grid::grid_time;
 use engine::{BodyState, EventRecord, MAX_RUN_STEPS, Method, Tolerance, World};
@@ -126,6 +126,11 @@ pub struct SimulateArgs {
     /// Print how each engine of --compare is configured.
     #[arg(long)]
     pub verbose: bool,
+    /// Threads of the soft step's parallel stages (1 to 256) instead of
+    /// the file's `[simulation] threads`: the trace is the same bits at
+    /// every count, only the time changes.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=256))]
+    pub threads: Option<u16>,
 }
 
 /// Engines `--compare` knows.
@@ -361,6 +366,19 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     if let Some(id) = &args.method {
         refuse_method_under_soft_step(&scene, &world, id, method)?;
         world = scene.build_world(Some(method))?;
+    }
+    if let Some(threads) = args.threads {
+        let Some(engine::ContactModel::SoftStep(settings)) = world.contact_model() else {
+            bail!(
+                "{}: --threads is a setting of the soft-step contact model, which this scene does \
+                 not use",
+                args.scene.display()
+            );
+        };
+        world.set_contact_model(engine::ContactModel::SoftStep(engine::SoftStepSettings {
+            threads: usize::from(threads),
+            ..settings
+        }))?;
     }
     let mut engines: Vec<CompareWith> = Vec::new();
     for e in &args.compare {

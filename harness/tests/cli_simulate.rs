@@ -665,3 +665,41 @@ fn a_jointed_scene_prints_its_model_and_joints_and_draws_them() {
         .count();
     assert_eq!(dots, 6 * 2 * 2, "joint anchors drawn");
 }
+
+#[test]
+fn the_falling_hinges_trace_is_the_same_bytes_on_one_and_two_threads() {
+    // The soft step's parallel stages give the serial stages' bits
+    // (docs/soft_step.md, "Threads"): the traces are compared byte for
+    // byte, over 2 s (the boxes land, the hinges swing and collide).
+    let dir = tempfile::tempdir().unwrap();
+    let scene = workspace().join("scenes/falling_hinges.toml");
+    let scene = scene.to_str().unwrap();
+    let mut traces = Vec::new();
+    for threads in ["1", "2"] {
+        let trace = dir.path().join(format!("trace_{threads}.csv"));
+        let done = harness(
+            dir.path(),
+            &[
+                "simulate",
+                scene,
+                "--until",
+                "2",
+                "--threads",
+                threads,
+                "--trace",
+                trace.to_str().unwrap(),
+            ],
+        );
+        assert_eq!(done.code, Some(0), "{}\n{}", done.stdout, done.stderr);
+        traces.push(std::fs::read(&trace).unwrap());
+    }
+    assert!(traces[0].len() > 10_000, "a trace of every body and step");
+    assert!(
+        traces[0] == traces[1],
+        "the traces on 1 and 2 threads differ"
+    );
+    // A count of 0 is refused with the flag named.
+    let done = harness(dir.path(), &["simulate", scene, "--threads", "0"]);
+    assert_ne!(done.code, Some(0));
+    assert!(done.stderr.contains("--threads"), "{}", done.stderr);
+}

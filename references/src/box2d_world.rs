@@ -194,6 +194,14 @@ impl Box2dWorld {
     /// ([`ManyBodyScene::validate`]), values beyond f32's range, and
     /// polygons Box2D cannot hold unchanged.
     pub fn new(scene: &ManyBodyScene) -> Result<Self, ManyBodyError> {
+        Self::with_workers(scene, 1)
+    }
+
+    /// [`Box2dWorld::new`] with `workers` (1 to 32) threads: above one,
+    /// boxdd's `worker_count` starts the built-in scheduler of the Box2D
+    /// revision it vendors (its task system, workers meeting at the
+    /// solver's stages).
+    pub fn with_workers(scene: &ManyBodyScene, workers: usize) -> Result<Self, ManyBodyError> {
         scene.validate()?;
         // Before any Box2D call: an AVX2 build would stop on its first AVX2
         // instruction on a CPU without it.
@@ -220,6 +228,10 @@ impl Box2dWorld {
             .world_builder()
             .gravity(gravity)
             .enable_sleep(false)
+            .worker_count(
+                boxdd::WorkerCount::new(u32::try_from(workers).unwrap_or(u32::MAX))
+                    .map_err(engine_error)?,
+            )
             .build()
             .map_err(engine_error)?;
         let mut world = foundation.create_world(def).map_err(engine_error)?;
@@ -554,7 +566,7 @@ impl ManyBodyEngine for Box2dWorld {
         let hertz = CONTACT_HERTZ.min(0.125 / h);
         format!(
             "{ENGINE}, {precision}, \
-             serial (one worker, no task system). dt = {dt} s with {s} substeps \
+             {workers}. dt = {dt} s with {s} substeps \
              (h = {h:.6} s). Soft contacts: {hertz:.3} Hz (min of contactHertz \
              {CONTACT_HERTZ} and 0.125/h; also against kinematic bodies), {shz:.3} Hz against \
              static bodies, damping ratio \
@@ -572,6 +584,12 @@ impl ManyBodyEngine for Box2dWorld {
             dt = self.dt,
             s = self.substeps,
             shz = 2.0 * hertz,
+            workers = match self.world.worker_count().map_or(1, |w| w.get()) {
+                1 => "serial (one worker, no task system)".to_string(),
+                n => format!(
+                    "{n} workers (Box2D's built-in scheduler, through boxdd's worker_count)"
+                ),
+            },
             precision = if build::Box2dBuild::linked().precision == "f32" {
                 "single precision (f32 positions, velocities and impulses)"
             } else {

@@ -73,3 +73,18 @@ pub use torque::TorquePulse;
 pub mod rapier_contacts;
 pub mod rapier_many;
 pub mod rapier_world;
+
+/// Holds rayon's global pool at one thread (once per process; a later
+/// call, or a pool already made, leaves it): rapier2d is built with its
+/// `parallel` feature for the benchmark's multi-threaded rows, and its
+/// other uses (the validation cases, the comparisons) stay on one thread
+/// as before. Called by every rapier adapter's constructor.
+pub fn serial_rayon() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        // An error means the global pool exists already: nothing to do.
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build_global();
+    });
+}

@@ -197,6 +197,7 @@ pub fn run_contact_scene(
         });
     }
     let steps = steps as usize;
+    crate::serial_rayon();
     let mut world = PhysicsWorld::new();
     world.gravity = Vector::new(scene.gravity[0], scene.gravity[1]);
     world.integration_parameters = integration_parameters(settings);

@@ -95,6 +95,9 @@ pub struct RapierManyWorld {
     bodies: Vec<RigidBodyHandle>,
     joints: Vec<Vec<ImpulseJointHandle>>,
     steps: usize,
+    /// The rayon pool rapier's parallel paths run in (one thread unless
+    /// [`RapierManyWorld::with_threads`] said more).
+    pool: rayon::ThreadPool,
 }
 
 /// Rapier's integration parameters for `scene`: the defaults with the
@@ -134,6 +137,20 @@ impl RapierManyWorld {
     /// documentation says. Refuses an invalid scene
     /// ([`ManyBodyScene::validate`]).
     pub fn new(scene: &ManyBodyScene) -> Result<Self, ManyBodyError> {
+        Self::with_threads(scene, 1)
+    }
+
+    /// [`RapierManyWorld::new`] stepping on `threads` (≥ 1) threads: rapier's
+    /// `parallel` paths in a rayon pool of that many threads, made here.
+    pub fn with_threads(scene: &ManyBodyScene, threads: usize) -> Result<Self, ManyBodyError> {
+        crate::serial_rayon();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads.max(1))
+            .build()
+            .map_err(|e| ManyBodyError::Engine {
+                engine: ENGINE,
+                message: format!("rayon pool of {threads} threads: {e}"),
+            })?;
         scene.validate()?;
         let mut world = PhysicsWorld::new();
         world.gravity = Vector::new(scene.gravity[0], scene.gravity[1]);
@@ -170,6 +187,7 @@ impl RapierManyWorld {
             bodies,
             joints: joint_handles,
             steps: 0,
+            pool,
         })
     }
 
@@ -256,7 +274,8 @@ impl ManyBodyEngine for RapierManyWorld {
     }
 
     fn step(&mut self) -> Result<(), ManyBodyError> {
-        self.world.step();
+        let world = &mut self.world;
+        self.pool.install(|| world.step());
         self.steps += 1;
         if let Some(h) = self.world.quarantine().bodies().first() {
             let body = self

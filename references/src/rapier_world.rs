@@ -515,6 +515,7 @@ struct SingleBodyWorld {
 
 impl SingleBodyWorld {
     fn new(body: &RapierBody, forces: &[RapierForce], settings: &RapierSettings) -> Self {
+        crate::serial_rayon();
         let mut world = PhysicsWorld::new();
         let gravity = forces.iter().fold([0.0, 0.0], |g, f| match f {
             RapierForce::Gravity(a) => [g[0] + a[0], g[1] + a[1]],

@@ -263,12 +263,32 @@ fn world(file: &SceneFile) -> Checked<WorldPlan> {
         ));
     }
     let model = model_of(file);
-    let contact = match file.contact {
+    let mut contact = match file.contact {
         Some(c) => Some(contact(&c)?),
         // Joints and no [contact]: the soft step at its defaults.
         None if model.is_some() => Some(ContactModel::SoftStep(SoftStepSettings::default())),
         None => None,
     };
+    if let Some(n) = file.simulation.threads {
+        let path = FieldPath::root().key("simulation").key("threads");
+        let Some(ContactModel::SoftStep(settings)) = &mut contact else {
+            return Err(Problem::new(
+                &path,
+                ErrorKind::InvalidValue,
+                "`threads` is a setting of the soft-step contact model (the exact model and the plain integrators run on one thread): remove it or add [contact] model = \"soft_step\"",
+            ));
+        };
+        settings.threads = match usize::try_from(n) {
+            Ok(n) if (1..=256).contains(&n) => n,
+            _ => {
+                return Err(Problem::new(
+                    &path,
+                    ErrorKind::InvalidValue,
+                    format!("threads must be between 1 and 256, got {n}"),
+                ));
+            }
+        };
+    }
     let mut bodies = Vec::with_capacity(file.bodies.len());
     let mut colours = Vec::with_capacity(file.bodies.len());
     // Default colours count the bodies that move: a ground first does not

@@ -81,6 +81,10 @@ pub struct SimulationSpec {
     /// (`[[forces]] type = "gravity"` also works, with a window). Default:
     /// none.
     pub gravity: Option<Xy>,
+    /// Threads of the soft step's parallel stages, 1 to 256 (the results
+    /// do not depend on it, only the time). Default 1. Refused under the
+    /// exact contact model.
+    pub threads: Option<i64>,
 }
 
 /// The default method of a scene without the soft-step contact model.

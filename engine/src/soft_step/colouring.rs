@@ -154,6 +154,11 @@ impl Colouring {
         record
     }
 
+    /// The wide records of colour `c` (after [`Colouring::finish`]).
+    pub(crate) fn records(&self, c: usize) -> std::ops::Range<usize> {
+        self.first_record[c]..self.first_record[c + 1]
+    }
+
     /// Where the `i`-th added constraint goes (after [`Colouring::finish`]).
     #[inline]
     pub(crate) fn slot(&self, i: usize) -> Slot {

@@ -49,27 +49,16 @@ impl SoftStep {
             }
         }
         let controls = core.controls_act.then_some(core.controls.as_slice());
+        let wrenches = general.is_some().then_some(self.wrenches.as_slice());
         for (id, sim) in self.sims.iter().enumerate() {
-            if sim.kind != BodyKind::Dynamic || sim.asleep {
-                continue;
-            }
-            let r = &mut self.bodies[id + 1];
-            if let Some(controls) = controls {
-                // Box2D's implicit damping, v ← v / (1 + h c), on the
-                // velocity before this substep's forces; then the body's
-                // share of gravity.
-                let c = &controls[id];
-                r.v *= 1.0 / (1.0 + h * c.linear_damping);
-                r.w *= 1.0 / (1.0 + h * c.angular_damping);
-                r.v += h * (c.gravity_scale * gravity);
-            } else {
-                r.v += h * gravity;
-            }
-            if general.is_some() {
-                let w = &self.wrenches[id];
-                r.v += (h * sim.inv_mass) * w.force;
-                r.w += h * sim.inv_inertia * w.torque;
-            }
+            integrate_velocity(
+                id,
+                sim,
+                &mut self.bodies[id + 1],
+                (controls, wrenches),
+                h,
+                gravity,
+            );
         }
     }
 
@@ -77,15 +66,53 @@ impl SoftStep {
     #[inline(never)]
     pub(super) fn integrate_positions(&mut self, h: f64) {
         for (sim, r) in self.sims.iter().zip(&mut self.bodies[1..]) {
-            if !sim.moving() {
-                continue;
-            }
-            r.dp += h * r.v;
-            if r.w != 0.0 {
-                r.dtheta += h * r.w;
-                let (s, c) = bodies::small_sin_cos(r.dtheta);
-                r.dq = [c, s];
-            }
+            integrate_position(sim, r, h);
         }
+    }
+}
+
+/// The velocity update of body `id` (see
+/// [`SoftStep::integrate_velocities`]): nothing unless it is awake and
+/// dynamic; `wrenches` when force generators act.
+#[inline(always)]
+pub(super) fn integrate_velocity(
+    id: usize,
+    sim: &bodies::BodySim,
+    r: &mut bodies::SolverBody,
+    (controls, wrenches): (Option<&[crate::world_core::BodyControl]>, Option<&[Wrench]>),
+    h: f64,
+    gravity: Vector2<f64>,
+) {
+    if sim.kind != BodyKind::Dynamic || sim.asleep {
+        return;
+    }
+    if let Some(controls) = controls {
+        // Box2D's implicit damping, v ← v / (1 + h c), on the velocity
+        // before this substep's forces; then the body's share of gravity.
+        let c = &controls[id];
+        r.v *= 1.0 / (1.0 + h * c.linear_damping);
+        r.w *= 1.0 / (1.0 + h * c.angular_damping);
+        r.v += h * (c.gravity_scale * gravity);
+    } else {
+        r.v += h * gravity;
+    }
+    if let Some(wrenches) = wrenches {
+        let w = &wrenches[id];
+        r.v += (h * sim.inv_mass) * w.force;
+        r.w += h * sim.inv_inertia * w.torque;
+    }
+}
+
+/// x += h v, θ += h ω for one body, when it is awake and moving.
+#[inline(always)]
+pub(super) fn integrate_position(sim: &bodies::BodySim, r: &mut bodies::SolverBody, h: f64) {
+    if !sim.moving() {
+        return;
+    }
+    r.dp += h * r.v;
+    if r.w != 0.0 {
+        r.dtheta += h * r.w;
+        let (s, c) = bodies::small_sin_cos(r.dtheta);
+        r.dq = [c, s];
     }
 }

@@ -19,6 +19,7 @@
 //! `wide`, whose operations are the SSE2 intrinsics themselves.
 
 use super::bodies::SolverBody;
+use super::wide_solver::{Bodies, FIXED};
 use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 use wide::{CmpEq, CmpGt, f64x4};
 
@@ -179,14 +180,19 @@ pub(crate) trait Lanes:
     /// Writes each lane's `v.x`, `v.y`, `ω` (`head[0..3]`) into body
     /// `index[l]`, lane after lane; `head[3]` is the lanes' `Δp.x` as
     /// gathered, which an implementation may write back whole rows with. A
-    /// body met in two lanes is static or kinematic, whose record no lane
-    /// changed, so the order of the writes does not matter.
+    /// body met in two lanes is static or kinematic, whose index carries
+    /// [`FIXED`]: it is not written back (no lane changed it).
     #[inline(always)]
-    fn scatter_head(head: [Self; 4], bodies: &mut [SolverBody], index: &[u32; LANES]) {
+    fn scatter_head(head: [Self; 4], bodies: Bodies<'_>, index: &[u32; LANES]) {
         let [vx, vy, w, _] = head;
         let (vx, vy, w) = (vx.to_array(), vy.to_array(), w.to_array());
         for (l, &i) in index.iter().enumerate() {
-            let b = &mut bodies[i as usize];
+            if i & FIXED != 0 {
+                continue;
+            }
+            // SAFETY: a dynamic body of a lane is this thread's alone (the
+            // colouring); no reference to it is alive.
+            let b = unsafe { bodies.get_mut(i as usize) };
             b.v.x = vx[l];
             b.v.y = vy[l];
             b.w = w[l];

@@ -21,6 +21,7 @@
 
 use super::bodies::SolverBody;
 use super::lanes::{F64x4, LANES, Lanes};
+use super::wide_solver::{Bodies, FIXED};
 use std::arch::x86_64::{
     __m256d, _CMP_EQ_OQ, _CMP_GT_OQ, _mm256_add_pd, _mm256_blendv_pd, _mm256_cmp_pd, _mm256_div_pd,
     _mm256_load_pd, _mm256_loadu_pd, _mm256_max_pd, _mm256_min_pd, _mm256_movemask_pd,
@@ -188,10 +189,15 @@ impl Lanes for Avx4 {
     /// The 4 × 4 transpose back to rows and four aligned 32-byte stores of
     /// `[v.x, v.y, ω, Δp.x]` (`Δp.x` as gathered: unchanged).
     #[inline(always)]
-    fn scatter_head(head: [Self; 4], bodies: &mut [SolverBody], index: &[u32; LANES]) {
+    fn scatter_head(head: [Self; 4], bodies: Bodies<'_>, index: &[u32; LANES]) {
         let rows = transpose(head.map(|x| x.0));
         for (l, &i) in index.iter().enumerate() {
-            let row = bodies[i as usize].head_mut();
+            if i & FIXED != 0 {
+                continue;
+            }
+            // SAFETY: a dynamic body of a lane is this thread's alone (the
+            // colouring); no reference to it is alive.
+            let row = unsafe { bodies.get_mut(i as usize) }.head_mut();
             // SAFETY: AVX is available (module invariant); `row` is 32
             // writable bytes aligned to 32 (the start of a 64-aligned
             // record).
@@ -295,10 +301,14 @@ mod tests {
                 sse_head[2],
                 F64x4::new(dpx.to_array()),
             ],
-            &mut expected,
+            Bodies::new(&mut expected),
             &index,
         );
-        Avx4::scatter_head([head[0], head[1], head[2], dpx], &mut bodies, &index);
+        Avx4::scatter_head(
+            [head[0], head[1], head[2], dpx],
+            Bodies::new(&mut bodies),
+            &index,
+        );
         assert_eq!(bodies, expected);
         // Body 4 is lane 2: v.x, v.y, ω = 10, 20, 30.
         assert_eq!(

@@ -41,6 +41,12 @@
 //! 8. **sleep** (when on): islands at rest fall asleep (`islands.rs`;
 //!    jointed bodies share an island).
 //!
+//! With [`SoftStepSettings::threads`] above one, prepare, the substeps'
+//! integration and passes (each colour's records split among the threads),
+//! restitution and the store run on a pool of threads (`pool.rs`,
+//! `parallel.rs`), with the serial stages' bits (docs/soft_step.md,
+//! "Threads").
+//!
 //! Events (landing, apex) are located inside each substep by linear
 //! interpolation, exact for positions (they move linearly in a substep;
 //! `events.rs`).
@@ -71,6 +77,8 @@ mod lanes;
 #[cfg(target_arch = "x86_64")]
 mod lanes_avx;
 mod manifold;
+mod parallel;
+mod pool;
 mod prepare;
 mod report;
 mod settings;
@@ -167,6 +175,10 @@ pub struct SoftStep {
     /// order).
     #[cfg_attr(feature = "serde", serde(skip))]
     constrained: Vec<usize>,
+    /// Per lane of the records, the constraint (position in `constrained`)
+    /// it holds, `u32::MAX` for padding (the parallel prepare's).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    lane_source: Vec<u32>,
     /// Per world body, the push-out speed (m/s) its contacts with other
     /// dynamic bodies ask for this step (prepare's sum, for sharing the
     /// push-out speed among them).
@@ -186,6 +198,9 @@ pub struct SoftStep {
     touching_pairs: Vec<(BodyId, BodyId)>,
     #[cfg_attr(feature = "serde", serde(skip))]
     resting: Vec<usize>,
+    /// The threads of the parallel stages (none for one thread).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    pool: pool::PoolCell,
 }
 
 impl SoftStep {
@@ -208,6 +223,7 @@ impl SoftStep {
             constraints: Vec::new(),
             colouring: Colouring::default(),
             constrained: Vec::new(),
+            lane_source: Vec::new(),
             push_demand: Vec::new(),
             islands: islands::Islands::default(),
             joints: joints::JointSet::default(),
@@ -217,6 +233,7 @@ impl SoftStep {
             substep_start: Vec::new(),
             touching_pairs: Vec::new(),
             resting: Vec::new(),
+            pool: pool::PoolCell::default(),
         };
         for id in 0..core.bodies.len() {
             model.body_added(core, id);
@@ -347,6 +364,8 @@ impl SoftStep {
         let h = dt / n as f64;
         let inv_h = 1.0 / h;
 
+        let pool = self.pool.get(settings.threads);
+
         let started = core.profiler.start();
         self.update_pairs();
         core.profiler.stop(Phase::Pairs, started);
@@ -357,7 +376,7 @@ impl SoftStep {
 
         let started = core.profiler.start();
         self.load_bodies(core);
-        self.prepare(core, h);
+        self.prepare(core, h, pool.as_deref());
         let warm = settings.warm_starting;
         self.joints
             .prepare(core, (&self.masses, &self.sims), h, warm);
@@ -380,6 +399,29 @@ impl SoftStep {
 
         for k in 0..n {
             let t_sub = t0 + k as f64 * h;
+            if let Some(pool) = &pool {
+                // The same stages on the pool's threads (`parallel.rs`),
+                // timed as one.
+                let started = core.profiler.start();
+                if watch_events {
+                    self.substep_start.clone_from(&self.bodies);
+                }
+                if general {
+                    self.integrate_velocities(core, h, gravity, Some((t_sub, middle)));
+                }
+                self.parallel_substep(pool, core, (h, inv_h), gravity, general);
+                core.profiler.stop(Phase::Solve, started);
+                self.stats.evaluations += 1;
+                if watch_events {
+                    let t_end = if k + 1 == n { t1 } else { t_sub + h };
+                    if self.locate_events(core, (t_sub, t_end), found) {
+                        self.joints.store_impulses();
+                        self.report_touches();
+                        return Ok(());
+                    }
+                }
+                continue;
+            }
             let started = core.profiler.start();
             if watch_events {
                 self.substep_start.clone_from(&self.bodies);
@@ -421,21 +463,28 @@ impl SoftStep {
         }
 
         let started = core.profiler.start();
-        contact_solver::restitution(
-            &mut self.constraints,
-            &mut self.bodies,
-            settings.restitution_threshold,
-        );
-        wide_solver::restitution(
-            &mut self.wide,
-            &self.wide_extra,
-            &mut self.bodies,
-            settings.restitution_threshold,
-        );
+        if let Some(pool) = &pool {
+            // Restitution and the impulses' store on the threads.
+            self.parallel_restitution_and_store(pool, settings.restitution_threshold);
+        } else {
+            contact_solver::restitution(
+                &mut self.constraints,
+                &mut self.bodies,
+                settings.restitution_threshold,
+            );
+            wide_solver::restitution(
+                &mut self.wide,
+                &self.wide_extra,
+                &mut self.bodies,
+                settings.restitution_threshold,
+            );
+        }
         core.profiler.stop(Phase::Restitution, started);
 
         let started = core.profiler.start();
-        self.store_impulses();
+        if pool.is_none() {
+            self.store_impulses();
+        }
         self.joints.store_impulses();
         self.report_touches();
         let step = self.stats.steps;

@@ -37,6 +37,8 @@ use super::bodies::{BodyMass, SolverBody, solver_body, solver_index};
 use super::colouring::Slot;
 use super::contact_solver::{self, PairMass};
 use super::contacts::Contact;
+use super::lanes::LANES;
+use super::pool::{Pool, SharedSlice, Worker};
 use super::wide_solver::{self, WideConstraint, WideExtra};
 use super::{SoftStep, Softness};
 use crate::body::{BodyId, BodyKind};
@@ -63,7 +65,7 @@ impl SoftStep {
     /// coloured ([`super::colouring`]) and packed four by four for the wide
     /// solver; those that found no colour stay scalar (the overflow).
     #[inline(never)]
-    pub(super) fn prepare(&mut self, core: &mut WorldCore, h: f64) {
+    pub(super) fn prepare(&mut self, core: &mut WorldCore, h: f64, pool: Option<&Pool>) {
         let settings = &self.settings;
         // Contact stiffness capped at a quarter of the substep's Nyquist
         // frequency (1/(8h)), twice as stiff against static bodies.
@@ -127,9 +129,7 @@ impl SoftStep {
         self.constraints.clear();
         let (masses, contacts, bodies) = (&self.masses, &self.contacts.contacts, &self.bodies);
         let demand = &self.push_demand;
-        // In contact order, so that the contacts are read in memory order;
-        // each colour's records are written in order too.
-        for (i, &index) in self.constrained.iter().enumerate() {
+        let constraint_of = |index: usize| {
             let c = &contacts[index];
             let (sa, sb) = (&masses[c.body_a], &masses[c.body_b]);
             let mass = PairMass {
@@ -154,23 +154,70 @@ impl SoftStep {
             } else {
                 (soft, push_out)
             };
-            let constraint =
-                contact_solver::prepare(c, index, mass, (softness, bound), bodies, warm);
-            match self.colouring.slot(i) {
-                Slot::Lane { record, lane } => wide_solver::set_lane(
+            contact_solver::prepare(c, index, mass, (softness, bound), bodies, warm)
+        };
+        if let Some(pool) = pool {
+            // On the threads: each its share of the records, every lane
+            // from the constraint the colouring put there (the same
+            // constraints, in another order: the same bits).
+            self.lane_source.clear();
+            self.lane_source.resize(records * LANES, u32::MAX);
+            for i in 0..touching {
+                if let Slot::Lane { record, lane } = self.colouring.slot(i) {
+                    self.lane_source[record * LANES + lane] = i as u32;
+                }
+            }
+            let (constrained, colouring, source) =
+                (&self.constrained, &self.colouring, &self.lane_source);
+            let wide = SharedSlice::new(&mut self.wide);
+            let extra = SharedSlice::new(&mut self.wide_extra);
+            let overflow = SharedSlice::new(std::slice::from_mut(&mut self.constraints));
+            pool.run(&|w: &Worker<'_>| {
+                if w.index == 0 {
+                    // SAFETY: only thread 0 touches the overflow.
+                    let overflow = unsafe { overflow.get_mut(0) };
+                    for (i, &index) in constrained.iter().enumerate() {
+                        if let Slot::Overflow(_) = colouring.slot(i) {
+                            overflow.push(constraint_of(index));
+                        }
+                    }
+                }
+                for record in w.share(wide.len()) {
+                    // SAFETY: each thread its own records.
+                    let (r, e) = unsafe { (wide.get_mut(record), extra.get_mut(record)) };
+                    for lane in 0..LANES {
+                        match source[record * LANES + lane] {
+                            u32::MAX => wide_solver::set_padding_lane((r, e), lane),
+                            i => wide_solver::set_lane(
+                                (r, e),
+                                lane,
+                                &constraint_of(constrained[i as usize]),
+                            ),
+                        }
+                    }
+                }
+            });
+        } else {
+            // In contact order, so that the contacts are read in memory
+            // order; each colour's records are written in order too.
+            for (i, &index) in self.constrained.iter().enumerate() {
+                let constraint = constraint_of(index);
+                match self.colouring.slot(i) {
+                    Slot::Lane { record, lane } => wide_solver::set_lane(
+                        (&mut self.wide[record], &mut self.wide_extra[record]),
+                        lane,
+                        &constraint,
+                    ),
+                    // Overflow positions come in order.
+                    Slot::Overflow(_) => self.constraints.push(constraint),
+                }
+            }
+            for (record, lane) in self.colouring.padding() {
+                wide_solver::set_padding_lane(
                     (&mut self.wide[record], &mut self.wide_extra[record]),
                     lane,
-                    &constraint,
-                ),
-                // Overflow positions come in order.
-                Slot::Overflow(_) => self.constraints.push(constraint),
+                );
             }
-        }
-        for (record, lane) in self.colouring.padding() {
-            wide_solver::set_padding_lane(
-                (&mut self.wide[record], &mut self.wide_extra[record]),
-                lane,
-            );
         }
         let profile = &mut core.profiler.profile;
         profile.contacts += self.contacts.contacts.len() as u64;

@@ -96,7 +96,23 @@ pub struct SoftStepSettings {
     /// reports a hit event ([`super::StepEvents::hits`]). Default 1 m/s
     /// (Box2D's `hitEventThreshold`).
     pub hit_event_threshold: f64,
+    /// Threads (≥ 1) that run the step's stages that scale (pairs,
+    /// collide, prepare, each colour's constraints in the solver passes,
+    /// integration, store), on a pool the model keeps (docs/soft_step.md,
+    /// "Threads"). Every count gives the same bits: the results do not
+    /// depend on it, only the time. Default 1.
+    #[cfg_attr(feature = "serde", serde(default = "one_thread"))]
+    pub threads: usize,
 }
+
+/// The default thread count (for worlds written before the setting).
+#[cfg(feature = "serde")]
+fn one_thread() -> usize {
+    1
+}
+
+/// The most threads a step may use (far beyond what the stages scale to).
+pub const MAX_THREADS: usize = 256;
 
 impl Default for SoftStepSettings {
     fn default() -> Self {
@@ -120,6 +136,7 @@ impl Default for SoftStepSettings {
             restitution_mixing: MixingRule::Max,
             rolling_resistance: tunables::SOFT_ROLLING_RESISTANCE_DEFAULT,
             hit_event_threshold: tunables::SOFT_HIT_EVENT_THRESHOLD_DEFAULT,
+            threads: 1,
         }
     }
 }
@@ -132,6 +149,13 @@ impl SoftStepSettings {
                 what: "substeps".into(),
                 value: self.substeps as f64,
                 reason: "must be between 1 and 1024",
+            });
+        }
+        if self.threads == 0 || self.threads > MAX_THREADS {
+            return Err(EngineError::InvalidParameter {
+                what: "threads".into(),
+                value: self.threads as f64,
+                reason: "must be between 1 and 256",
             });
         }
         require_positive("contact hertz", self.contact_hertz)?;
@@ -171,6 +195,7 @@ mod tests {
         let d = SoftStepSettings::default();
         for bad in [
             SoftStepSettings { substeps: 0, ..d },
+            SoftStepSettings { threads: 0, ..d },
             SoftStepSettings {
                 contact_hertz: 0.0,
                 ..d

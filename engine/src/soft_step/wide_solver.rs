@@ -24,6 +24,20 @@ use super::bodies::SolverBody;
 use super::contact_solver::{ConstraintPoint, ContactConstraint};
 use super::contacts::Contact;
 use super::lanes::{F64x4, LANES, Lanes, dispatch};
+use super::pool::SharedSlice;
+
+/// The solver records as the passes see them: shared by the threads of a
+/// parallel pass, each writing only the dynamic bodies of its own
+/// constraints (no two constraints of a colour share one); see
+/// [`super::pool::SharedSlice`].
+pub(crate) type Bodies<'a> = SharedSlice<'a, SolverBody>;
+
+/// Set in a lane's body index when that body has zero inverse mass and
+/// inertia (the static dummy, a kinematic body, a padding lane): no
+/// impulse changes its velocity, so its record is read but never written
+/// back (which lets the threads of a parallel pass share it; the bits are
+/// those of writing back the unchanged value).
+pub(crate) const FIXED: u32 = 1 << 31;
 
 /// One point of four constraints.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -91,9 +105,21 @@ pub(crate) fn set_lane(
     l: usize,
     c: &ContactConstraint,
 ) {
-    let index = |i: usize| u32::try_from(i).expect("fewer than 2³² bodies");
-    w.a[l] = index(c.a);
-    w.b[l] = index(c.b);
+    let index = |i: usize| {
+        u32::try_from(i)
+            .ok()
+            .filter(|&i| i < FIXED)
+            .expect("fewer than 2³¹ bodies")
+    };
+    let fixed = |inv_mass: f64, inv_inertia: f64| {
+        if inv_mass == 0.0 && inv_inertia == 0.0 {
+            FIXED
+        } else {
+            0
+        }
+    };
+    w.a[l] = index(c.a) | fixed(c.inv_mass_a, c.inv_inertia_a);
+    w.b[l] = index(c.b) | fixed(c.inv_mass_b, c.inv_inertia_b);
     w.normal_x.set_lane(l, c.normal.x);
     w.normal_y.set_lane(l, c.normal.y);
     w.friction.set_lane(l, c.friction);
@@ -177,16 +203,16 @@ impl<L: Lanes> WideBody<L> {
 
 /// The records of the four lanes' bodies.
 #[inline(always)]
-pub(super) fn lanes_of<'a>(
-    bodies: &'a [SolverBody],
-    index: &[u32; LANES],
-) -> [&'a SolverBody; LANES] {
-    [0, 1, 2, 3].map(|l| &bodies[index[l] as usize])
+pub(super) fn lanes_of<'a>(bodies: Bodies<'a>, index: &[u32; LANES]) -> [&'a SolverBody; LANES] {
+    // SAFETY: a dynamic body of a lane is written only by this thread
+    // (the colouring; the reference is dropped before the scatter), a
+    // fixed one by no thread.
+    [0, 1, 2, 3].map(|l| unsafe { bodies.get((index[l] & !FIXED) as usize) })
 }
 
 /// Reads the velocities (and Δp.x) of the four lanes' bodies.
 #[inline(always)]
-pub(super) fn gather<L: Lanes>(bodies: &[SolverBody], index: &[u32; LANES]) -> WideBody<L> {
+pub(super) fn gather<L: Lanes>(bodies: Bodies<'_>, index: &[u32; LANES]) -> WideBody<L> {
     let [vx, vy, w, dpx] = L::gather_row(&lanes_of(bodies, index), 0);
     WideBody { vx, vy, w, dpx }
 }
@@ -194,14 +220,14 @@ pub(super) fn gather<L: Lanes>(bodies: &[SolverBody], index: &[u32; LANES]) -> W
 /// The second row of the four lanes' bodies: `[Δp.y, Δθ, cos Δθ, sin
 /// Δθ]`.
 #[inline(always)]
-pub(super) fn gather_motion<L: Lanes>(bodies: &[SolverBody], index: &[u32; LANES]) -> [L; 4] {
+pub(super) fn gather_motion<L: Lanes>(bodies: Bodies<'_>, index: &[u32; LANES]) -> [L; 4] {
     L::gather_row(&lanes_of(bodies, index), 1)
 }
 
 /// Writes back the velocities of the four lanes (see
 /// [`Lanes::scatter_head`]).
 #[inline(always)]
-pub(super) fn scatter<L: Lanes>(bodies: &mut [SolverBody], index: &[u32; LANES], w: &WideBody<L>) {
+pub(super) fn scatter<L: Lanes>(bodies: Bodies<'_>, index: &[u32; LANES], w: &WideBody<L>) {
     L::scatter_head([w.vx, w.vy, w.w, w.dpx], bodies, index);
 }
 
@@ -212,7 +238,7 @@ pub(super) fn scatter<L: Lanes>(bodies: &mut [SolverBody], index: &[u32; LANES],
 /// bodies as gathered.
 #[inline(always)]
 fn separations<L: Lanes>(
-    bodies: &[SolverBody],
+    bodies: Bodies<'_>,
     c: &WideConstraint,
     (a, b): (&WideBody<L>, &WideBody<L>),
 ) -> [L; 2] {
@@ -340,13 +366,24 @@ pub(crate) fn warm_start(
     bodies: &mut [SolverBody],
     rolling: bool,
 ) {
-    dispatch!(warm_start_with, warm_start_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody], rolling: bool));
+    warm_start_shared(constraints, Bodies::new(bodies), rolling);
+}
+
+/// [`warm_start`] on records shared by the threads of a parallel pass:
+/// `constraints` must be of one colour (or the whole list, alone).
+#[inline(never)]
+pub(crate) fn warm_start_shared(
+    constraints: &mut [WideConstraint],
+    bodies: Bodies<'_>,
+    rolling: bool,
+) {
+    dispatch!(warm_start_with, warm_start_avx, (constraints: &mut [WideConstraint], bodies: Bodies<'_>, rolling: bool));
 }
 
 #[inline(always)]
 fn warm_start_with<L: Lanes>(
     constraints: &mut [WideConstraint],
-    bodies: &mut [SolverBody],
+    bodies: Bodies<'_>,
     rolling: bool,
 ) {
     for c in constraints.iter_mut() {
@@ -377,11 +414,17 @@ fn warm_start_with<L: Lanes>(
 /// The solve pass, with the soft bias (see [`super::contact_solver::solve`]).
 #[inline(never)]
 pub(crate) fn solve(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
-    dispatch!(solve_with, solve_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64));
+    solve_shared(constraints, Bodies::new(bodies), inv_h);
+}
+
+/// [`solve`] on shared records (see [`warm_start_shared`]).
+#[inline(never)]
+pub(crate) fn solve_shared(constraints: &mut [WideConstraint], bodies: Bodies<'_>, inv_h: f64) {
+    dispatch!(solve_with, solve_avx, (constraints: &mut [WideConstraint], bodies: Bodies<'_>, inv_h: f64));
 }
 
 #[inline(always)]
-fn solve_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
+fn solve_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: Bodies<'_>, inv_h: f64) {
     pass::<L, true>(constraints, bodies, inv_h, false);
 }
 
@@ -394,13 +437,24 @@ pub(crate) fn relax(
     inv_h: f64,
     rolling: bool,
 ) {
-    dispatch!(relax_with, relax_avx, (constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64, rolling: bool));
+    relax_shared(constraints, Bodies::new(bodies), inv_h, rolling);
+}
+
+/// [`relax`] on shared records (see [`warm_start_shared`]).
+#[inline(never)]
+pub(crate) fn relax_shared(
+    constraints: &mut [WideConstraint],
+    bodies: Bodies<'_>,
+    inv_h: f64,
+    rolling: bool,
+) {
+    dispatch!(relax_with, relax_avx, (constraints: &mut [WideConstraint], bodies: Bodies<'_>, inv_h: f64, rolling: bool));
 }
 
 #[inline(always)]
 fn relax_with<L: Lanes>(
     constraints: &mut [WideConstraint],
-    bodies: &mut [SolverBody],
+    bodies: Bodies<'_>,
     inv_h: f64,
     rolling: bool,
 ) {
@@ -411,7 +465,7 @@ fn relax_with<L: Lanes>(
 #[inline(always)]
 fn pass<L: Lanes, const BIAS: bool>(
     constraints: &mut [WideConstraint],
-    bodies: &mut [SolverBody],
+    bodies: Bodies<'_>,
     inv_h: f64,
     rolling: bool,
 ) {
@@ -493,14 +547,25 @@ pub(crate) fn restitution(
     bodies: &mut [SolverBody],
     threshold: f64,
 ) {
-    dispatch!(restitution_with, restitution_avx, (constraints: &mut [WideConstraint], extras: &[WideExtra], bodies: &mut [SolverBody], threshold: f64));
+    restitution_shared(constraints, extras, Bodies::new(bodies), threshold);
+}
+
+/// [`restitution`] on shared records (see [`warm_start_shared`]).
+#[inline(never)]
+pub(crate) fn restitution_shared(
+    constraints: &mut [WideConstraint],
+    extras: &[WideExtra],
+    bodies: Bodies<'_>,
+    threshold: f64,
+) {
+    dispatch!(restitution_with, restitution_avx, (constraints: &mut [WideConstraint], extras: &[WideExtra], bodies: Bodies<'_>, threshold: f64));
 }
 
 #[inline(always)]
 fn restitution_with<L: Lanes>(
     constraints: &mut [WideConstraint],
     extras: &[WideExtra],
-    bodies: &mut [SolverBody],
+    bodies: Bodies<'_>,
     threshold: f64,
 ) {
     let min_approach = L::splat(-threshold);
@@ -691,9 +756,9 @@ mod tests {
             let (mut wide, mut wide_bodies) = (wide.clone(), bodies.clone());
             for _ in 0..3 {
                 if sse2 {
-                    warm_start_with::<F64x4>(&mut wide, &mut wide_bodies, true);
-                    solve_with::<F64x4>(&mut wide, &mut wide_bodies, inv_h);
-                    relax_with::<F64x4>(&mut wide, &mut wide_bodies, inv_h, true);
+                    warm_start_with::<F64x4>(&mut wide, Bodies::new(&mut wide_bodies), true);
+                    solve_with::<F64x4>(&mut wide, Bodies::new(&mut wide_bodies), inv_h);
+                    relax_with::<F64x4>(&mut wide, Bodies::new(&mut wide_bodies), inv_h, true);
                 } else {
                     warm_start(&mut wide, &mut wide_bodies, true);
                     solve(&mut wide, &mut wide_bodies, inv_h);
@@ -701,7 +766,7 @@ mod tests {
                 }
             }
             if sse2 {
-                restitution_with::<F64x4>(&mut wide, &extra, &mut wide_bodies, 1.0);
+                restitution_with::<F64x4>(&mut wide, &extra, Bodies::new(&mut wide_bodies), 1.0);
             } else {
                 restitution(&mut wide, &extra, &mut wide_bodies, 1.0);
             }

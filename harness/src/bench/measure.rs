@@ -6,7 +6,13 @@
 //! the Box2D linked here, in this process, and the other Box2D builds
 //! asked for, each run as a child process ([`super::child`]) in its turn.
 //! Each row carries the engine's build: precision, the SIMD path it takes
-//! on this CPU, its compiler settings, and its thread count (one).
+//! on this CPU, its compiler settings, and its thread count: every
+//! engine at one thread, then (with [`BenchSettings::threads`] above one)
+//! this engine, rapier2d and Box2D again at that count (ours on its pool,
+//! rapier2d's `parallel` paths in a rayon pool of that size, Box2D's
+//! built-in scheduler through boxdd's `worker_count`), each with the CPU
+//! time of the process over the wall time of its timed steps
+//! (`getrusage`), which says how busy the threads kept the cores.
 //! The quality figures are
 //! read from every engine's last run the same way: the watched top body's
 //! sink and sideways drift, the fastest body at the end, and the deepest
@@ -59,6 +65,9 @@ pub struct BenchSettings {
     pub box2d_double: bool,
     /// Also the peak memory of the large scenes ([`super::memory`]).
     pub memory: bool,
+    /// Threads of the multi-threaded rows (this engine, rapier2d, Box2D
+    /// again at this count); 1: the one-thread rows only.
+    pub threads: usize,
 }
 
 impl BenchSettings {
@@ -72,6 +81,7 @@ impl BenchSettings {
         box2d_sse2: false,
         box2d_double: false,
         memory: false,
+        threads: 1,
     };
     /// `harness bench`: Box2D's step counts, 10 repeats, the peak memory of
     /// the large scenes.
@@ -82,6 +92,7 @@ impl BenchSettings {
         box2d_sse2: false,
         box2d_double: false,
         memory: true,
+        threads: 2,
     };
     /// `harness bench --full`: as [`Self::BENCH`] at the full sizes.
     pub const FULL: BenchSettings = BenchSettings {
@@ -127,8 +138,14 @@ pub struct BenchRow {
     pub ms_per_step_median: f64,
     /// Maximum over the repeats of the time per step (ms).
     pub ms_per_step_max: f64,
-    /// This engine's minimum over this engine's (the project's) minimum.
+    /// This engine's minimum over this engine's (the project's) minimum
+    /// at the same thread count.
     pub ratio_to_engine: f64,
+    /// CPU time of the process (every thread, user and system) over the
+    /// wall time of the timed steps, in the run that gave the minimum: 1
+    /// for one busy thread, up to the thread count (a child build: not
+    /// measured, 0).
+    pub cpu_over_wall: f64,
     /// Pairs with contact points after the last step.
     pub touching_pairs: usize,
     /// Contact points after the last step.
@@ -171,6 +188,8 @@ pub struct SceneResult {
 /// What the run of one engine leaves.
 struct Run {
     per_step: Duration,
+    /// CPU time over wall time of the timed steps (0: not measured).
+    cpu_over_wall: f64,
     samples: Vec<BodySample>,
     touching: usize,
     points: usize,
@@ -178,31 +197,50 @@ struct Run {
 
 fn run_engine(engine: &mut dyn ManyBodyEngine, steps: usize) -> Result<Run> {
     engine.step()?;
+    let cpu = cpu_time()?;
     let started = Instant::now();
     for _ in 0..steps {
         engine.step()?;
     }
-    let per_step = started.elapsed() / steps.max(1) as u32;
+    let wall = started.elapsed();
+    let cpu_over_wall = (cpu_time()? - cpu).as_secs_f64() / wall.as_secs_f64().max(1e-9);
+    let per_step = wall / steps.max(1) as u32;
     let mut samples = Vec::new();
     engine.samples(&mut samples)?;
     let counts = engine.contact_counts()?;
     Ok(Run {
         per_step,
+        cpu_over_wall,
         samples,
         touching: counts.touching_pairs,
         points: counts.points,
     })
 }
 
+/// The CPU time of this process so far, every thread, user and system
+/// (`getrusage(RUSAGE_SELF)`).
+fn cpu_time() -> Result<Duration> {
+    // SAFETY: an all-zero `rusage` is a valid value of the plain C struct.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    // SAFETY: `usage` is a valid, writable `rusage`.
+    if unsafe { libc::getrusage(libc::RUSAGE_SELF, &mut usage) } != 0 {
+        bail!("getrusage: {}", std::io::Error::last_os_error());
+    }
+    let time = |t: libc::timeval| {
+        Duration::from_secs(t.tv_sec.max(0) as u64) + Duration::from_micros(t.tv_usec.max(0) as u64)
+    };
+    Ok(time(usage.ru_utime) + time(usage.ru_stime))
+}
+
 /// An engine of the benchmark.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Contender {
-    /// This engine's soft step.
-    Ours,
-    /// rapier2d-f64.
-    Rapier,
-    /// The Box2D linked into the harness.
-    Box2d,
+    /// This engine's soft step on this many threads.
+    Ours(usize),
+    /// rapier2d-f64 on this many threads.
+    Rapier(usize),
+    /// The Box2D linked into the harness, with this many workers.
+    Box2d(usize),
     /// Another Box2D build, run as a child process (its binary).
     Child(ChildBuild, PathBuf),
 }
@@ -211,10 +249,20 @@ impl Contender {
     /// The engine's name in messages.
     fn label(&self) -> String {
         match self {
-            Contender::Ours => "this engine".into(),
-            Contender::Rapier => "rapier2d".into(),
-            Contender::Box2d => Box2dBuild::linked().bench_name(),
+            Contender::Ours(n) => format!("this engine on {n} thread(s)"),
+            Contender::Rapier(n) => format!("rapier2d on {n} thread(s)"),
+            Contender::Box2d(n) => {
+                format!("{} with {n} worker(s)", Box2dBuild::linked().bench_name())
+            }
             Contender::Child(build, _) => format!("Box2D's {} build", build.label()),
+        }
+    }
+
+    /// The threads it runs on.
+    pub fn threads(&self) -> usize {
+        match self {
+            Contender::Ours(n) | Contender::Rapier(n) | Contender::Box2d(n) => *n,
+            Contender::Child(..) => 1,
         }
     }
 }
@@ -233,11 +281,11 @@ impl Contenders {
     /// This engine, rapier2d, the linked Box2D if this CPU runs it, and the
     /// child builds `settings` asks for (built here, before any timing).
     pub fn for_settings(settings: &BenchSettings) -> Result<Self> {
-        let mut list = vec![Contender::Ours, Contender::Rapier];
+        let mut list = vec![Contender::Ours(1), Contender::Rapier(1)];
         let mut notes = Vec::new();
         let linked = Box2dBuild::linked();
         match linked.runnable() {
-            Ok(()) => list.push(Contender::Box2d),
+            Ok(()) => list.push(Contender::Box2d(1)),
             Err(why) => {
                 let note = format!("{} left out: {why}", linked.bench_name());
                 eprintln!("bench: {note}");
@@ -256,6 +304,16 @@ impl Contenders {
                     binary.display()
                 );
                 list.push(Contender::Child(build, binary));
+            }
+        }
+        // The multi-threaded rows after every one-thread row (the targets
+        // and charts find the one-thread rows first).
+        let n = settings.threads;
+        if n > 1 {
+            list.push(Contender::Ours(n));
+            list.push(Contender::Rapier(n));
+            if list.contains(&Contender::Box2d(1)) {
+                list.push(Contender::Box2d(n));
             }
         }
         Ok(Self { list, notes })
@@ -297,21 +355,21 @@ fn rust_flags() -> String {
 fn build_of(contender: &Contender, engine: &dyn ManyBodyEngine) -> Build {
     let configuration = engine.configuration();
     match contender {
-        Contender::Ours => Build {
+        Contender::Ours(_) => Build {
             name: engine.name().to_string(),
             configuration,
             precision: "f64".into(),
             simd: engine::soft_step::lanes_in_use().into(),
             flags: format!("{}; AVX lanes chosen at run time", rust_flags()),
         },
-        Contender::Rapier => Build {
+        Contender::Rapier(n) => Build {
             name: engine.name().to_string(),
             configuration,
             precision: "f64".into(),
             simd: "scalar f64 (rapier2d-f64 0.36 has no SIMD option for f64)".into(),
             flags: format!(
-                "{}; features dim2, f64, std, block-solver (its defaults), \
-                 enhanced-determinism and parallel off",
+                "{}; features dim2, f64, std, block-solver (its defaults) and parallel \
+                 (stepped in a rayon pool of {n} thread(s)), enhanced-determinism off",
                 rust_flags()
             ),
         },
@@ -335,9 +393,9 @@ fn build(
     neutral: &ManyBodyScene,
 ) -> Result<Box<dyn ManyBodyEngine>> {
     Ok(match contender {
-        Contender::Ours => Box::new(SoftStepEngine::new(scene, false)?),
-        Contender::Rapier => Box::new(RapierManyWorld::new(neutral)?),
-        Contender::Box2d => Box::new(Box2dWorld::new(neutral)?),
+        Contender::Ours(n) => Box::new(SoftStepEngine::with_threads(scene, false, *n)?),
+        Contender::Rapier(n) => Box::new(RapierManyWorld::with_threads(neutral, *n)?),
+        Contender::Box2d(n) => Box::new(Box2dWorld::with_workers(neutral, *n)?),
         Contender::Child(..) => bail!("a child build runs in its own process"),
     })
 }
@@ -364,6 +422,7 @@ fn run_once(
         }
         let run = Run {
             per_step: Duration::from_secs_f64(child.ms_per_step / 1e3),
+            cpu_over_wall: 0.0,
             samples: child.samples(),
             touching: child.touching,
             points: child.points,
@@ -415,6 +474,7 @@ pub fn measure(
     let steps = settings.timed_steps(&bench);
     let n = contenders.list.len();
     let mut times: Vec<Vec<f64>> = vec![Vec::new(); n];
+    let mut cpu: Vec<(f64, f64)> = vec![(f64::INFINITY, 0.0); n];
     let mut last: Vec<Option<Run>> = (0..n).map(|_| None).collect();
     let mut builds: Vec<Option<Build>> = (0..n).map(|_| None).collect();
     for repeat in 0..settings.repeats.max(1) {
@@ -425,7 +485,11 @@ pub fn measure(
             if let Some(b) = built {
                 builds[e] = Some(b);
             }
-            times[e].push(1e3 * run.per_step.as_secs_f64());
+            let ms = 1e3 * run.per_step.as_secs_f64();
+            if ms < cpu[e].0 {
+                cpu[e] = (ms, run.cpu_over_wall);
+            }
+            times[e].push(ms);
             last[e] = Some(run);
         }
     }
@@ -437,7 +501,17 @@ pub fn measure(
         ),
         None => None,
     };
-    let ours = times[0].iter().copied().fold(f64::INFINITY, f64::min);
+    // This engine's minimum at each thread count.
+    let ours = |threads: usize| {
+        contenders
+            .list
+            .iter()
+            .position(|c| *c == Contender::Ours(threads))
+            .or_else(|| (threads != 1).then_some(0))
+            .map_or(f64::NAN, |i| {
+                times[i].iter().copied().fold(f64::INFINITY, f64::min)
+            })
+    };
     let mut rows = Vec::new();
     let mut configurations = Vec::new();
     for e in 0..n {
@@ -471,7 +545,7 @@ pub fn measure(
         rows.push(BenchRow {
             scene: bench.id.to_string(),
             engine: built.name,
-            threads: 1,
+            threads: contenders.list[e].threads(),
             precision: built.precision,
             simd: built.simd,
             build: built.flags,
@@ -482,7 +556,8 @@ pub fn measure(
             ms_per_step_min: min,
             ms_per_step_median: median(times[e].clone()),
             ms_per_step_max: max,
-            ratio_to_engine: min / ours,
+            ratio_to_engine: min / ours(contenders.list[e].threads()),
+            cpu_over_wall: cpu[e].1,
             touching_pairs: run.touching,
             points: run.points,
             top_sink: sink,

@@ -24,9 +24,21 @@ impl SoftStepEngine {
     /// energy guard off (it costs a pass over the bodies per step that the
     /// reference engines do not make) and per-phase timing `profiled`.
     pub fn new(scene: &Scene, profiled: bool) -> Result<Self> {
-        let world = scene
+        Self::with_threads(scene, profiled, 1)
+    }
+
+    /// [`SoftStepEngine::new`] stepping on `threads` threads (the soft
+    /// step's [`engine::SoftStepSettings::threads`]).
+    pub fn with_threads(scene: &Scene, profiled: bool, threads: usize) -> Result<Self> {
+        let mut world = scene
             .build_world(None)
             .with_context(|| format!("building {}", scene.origin()))?;
+        if let Some(ContactModel::SoftStep(settings)) = world.contact_model() {
+            world.set_contact_model(ContactModel::SoftStep(engine::SoftStepSettings {
+                threads,
+                ..settings
+            }))?;
+        }
         Self::from_world(world, scene.dt(), profiled)
     }
 
@@ -67,7 +79,7 @@ impl ManyBodyEngine for SoftStepEngine {
                  1/(8h)), twice that against static bodies, damping ratio {}; push-out at most \
                  {} m/s; restitution threshold {} m/s; speculative distance {} m; contact \
                  recycling within {} m; continuous sweeps of fast bodies against static ones {}; \
-                 sleeping {}; one thread; warm starting {}.",
+                 sleeping {}; {} thread(s); warm starting {}.",
                 s.substeps,
                 s.contact_hertz,
                 s.contact_damping_ratio,
@@ -77,6 +89,7 @@ impl ManyBodyEngine for SoftStepEngine {
                 s.recycle_distance,
                 if s.continuous { "on" } else { "off" },
                 if s.sleeping { "on" } else { "off" },
+                s.threads,
                 if s.warm_starting { "on" } else { "off" },
             ),
             _ => "not a soft-step world".into(),

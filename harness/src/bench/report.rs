@@ -93,11 +93,15 @@ pub fn write(
     writeln!(
         md,
         "Protocol (Box2D's): dt = 1/60 s, {} substeps, gravity (0, −10) m/s² (none in `smash`), \
-         sleeping off, one thread per engine. For each of {} repeats, each engine builds the \
+         sleeping off; every engine on one thread, then (when the run asks for more) this \
+         engine, rapier2d (its `parallel` feature, in a rayon pool of that size) and Box2D (its \
+         built-in scheduler, boxdd's `worker_count`) again on that many threads. For each of {} repeats, each engine builds the \
          scene afresh, takes step 0 untimed, then the timed steps: {steps}; the engines run \
          alternately (the Box2D builds other than the harness's as child processes, in their \
          turn). ms per step: the minimum over the repeats, with the median and the maximum. The \
-         ratio is the engine's minimum over this engine's. The machine may be shared: compare \
+         ratio is the engine's minimum over this engine's at the same thread count. CPU/wall: the \
+         process's CPU time (every thread, `getrusage`) over the wall time of the timed steps, \
+         in the fastest repeat (1: one busy thread; 2: two). The machine may be shared: compare \
          ratios, not absolute times across runs.\n",
         results.first().map_or(4, |r| r.rows[0].substeps),
         settings.repeats,
@@ -167,6 +171,20 @@ pub fn write(
             &verdict_rows(&lead),
         ));
     }
+    let threaded = super::targets::thread_targets(results);
+    if !threaded.is_empty() {
+        writeln!(
+            md,
+            "\n### Threads\n\n\
+             Targets (issue 21): this engine on 2 threads at least 1.7× faster than on 1 on \
+             large_pyramid, and ahead of Box2D's 2-worker time on every scene. The results do \
+             not depend on the thread count (the same bits: engine test `falling_hinges`).\n"
+        )?;
+        md.push_str(&table(
+            &["target", "measured", "verdict"],
+            &verdict_rows(&threaded),
+        ));
+    }
     let slopes: Vec<String> = results
         .first()
         .map(|r| {
@@ -208,11 +226,17 @@ pub fn write(
             .map(|b| {
                 let mut cells = vec![
                     b.engine.clone(),
+                    b.threads.to_string(),
                     b.bodies.to_string(),
                     format!("{:.3}", b.ms_per_step_min),
                     format!("{:.3}", b.ms_per_step_median),
                     format!("{:.3}", b.ms_per_step_max),
                     format!("{:.2}", b.ratio_to_engine),
+                    if b.cpu_over_wall > 0.0 {
+                        format!("{:.2}", b.cpu_over_wall)
+                    } else {
+                        "–".into()
+                    },
                     b.touching_pairs.to_string(),
                     b.points.to_string(),
                     opt(b.top_sink),
@@ -232,11 +256,13 @@ pub fn write(
             .collect();
         let mut headers = vec![
             "engine",
+            "threads",
             "bodies",
             "ms/step (min)",
             "ms/step (median)",
             "ms/step (max)",
             "ratio",
+            "CPU/wall",
             "touching pairs",
             "points",
             "top sink (m)",

@@ -202,3 +202,68 @@ pub fn targets(results: &[SceneResult]) -> Vec<Target> {
     }
     out
 }
+
+/// The row of `engine_prefix` at `threads` threads in a scene (the linked
+/// Box2D's f32 AVX2 build for "Box2D").
+fn row_at<'a>(
+    result: &'a SceneResult,
+    engine_prefix: &str,
+    threads: usize,
+) -> Option<&'a BenchRow> {
+    result.rows.iter().find(|b| {
+        b.threads == threads
+            && b.engine.starts_with(engine_prefix)
+            && (engine_prefix != "Box2D" || (b.precision == "f32" && b.engine.contains(" AVX2 ")))
+    })
+}
+
+/// The multi-threading targets (issue 21), for the largest thread count
+/// measured above one: this engine on 2 threads at least 1.7× faster than
+/// on 1 on large_pyramid; and this engine ahead of Box2D at the same
+/// count on every scene.
+pub fn thread_targets(results: &[SceneResult]) -> Vec<Target> {
+    let mut out = Vec::new();
+    let threads = results
+        .iter()
+        .flat_map(|r| r.rows.iter().map(|b| b.threads))
+        .max()
+        .unwrap_or(1);
+    if threads < 2 {
+        return out;
+    }
+    for r in results {
+        let (Some(one), Some(many)) = (row_at(r, "this", 1), row_at(r, "this", threads)) else {
+            continue;
+        };
+        let speedup = one.ms_per_step_min / many.ms_per_step_min;
+        if r.scene.id == "large_pyramid" && threads == 2 {
+            out.push(Target {
+                target: "large_pyramid: 2 threads at least 1.7× faster than 1 (this engine)".into(),
+                measured: format!(
+                    "{:.3} ms → {:.3} ms: {speedup:.2}× (CPU/wall {:.2})",
+                    one.ms_per_step_min, many.ms_per_step_min, many.cpu_over_wall
+                ),
+                met: speedup >= 1.7,
+            });
+        }
+        if let Some(b2) = row_at(r, "Box2D", threads) {
+            let ratio = many.ms_per_step_min / b2.ms_per_step_min;
+            out.push(Target {
+                target: format!(
+                    "{}: ahead of Box2D with {threads} workers ({threads} threads each)",
+                    r.scene.id
+                ),
+                measured: format!(
+                    "{:.3} ms against {:.3} ms: {ratio:.2}× Box2D's time (speed-up from 1 \
+                     thread: ours {speedup:.2}×, Box2D {:.2}×)",
+                    many.ms_per_step_min,
+                    b2.ms_per_step_min,
+                    row_at(r, "Box2D", 1)
+                        .map_or(f64::NAN, |b| b.ms_per_step_min / b2.ms_per_step_min)
+                ),
+                met: ratio < 1.0,
+            });
+        }
+    }
+    out
+}

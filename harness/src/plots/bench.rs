@@ -37,7 +37,7 @@ pub fn draw(dir: &Path, results: &[SceneResult]) -> Result<Vec<(String, String)>
                 .map(|e| {
                     let slope = scaling_slope(results, e).unwrap_or(f64::NAN);
                     Series::new(
-                        format!("{} (slope {slope:.2})", series[0].rows[e].engine),
+                        format!("{} (slope {slope:.2})", label(&series[0].rows[e])),
                         engine_style(e),
                         series
                             .iter()
@@ -87,5 +87,82 @@ pub fn draw(dir: &Path, results: &[SceneResult]) -> Result<Vec<(String, String)>
             "ms per step against bodies over the pyramid series (left), and this engine's time per phase (right)".to_string(),
         ));
     }
+    if let Some(chart) = threads_chart(results) {
+        let file = "benchmark_threads.svg";
+        save_svg(&dir.join(file), &[chart], 1, (720, 460))?;
+        out.push((
+            file.to_string(),
+            "speed-up from one thread to several, per engine, every scene (by its body count)"
+                .to_string(),
+        ));
+    }
     Ok(out)
+}
+
+/// A row's engine, with its thread count when above one.
+fn label(row: &crate::bench::BenchRow) -> String {
+    if row.threads > 1 {
+        format!(
+            "{} on {} threads",
+            crate::bench::short(&row.engine),
+            row.threads
+        )
+    } else {
+        row.engine.clone()
+    }
+}
+
+/// Each engine's speed-up from one thread to the most measured (its ms per
+/// step at one over at N), against the scene's body count; `None` when no
+/// row has more than one thread.
+fn threads_chart(results: &[SceneResult]) -> Option<Chart> {
+    let threads = results
+        .iter()
+        .flat_map(|r| r.rows.iter().map(|b| b.threads))
+        .max()?;
+    if threads < 2 {
+        return None;
+    }
+    let engines = ["this", "rapier", "Box2D"];
+    let series = engines
+        .iter()
+        .enumerate()
+        .map(|(e, prefix)| {
+            let mut points: Vec<(f64, f64)> = results
+                .iter()
+                .filter_map(|r| {
+                    let at = |n: usize| {
+                        r.rows
+                            .iter()
+                            .find(|b| b.threads == n && b.engine.starts_with(prefix))
+                    };
+                    let (one, many) = (at(1)?, at(threads)?);
+                    Some((
+                        one.bodies as f64,
+                        one.ms_per_step_min / many.ms_per_step_min,
+                    ))
+                })
+                .collect();
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let name = results
+                .first()
+                .and_then(|r| r.rows.iter().find(|b| b.engine.starts_with(prefix)))
+                .map_or(prefix.to_string(), |b| crate::bench::short(&b.engine));
+            Series::new(
+                format!("{name}: 1 → {threads} threads"),
+                engine_style(e),
+                points,
+            )
+        })
+        .filter(|s| !s.points.is_empty())
+        .collect();
+    Some(Chart {
+        title: format!("speed-up from 1 to {threads} threads (1 = none, {threads} = perfect)"),
+        x_label: "bodies of the scene".into(),
+        y_label: format!("ms per step on 1 thread / on {threads}"),
+        log_x: true,
+        log_y: false,
+        series,
+        y_range: Some((0.0, threads as f64 + 0.25)),
+    })
 }

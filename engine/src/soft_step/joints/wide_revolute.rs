@@ -257,6 +257,7 @@ fn warm_start_with<L: Lanes>(
     axial: &[WideAxial],
     bodies: &mut [SolverBody],
 ) {
+    let bodies = super::super::wide_solver::Bodies::new(bodies);
     for (w, x) in records.iter().zip(axial) {
         let (mut a, mut b) = (gather::<L>(bodies, &w.a), gather::<L>(bodies, &w.b));
         let motion = (gather_motion(bodies, &w.a), gather_motion(bodies, &w.b));
@@ -335,6 +336,7 @@ fn pass<L: Lanes, const BIAS: bool>(
     bodies: &mut [SolverBody],
     inv_h: f64,
 ) {
+    let bodies = super::super::wide_solver::Bodies::new(bodies);
     let inv_h = L::splat(inv_h);
     let (zero, one) = (L::splat(0.0), L::splat(1.0));
     for (w, x) in records.iter_mut().zip(axial.iter_mut()) {

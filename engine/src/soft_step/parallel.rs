@@ -1,0 +1,176 @@
+//! The soft step's stages on several threads ([`super::pool`]), used when
+//! [`super::SoftStepSettings::threads`] is above 1; each gives the bits of
+//! its serial stage in `mod.rs`, `integrate.rs` and `prepare.rs`.
+//!
+//! - **Substep** (one job per substep): integrate velocities (bodies split
+//!   among the threads), then each pass (warm start, solve, relax): the
+//!   joints and the overflow on thread 0, then colour after colour, each
+//!   colour's records split among the threads with a barrier between
+//!   colours; integrate positions between solve and relax. Within a colour
+//!   no two constraints share a dynamic body ([`super::colouring`]), and a
+//!   record's static or kinematic bodies are never written back
+//!   ([`super::wide_solver::FIXED`]), so the threads write disjoint bodies
+//!   and the order in which they do so does not change a bit.
+//! - **Restitution and store**: restitution as a pass; the impulses back
+//!   into the contacts, constraints split among the threads (each writes
+//!   its own contacts).
+//! - **Write states**: bodies split among the threads; a non-finite state
+//!   is reported for the lowest body id, as the serial loop does.
+
+use super::SoftStep;
+use super::colouring::{COLOURS, Slot};
+use super::contact_solver;
+use super::integrate::{integrate_position, integrate_velocity};
+use super::pool::{Pool, SharedSlice, Worker};
+use super::wide_solver::{self, Bodies};
+use crate::world_core::WorldCore;
+use nalgebra::Vector2;
+
+/// Which pass over the constraints.
+#[derive(Clone, Copy)]
+enum Pass {
+    WarmStart,
+    Solve,
+    Relax,
+}
+
+impl SoftStep {
+    /// One substep on `pool`'s threads: integrate velocities (unless
+    /// `velocities_done`: the serial stage ran, force generators act), warm
+    /// start, solve, integrate positions, relax.
+    pub(super) fn parallel_substep(
+        &mut self,
+        pool: &Pool,
+        core: &WorldCore,
+        (h, inv_h): (f64, f64),
+        gravity: Vector2<f64>,
+        velocities_done: bool,
+    ) {
+        let controls = core.controls_act.then_some(core.controls.as_slice());
+        let sims = &self.sims;
+        let rolling = self.rolling;
+        let colouring = &self.colouring;
+        let bodies = Bodies::new(&mut self.bodies);
+        let wide = SharedSlice::new(&mut self.wide);
+        let joints = SharedSlice::new(std::slice::from_mut(&mut self.joints));
+        let overflow = SharedSlice::new(std::slice::from_mut(&mut self.constraints));
+        pool.run(&|w: &Worker<'_>| {
+            if !velocities_done {
+                for id in w.share(sims.len()) {
+                    // SAFETY: each thread its own bodies.
+                    let r = unsafe { bodies.get_mut(id + 1) };
+                    integrate_velocity(id, &sims[id], r, (controls, None), h, gravity);
+                }
+                w.sync();
+            }
+            for pass in [Pass::WarmStart, Pass::Solve, Pass::Relax] {
+                if w.index == 0 {
+                    // SAFETY: the other threads wait at the next barrier.
+                    let (all, joints, overflow) = unsafe {
+                        (
+                            bodies.slice(0..bodies.len()),
+                            joints.get_mut(0),
+                            overflow.get_mut(0),
+                        )
+                    };
+                    match pass {
+                        Pass::WarmStart => {
+                            joints.warm_start(all);
+                            contact_solver::warm_start(overflow, all);
+                        }
+                        Pass::Solve => {
+                            joints.solve(all, h, true);
+                            contact_solver::solve(overflow, all, inv_h, true);
+                        }
+                        Pass::Relax => {
+                            joints.solve(all, h, false);
+                            contact_solver::solve(overflow, all, inv_h, false);
+                        }
+                    }
+                }
+                w.sync();
+                for colour in 0..COLOURS {
+                    let records = colouring.records(colour);
+                    if records.is_empty() {
+                        continue;
+                    }
+                    let mine = w.share(records.len());
+                    let mine = records.start + mine.start..records.start + mine.end;
+                    // SAFETY: the threads' shares of a colour are disjoint;
+                    // see the module docs for the bodies.
+                    let records = unsafe { wide.slice(mine) };
+                    match pass {
+                        Pass::WarmStart => wide_solver::warm_start_shared(records, bodies, rolling),
+                        Pass::Solve => wide_solver::solve_shared(records, bodies, inv_h),
+                        Pass::Relax => wide_solver::relax_shared(records, bodies, inv_h, rolling),
+                    }
+                    w.sync();
+                }
+                if let Pass::Solve = pass {
+                    for id in w.share(sims.len()) {
+                        // SAFETY: each thread its own bodies.
+                        let r = unsafe { bodies.get_mut(id + 1) };
+                        integrate_position(&sims[id], r, h);
+                    }
+                    w.sync();
+                }
+            }
+        });
+    }
+
+    /// Restitution (overflow, then colour after colour) and the impulses
+    /// back into the contacts, on `pool`'s threads.
+    pub(super) fn parallel_restitution_and_store(&mut self, pool: &Pool, threshold: f64) {
+        let colouring = &self.colouring;
+        let constrained = &self.constrained;
+        let extras = &self.wide_extra;
+        let bodies = Bodies::new(&mut self.bodies);
+        let wide = SharedSlice::new(&mut self.wide);
+        let overflow = SharedSlice::new(std::slice::from_mut(&mut self.constraints));
+        let contacts = SharedSlice::new(&mut self.contacts.contacts);
+        pool.run(&|w: &Worker<'_>| {
+            if w.index == 0 {
+                // SAFETY: the other threads wait at the next barrier.
+                let (all, overflow) =
+                    unsafe { (bodies.slice(0..bodies.len()), overflow.get_mut(0)) };
+                contact_solver::restitution(overflow, all, threshold);
+            }
+            w.sync();
+            for colour in 0..COLOURS {
+                let records = colouring.records(colour);
+                if records.is_empty() {
+                    continue;
+                }
+                let mine = w.share(records.len());
+                let mine = records.start + mine.start..records.start + mine.end;
+                // SAFETY: disjoint shares of one colour.
+                let part = unsafe { wide.slice(mine.clone()) };
+                wide_solver::restitution_shared(part, &extras[mine], bodies, threshold);
+                w.sync();
+            }
+            // Store: the overflow on thread 0 while the others wait, then
+            // the lanes, each constraint's contact its own.
+            if w.index == 0 {
+                // SAFETY: the other threads wait at the next barrier.
+                let (overflow, all) =
+                    unsafe { (overflow.get(0), contacts.slice(0..contacts.len())) };
+                contact_solver::store_impulses(overflow, all);
+            }
+            w.sync();
+            for i in w.share(constrained.len()) {
+                if let Slot::Lane { record, lane } = colouring.slot(i) {
+                    // SAFETY: one constraint per contact; the records are
+                    // only read in this phase.
+                    let (contact, record, extra) = unsafe {
+                        (
+                            contacts.get_mut(constrained[i]),
+                            wide.get(record),
+                            &extras[record],
+                        )
+                    };
+                    wide_solver::store_lane((record, extra), lane, contact);
+                }
+            }
+        });
+    }
+}
