@@ -21,12 +21,14 @@ fn a_bench_row_carries_the_build_and_the_spread() {
     let rows: serde_json::Value = serde_json::from_str(&json).unwrap();
     let rows = rows.as_array().unwrap();
     // This engine, rapier2d and Box2D's release build (this test machine
-    // has AVX2; without it the Box2D row is left out with the reason).
+    // has AVX2; without it the Box2D row is left out with the reason), on
+    // one thread, then again on `bench`'s default of two.
     let avx2 = std::is_x86_feature_detected!("avx2");
-    assert_eq!(rows.len(), if avx2 { 3 } else { 2 }, "{json}");
-    for row in rows {
+    let engines = if avx2 { 3 } else { 2 };
+    assert_eq!(rows.len(), 2 * engines, "{json}");
+    for (k, row) in rows.iter().enumerate() {
         assert_eq!(row["scene"], "pyramid_10");
-        assert_eq!(row["threads"], 1);
+        assert_eq!(row["threads"], if k < engines { 1 } else { 2 }, "{row}");
         // Box2D's count for its pyramid, 500, all but the first timed.
         assert_eq!(row["steps"], 499);
         assert_eq!(row["repeats"], 10);
