@@ -74,7 +74,7 @@ use crate::soft_step::joints::{
 use crate::world_core::WorldCore;
 use nalgebra::Vector2;
 
-/// Read from [`crate::tunables`] (unit, value and source there).
+/// Read from `engine/src/tunables.rs` (unit, value and source there).
 pub use crate::tunables::JOINT_MAX_PROJECTIONS as MAX_PROJECTIONS;
 
 use crate::tunables::REDUNDANT_PIVOT;

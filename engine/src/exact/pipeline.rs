@@ -65,7 +65,7 @@ use crate::error::{EngineError, Result};
 use crate::profile::{Phase, Profiler};
 use nalgebra::Vector2;
 
-/// Read from [`crate::tunables`] (unit, value and source there).
+/// Read from `engine/src/tunables.rs` (unit, value and source there).
 pub use crate::tunables::PROJECTION_SLOP;
 
 use crate::tunables::PROJECTION_PASSES;

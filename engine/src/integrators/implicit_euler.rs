@@ -13,7 +13,7 @@ use crate::error::{EngineError, Result};
 use crate::ode::OdeSystem;
 use nalgebra::{DMatrix, DVector};
 
-/// Read from [`crate::tunables`] (unit, value and source there).
+/// Read from `engine/src/tunables.rs` (unit, value and source there).
 pub use crate::tunables::IMPLICIT_EULER_MAX_ITERATIONS as MAX_ITERATIONS;
 
 use crate::tunables::NEWTON_TOLERANCE;

@@ -22,7 +22,7 @@ use crate::body::{Body, BodyState};
 use crate::collision::{Aabb, Motion, ToiOptions, toi_conservative_advancement};
 use nalgebra::{Isometry2, Vector2};
 
-/// Read from [`crate::tunables`] (unit, value and source there).
+/// Read from `engine/src/tunables.rs` (unit, value and source there).
 pub(crate) use crate::tunables::FAST_FRACTION;
 
 use crate::tunables::SWEEP_MAX_ITERATIONS as MAX_ITERATIONS;

@@ -20,7 +20,7 @@ use smallvec::SmallVec;
 /// base-100 pyramid before; boxes have 4).
 const INLINE_VERTICES: usize = 8;
 
-/// Read from [`crate::tunables`] (unit, value and source there).
+/// Read from `engine/src/tunables.rs` (unit, value and source there).
 pub(crate) use crate::tunables::MARGIN_FRACTION;
 
 /// A polygon's points or edge normals (m, or unit vectors).

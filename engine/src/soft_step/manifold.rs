@@ -31,7 +31,7 @@ use crate::collision::features::{FeatureId, feature_pair};
 use crate::collision::{circle_circle, polygon_circle};
 use nalgebra::{Isometry2, Vector2};
 
-/// Read from [`crate::tunables`] (unit, value and source there).
+/// Read from `engine/src/tunables.rs` (unit, value and source there).
 pub(crate) use crate::tunables::LINEAR_SLOP;
 
 /// A point of a [`LocalManifold`], in A's frame.

@@ -23,7 +23,7 @@
 
 use super::rows::{Row, RowKind};
 
-/// Read from [`crate::tunables`] (unit, value and source there).
+/// Read from `engine/src/tunables.rs` (unit, value and source there).
 pub(crate) use crate::tunables::MAX_CONTACT_ROWS;
 
 use crate::tunables::PGS_MAX_SWEEPS as MAX_SWEEPS;

@@ -156,9 +156,9 @@ use nalgebra::Vector2;
 /// shift: a removed joint keeps its id.
 pub type JointId = usize;
 
-/// Read from [`crate::tunables`] (unit, value and source there).
+/// Read from `engine/src/tunables.rs` (unit, value and source there).
 pub use crate::tunables::DEFAULT_CONSTRAINT_DAMPING_RATIO;
-/// Read from [`crate::tunables`] (unit, value and source there).
+/// Read from `engine/src/tunables.rs` (unit, value and source there).
 pub use crate::tunables::DEFAULT_CONSTRAINT_HERTZ;
 
 /// Where a joint attaches to one of its bodies.
