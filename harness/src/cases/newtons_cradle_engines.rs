@@ -68,7 +68,7 @@ pub struct Apex {
 impl Apex {
     /// The ball that should be out after chain `k`.
     pub fn out_ball(&self) -> usize {
-        if self.k % 2 == 0 { 4 } else { 0 }
+        if self.k.is_multiple_of(2) { 4 } else { 0 }
     }
 
     /// The outgoing ball's share.
