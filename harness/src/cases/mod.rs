@@ -26,6 +26,7 @@ pub mod collision_common;
 mod collision_plots;
 pub mod double_pendulum_exact;
 pub mod joint_common;
+mod newtons_cradle_engines;
 mod pendulum_charts;
 pub mod pendulum_exact;
 pub mod pendulum_swing;

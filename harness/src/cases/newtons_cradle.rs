@@ -1,7 +1,9 @@
 //! `newtons_cradle` (`docs/cases.md#newtons_cradle`): five equal balls on
 //! rods, touching to within 1e-9 m, e = 1 (`scenes/newtons_cradle.toml`),
 //! under the exact model: the rods constraints of the equations of motion,
-//! the impacts located inside the step and answered by impulses.
+//! the impacts located inside the step and answered by impulses; beside
+//! it the soft step, rapier2d and Box2D on the same cradle
+//! (`newtons_cradle_engines.rs`, criterion rows).
 //!
 //! # What is measured, and the tolerances
 //!
@@ -31,7 +33,7 @@ use engine::{ContactEvent, ContactEventKind};
 
 /// Five balls on rods, one in, one out.
 pub const CASE: Case = Case {
-    scenes: &["newtons_cradle"],
+    scenes: &["newtons_cradle", "newtons_cradle_soft"],
     snapshots: Snapshots::HarnessOnly(
         "10 s of RK4 at 1e-3 s twice (h and h/2) with about forty impacts; the engine's \
          tests/exact_joints.rs checks one chain",
@@ -49,7 +51,7 @@ pub const ROUND_OFF_ULPS: f64 = 64.0;
 
 /// The rods' length (m) and the gaps between the hanging balls (m), as
 /// `scenes/newtons_cradle.toml` sets them.
-const ROD: f64 = 1.0;
+pub(crate) const ROD: f64 = 1.0;
 const GAP: f64 = 1e-9;
 
 /// Impacts closer in time than this (s) belong to one chain: a chain lasts
@@ -211,8 +213,8 @@ pub fn run() -> Result<CaseReport> {
     );
     report.notes.push(format!(
         "Exact model, RK4 at h = {h} s: {} impact chains of {} impacts each; energy change \
-         {de:+.2e} of the swing energy. The soft step, rapier2d and Box2D are not run on this \
-         scene yet.",
+         {de:+.2e} of the swing energy. The soft step, rapier2d and Box2D on the same cradle \
+         (scenes/newtons_cradle_soft.toml) follow.",
         run.chains.len(),
         run.chains
             .iter()
@@ -220,5 +222,6 @@ pub fn run() -> Result<CaseReport> {
             .collect::<Vec<_>>()
             .join(", ")
     ));
+    super::newtons_cradle_engines::rows(&mut report)?;
     Ok(report)
 }
