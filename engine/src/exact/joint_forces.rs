@@ -29,8 +29,8 @@
 //! + k·O(h²); the `motor_joint` case measures it.
 
 use crate::body::{Body, BodyState};
-use crate::soft_step::joints::{JointId, JointRows, JointSet, wrap_angle};
 use crate::exact::ode::Layout;
+use crate::soft_step::joints::{JointId, JointRows, JointSet, wrap_angle};
 use nalgebra::Vector2;
 
 /// (−r_y, r_x).

@@ -45,8 +45,8 @@
 //! The world then integrates to that time, settles, and goes on with the
 //! rest of the step: several contacts in one step are handled in time order.
 
-use super::ode::{Layout, WorldOde};
 use super::joints::ExactJoints;
+use super::ode::{Layout, WorldOde};
 use crate::body::{Body, BodyState};
 use crate::collision::features::ContactFeatures;
 use crate::collision::features::{collide_on_face, equally_deep};

@@ -34,8 +34,8 @@
 use super::rows::{BodyView, Row};
 use crate::body::{Body, BodyState};
 use crate::exact::joints::ExactJoints;
-use crate::shape::cross;
 use crate::exact::ode::Layout;
+use crate::shape::cross;
 use nalgebra::Vector2;
 
 /// Adds row `row`'s generalised column along `direction` (its measure u
