@@ -41,7 +41,7 @@ use std::f64::consts::PI;
 pub const CASE: Case = Case {
     scenes: &["slider_crank", "slider_crank_exact"],
     snapshots: Snapshots::HarnessOnly(
-        "ten turns under three exact-model runs and two soft-step runs, each at h and h/2",
+        "exact and soft runs at h and h/2: harness/tests/joint_cases.rs runs it whole",
     ),
     ..Case::new(
         "slider_crank",
