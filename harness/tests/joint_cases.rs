@@ -94,3 +94,13 @@ fn motors_and_a_limit_do_what_their_rows_say() {
         rows_of("joint_motor_limit", &report)
     );
 }
+
+#[test]
+fn a_driven_slider_crank_follows_its_closed_form() {
+    // The full case (about 0.3 s in release): every row must pass; no
+    // snapshot, its exact rows sit at round-off.
+    let report = harness::cases::slider_crank::run().unwrap();
+    let failed = failing_rows(&report.rows);
+    assert!(failed.is_empty(), "slider_crank: {}", failed.join("\n"));
+    assert_eq!(report.rows.len(), 3);
+}

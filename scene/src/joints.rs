@@ -663,7 +663,13 @@ fn angle_limits(path: &FieldPath, r: Range) -> Checked<(f64, f64)> {
 fn revolute_motor(path: &FieldPath, m: RevoluteMotorSpec) -> Checked<RevoluteMotor> {
     Ok(RevoluteMotor {
         speed: finite(&path.key("speed"), m.speed)?,
-        max_torque: positive(&path.key("max_torque"), m.max_torque, "max_torque", "N·m")?,
+        // `inf`: unbounded, a prescribed speed (the exact model's driven
+        // revolute, docs/joints.md).
+        max_torque: if m.max_torque == f64::INFINITY {
+            m.max_torque
+        } else {
+            positive(&path.key("max_torque"), m.max_torque, "max_torque", "N·m")?
+        },
     })
 }
 

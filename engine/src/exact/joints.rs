@@ -15,6 +15,7 @@
 //! | weld | point (2), angle (1) | p_B − p_A; θ_B − θ_A − θref |
 //! | wheel | line (1) | n·d with n A's axis normal (rotation free) |
 //! | motor | none | (its bounded springs are applied forces) |
+//! | revolute, driven | point (2), drive (1) | p_B − p_A; θ_B − θ_A − θref − φ(t) |
 //!
 //! with p = c + R(θ) r the anchor of a body (r in its frame). Every row
 //! has a Jacobian J (its partial derivatives in the bodies' x, y, θ) and a
@@ -50,6 +51,18 @@
 //! the order is kept. The largest |C| removed is recorded
 //! ([`ExactJoints::largest_drift`]).
 //!
+//! # Driven revolute joints (rheonomic)
+//!
+//! A revolute joint whose motor has an unbounded torque
+//! (`max_torque = f64::INFINITY`) prescribes its angle: the drive row
+//! C = θ_B − θ_A − θref − φ(t), φ(t) = φ₀ + s (t − t₀) (s the motor
+//! speed, rad/s; φ₀ = 0 and t₀ the world time when the joint is added;
+//! [`ExactJoints::set_motor_speed`] rebases φ₀, t₀ to the world's current
+//! time, so φ stays continuous). Its J is −1 on θ_A and 1 on θ_B, its
+//! γ = 0 (φ̈ = 0), and its time derivative ∂C/∂t = −s enters the velocity
+//! projection (J v = s). The position projection reads C at the time of
+//! the step's end.
+//!
 //! # Force laws
 //!
 //! A wheel's suspension spring and a motor joint's bounded springs are
@@ -58,8 +71,8 @@
 //!
 //! # Not supported
 //!
-//! Limits (one-sided rows, which need events), motors (velocity rows with
-//! a force bound), the other joints' springs, ropes, spring distance joints
+//! Limits (one-sided rows, which need events), motors with a bounded
+//! torque or force (velocity rows with a force bound), the other joints' springs, ropes, spring distance joints
 //! and target joints: each is refused when added, by a typed
 //! [`EngineError::Unsupported`] naming the joint and the option.
 
@@ -81,8 +94,9 @@ use crate::tunables::REDUNDANT_PIVOT;
 
 /// Why the exact model refuses an option of a joint.
 const EXACT_JOINTS_SUPPORT: &str = "the exact contact model solves revolute, prismatic, rigid \
-     distance, rigid weld and wheel joints as holonomic constraints, a wheel's suspension spring \
-     and motor joints as force laws, without limits, motors (velocity rows with a bounded force) \
+     distance, rigid weld and wheel joints as holonomic constraints, a revolute motor of unbounded \
+     torque (max_torque = inf) as a prescribed angle, a wheel's suspension spring and motor \
+     joints as force laws, without limits, bounded motors (velocity rows with a bounded force) \
      or the other springs; use the soft_step contact model for the rest";
 
 /// One constraint of the exact model, from one joint.
@@ -96,6 +110,23 @@ enum Constraint {
     Line(Vector2<f64>),
     /// θ_B − θ_A − θref = 0 (one row).
     Angle,
+    /// θ_B − θ_A − θref − φ(t) = 0 (one row), φ of [`Drive`].
+    Drive(Drive),
+}
+
+/// The prescribed angle of a driven revolute joint: φ(t) = phase +
+/// speed · (t − since) (rad, rad/s, s).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Drive {
+    phase: f64,
+    speed: f64,
+    since: f64,
+}
+
+impl Drive {
+    fn at(&self, t: f64) -> f64 {
+        self.phase + self.speed * (t - self.since)
+    }
 }
 
 /// A constraint of joint `joint` with its bodies and anchors.
@@ -135,6 +166,8 @@ struct RowAt {
     a: Partials,
     b: Partials,
     gamma: f64,
+    /// ∂C/∂t (m/s or rad/s): nonzero for a drive row only.
+    rate: f64,
 }
 
 /// A body's pose and velocity as a row reads them (the world: at rest at
@@ -181,6 +214,11 @@ pub(crate) struct ExactJoints {
     largest_drift: f64,
     /// The force laws' forces of the last right-hand side.
     applied: Vec<AppliedJointForce>,
+    /// Per joint id: its prescribed angle when it is a driven revolute.
+    drives: Vec<Option<Drive>>,
+    /// The world time (s) of the last projection (or of the last joint
+    /// added): the time at which the drive rows' C is evaluated.
+    now: f64,
 }
 
 impl ExactJoints {
@@ -210,8 +248,11 @@ impl ExactJoints {
                 if j.limits.is_some() {
                     return refuse("with angle limits");
                 }
-                if j.motor.is_some() {
-                    return refuse("with a motor");
+                if j.motor.is_some_and(|m| m.max_torque != f64::INFINITY) {
+                    return refuse(
+                        "with a motor of bounded torque (only max_torque = inf, a prescribed \
+                         speed, is solved)",
+                    );
                 }
                 if j.spring.is_some() {
                     return refuse("with a spring");
@@ -250,8 +291,36 @@ impl ExactJoints {
         }
         self.set.know_bodies(core.bodies.len());
         let id = self.set.add(core, def)?;
+        self.now = core.time;
+        let drive = match &def.kind {
+            JointKind::Revolute(j) => j.motor.map(|m| Drive {
+                phase: 0.0,
+                speed: m.speed,
+                since: core.time,
+            }),
+            _ => None,
+        };
+        self.drives.resize(id, None);
+        self.drives.push(drive);
         self.stale = true;
         Ok(id)
+    }
+
+    /// Sets the motor speed of joint `id` (as the soft step's set does);
+    /// a driven revolute's prescribed angle φ is rebased at the world's
+    /// current time, so that it stays continuous.
+    pub(crate) fn set_motor_speed(&mut self, id: JointId, speed: f64) -> Result<()> {
+        self.set.check(id)?;
+        self.set.set_motor_speed(id, speed)?;
+        if let Some(Some(d)) = self.drives.get_mut(id) {
+            *d = Drive {
+                phase: d.at(self.now),
+                speed,
+                since: self.now,
+            };
+            self.stale = true;
+        }
+        Ok(())
     }
 
     /// Removes joint `id` (it stays, inert).
@@ -317,7 +386,7 @@ impl ExactJoints {
                         );
                         state.force += l[0] * n;
                     }
-                    Constraint::Angle => state.torque += l[0],
+                    Constraint::Angle | Constraint::Drive(_) => state.torque += l[0],
                 }
             }
             row += n;
@@ -342,7 +411,12 @@ impl ExactJoints {
             };
             let with = |constraint| Held { constraint, ..base };
             match &self.set.sims[id].rows {
-                JointRows::Revolute(_) => self.held.push(base),
+                JointRows::Revolute(_) => {
+                    self.held.push(base);
+                    if let Some(Some(d)) = self.drives.get(id) {
+                        self.held.push(with(Constraint::Drive(*d)));
+                    }
+                }
                 JointRows::Weld(_) => {
                     self.held.push(base);
                     self.held.push(with(Constraint::Angle));
@@ -441,6 +515,7 @@ impl ExactJoints {
                             a: side(&a, [-e.x, -e.y, -e.dot(&perp(ra))]),
                             b: side(&b, [e.x, e.y, e.dot(&perp(rb))]),
                             gamma: centripetal[k],
+                            rate: 0.0,
                         });
                     }
                 }
@@ -451,6 +526,7 @@ impl ExactJoints {
                         a: side(&a, [-g.x, -g.y, -g.dot(&perp(ra))]),
                         b: side(&b, [g.x, g.y, g.dot(&perp(rb))]),
                         gamma: (d.dot(&centripetal) + d_dot.norm_squared()) / length,
+                        rate: 0.0,
                     });
                 }
                 Constraint::Line(local_normal) => {
@@ -471,6 +547,7 @@ impl ExactJoints {
                         gamma: -a.omega * a.omega * nrm.dot(&d)
                             + 2.0 * a.omega * turn.dot(&d_dot)
                             + nrm.dot(&centripetal),
+                        rate: 0.0,
                     });
                 }
                 Constraint::Angle => {
@@ -479,6 +556,17 @@ impl ExactJoints {
                         a: side(&a, [0.0, 0.0, -1.0]),
                         b: side(&b, [0.0, 0.0, 1.0]),
                         gamma: 0.0,
+                        rate: 0.0,
+                    });
+                }
+                Constraint::Drive(drive) => {
+                    let phi = drive.at(self.now);
+                    self.at.push(RowAt {
+                        c: wrap_angle(b.angle - a.angle - h.reference_angle - phi),
+                        a: side(&a, [0.0, 0.0, -1.0]),
+                        b: side(&b, [0.0, 0.0, 1.0]),
+                        gamma: 0.0,
+                        rate: -drive.speed,
                     });
                 }
             }
@@ -648,16 +736,19 @@ impl ExactJoints {
         }
     }
 
-    /// Projects the state `y` = [q, v] back onto C(q) = 0 and J v = 0
-    /// (see the module docs); `states` is scratch (every body's state,
-    /// static ones fixed). Returns whether `y` changed.
+    /// Projects the state `y` = [q, v] at time `t` (s) back onto
+    /// C(q, t) = 0 and J v + ∂C/∂t = 0 (see the module docs); `states` is
+    /// scratch (every body's state, static ones fixed). Returns whether
+    /// `y` changed.
     pub(crate) fn project(
         &mut self,
         bodies: &[Body],
         layout: &Layout,
         states: &mut [BodyState],
         y: &mut [f64],
+        t: f64,
     ) -> bool {
+        self.now = t;
         if self.stale {
             self.rebuild();
         }
@@ -690,7 +781,7 @@ impl ExactJoints {
         for i in 0..self.at.len() {
             let r = &self.jac[i * n..(i + 1) * n];
             let jv: f64 = r.iter().zip(&y[n..]).map(|(j, v)| j * v).sum();
-            self.rhs.push(-jv);
+            self.rhs.push(-(jv + self.at[i].rate));
         }
         if self.rhs.iter().any(|v| *v != 0.0) {
             self.solve(n);

@@ -301,7 +301,7 @@ impl ExactModel {
             sys.states.clone_from(&core.states);
             // A state given off the joints' manifolds (a length or a
             // velocity that breaks a joint) starts on them.
-            sys.project_joints(y);
+            sys.project_joints(y, t);
             // The right-hand side may differ from the last segment's.
             self.integrator.invalidate_cache();
             if let Some(p) = pipeline.as_mut() {
@@ -512,10 +512,11 @@ fn stage_step(
 ) -> Result<f64> {
     let started = profiler.start();
     let h = integrator.advance(sys, t, y, segment_end - t)?;
-    sys.project_joints(y);
+    let end = step_end(t, h, segment_end);
+    sys.project_joints(y, end);
     profiler.stop(Phase::Integrate, started);
     profiler.profile.steps += 1;
-    Ok(step_end(t, h, segment_end))
+    Ok(end)
 }
 
 /// Stage **respond** (settle, at the start of every piece with contacts):
@@ -532,7 +533,7 @@ fn stage_settle(
     profiler: &mut Profiler,
 ) -> Result<()> {
     if pipeline.settle(sys, t, y, profiler)? {
-        sys.project_joints(y);
+        sys.project_joints(y, t);
         integrator.invalidate_cache();
     }
     Ok(())
@@ -580,7 +581,7 @@ fn stage_cut(
         }
         _ => step_end(t, h, segment_end),
     };
-    sys.project_joints(y);
+    sys.project_joints(y, t_kept);
     Ok(t_kept)
 }
 

@@ -128,11 +128,11 @@ pub(crate) struct WorldOde<'a> {
 
 impl WorldOde<'_> {
     /// Projects `y` back onto the joints' position and velocity manifolds
-    /// after an accepted step ([`ExactJoints::project`]); returns whether
-    /// it changed. Nothing without joints.
-    pub(crate) fn project_joints(&mut self, y: &mut [f64]) -> bool {
+    /// at time `t` (s) after an accepted step ([`ExactJoints::project`]);
+    /// returns whether it changed. Nothing without joints.
+    pub(crate) fn project_joints(&mut self, y: &mut [f64], t: f64) -> bool {
         match self.joints.as_deref_mut() {
-            Some(joints) => joints.project(self.bodies, self.layout, self.states, y),
+            Some(joints) => joints.project(self.bodies, self.layout, self.states, y, t),
             None => false,
         }
     }

@@ -92,8 +92,7 @@ impl ContactModelStep for ExactModel {
 
     /// The exact model holds no motor: its refusal names the joint.
     fn set_motor_speed(&mut self, id: JointId, speed: f64) -> Result<()> {
-        self.joints.set.check(id)?;
-        self.joints.set.set_motor_speed(id, speed)
+        self.joints.set_motor_speed(id, speed)
     }
 
     fn joint_drift(&self) -> Option<f64> {

@@ -79,6 +79,7 @@ registry! {
     double_pendulum,
     newtons_cradle,
     pendulum_wall,
+    slider_crank,
     chain,
     slider,
     joint_motor_limit,

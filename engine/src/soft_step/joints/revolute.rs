@@ -41,6 +41,8 @@ pub struct RevoluteMotor {
     /// Target relative angular velocity ω_B − ω_A (rad/s), any sign.
     pub speed: f64,
     /// Largest torque it applies (N·m), > 0: under a larger load it slips.
+    /// `f64::INFINITY`: unbounded (a prescribed speed; under the exact
+    /// model the joint angle is prescribed, `crate::exact::joints`).
     pub max_torque: f64,
 }
 
@@ -80,7 +82,11 @@ impl Revolute {
         }
         if let Some(m) = self.motor {
             finite(name, "motor speed (rad/s)", m.speed)?;
-            positive(name, "largest motor torque (N·m)", m.max_torque)?;
+            // +∞: unbounded (a prescribed speed; under the exact model a
+            // prescribed angle, `crate::exact::joints`).
+            if m.max_torque != f64::INFINITY {
+                positive(name, "largest motor torque (N·m)", m.max_torque)?;
+            }
         }
         if let Some(s) = self.spring {
             s.check(name, "spring")?;
