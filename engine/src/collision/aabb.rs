@@ -6,7 +6,7 @@
 //! so a pair in exact contact is never dropped by the broad phase.
 
 use crate::shape::{Circle, ConvexPolygon, Shape};
-use nalgebra::{Isometry2, Vector2};
+use nalgebra::{Isometry2, Point2, Vector2};
 
 /// An axis-aligned box in the world frame (m).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -28,41 +28,20 @@ impl Aabb {
     /// The tightest box around `polygon` placed at `pose`: the extremes of
     /// its vertices in world coordinates.
     pub fn of_polygon(polygon: &ConvexPolygon, pose: &Isometry2<f64>) -> Self {
-        Self::of_vertices_at(
-            polygon.vertices(),
-            pose.translation.vector,
-            (pose.rotation.re, pose.rotation.im),
-        )
-    }
-
-    /// The box around `circle` centred at `pose`'s translation: centre ± r.
-    pub fn of_circle(circle: &Circle, pose: &Isometry2<f64>) -> Self {
-        Self::of_ball(pose.translation.vector, circle.radius)
-    }
-
-    /// The tightest box around the points `vertices` (their own frame, m)
-    /// turned by `(cos θ, sin θ)` and moved by `p` (m): the one bounding
-    /// box of a polygon, for both contact models and the queries' shapes.
-    #[inline]
-    pub(crate) fn of_vertices_at(
-        vertices: &[Vector2<f64>],
-        p: Vector2<f64>,
-        (c, s): (f64, f64),
-    ) -> Self {
         let mut min = Vector2::repeat(f64::INFINITY);
         let mut max = Vector2::repeat(f64::NEG_INFINITY);
-        for v in vertices {
-            let w = Vector2::new(c * v.x - s * v.y + p.x, s * v.x + c * v.y + p.y);
+        for v in polygon.vertices() {
+            let w = pose.transform_point(&Point2::from(*v)).coords;
             min = min.inf(&w);
             max = max.sup(&w);
         }
         Self { min, max }
     }
 
-    /// The box around a disc of radius `r` (m) centred at `c` (m): c ± r.
-    #[inline]
-    pub(crate) fn of_ball(c: Vector2<f64>, r: f64) -> Self {
-        let r = Vector2::repeat(r);
+    /// The box around `circle` centred at `pose`'s translation: centre ± r.
+    pub fn of_circle(circle: &Circle, pose: &Isometry2<f64>) -> Self {
+        let c = pose.translation.vector;
+        let r = Vector2::repeat(circle.radius);
         Self {
             min: c - r,
             max: c + r,

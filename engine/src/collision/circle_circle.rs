@@ -17,32 +17,15 @@ pub fn distance_circle_circle(
     b: &Circle,
     pose_b: &Isometry2<f64>,
 ) -> Proximity {
-    proximity_of_centres(
-        pose_a.translation.vector,
-        a.radius,
-        pose_b.translation.vector,
-        b.radius,
-    )
-}
-
-/// The signed distance of circles of radii `ra`, `rb` (m) centred at `ca`,
-/// `cb` (m, any one frame; the result is in that frame): what both contact
-/// models read (the exact model in the world frame, the soft step's
-/// speculative manifold in A's frame, `ca` = 0).
-pub(crate) fn proximity_of_centres(
-    ca: Vector2<f64>,
-    ra: f64,
-    cb: Vector2<f64>,
-    rb: f64,
-) -> Proximity {
+    let (ca, cb) = (pose_a.translation.vector, pose_b.translation.vector);
     let d = cb - ca;
     let len = d.norm();
     let normal = if len > 0.0 { d / len } else { Vector2::x() };
     Proximity {
-        distance: len - ra - rb,
+        distance: len - a.radius - b.radius,
         normal,
-        point_a: ca + ra * normal,
-        point_b: cb - rb * normal,
+        point_a: ca + a.radius * normal,
+        point_b: cb - b.radius * normal,
     }
 }
 

@@ -67,32 +67,11 @@ pub(crate) enum ContactFeatures {
     },
 }
 
-/// The engine's one feature-id scheme: which features of the two shapes
-/// made a contact, packed in 64 bits. Only equality is ever read: two
-/// evaluations of the same pair with the same id follow the same features.
-/// The soft step names each point by the pair of features that made it
-/// ([`feature_pair`], Box2D's `B2_MAKE_ID`); the exact model names a
-/// whole manifold by its reference edge and the incident points' origins
-/// ([`face_manifold`]). Ids are compared only within one pair of shapes
-/// and one contact model, so the two layouts never meet.
+/// Identifies the features of a contact: the reference edge and the
+/// incident points' origins (vertex indices or clip sides), packed. Two
+/// classifications of the same pair with the same id follow the same
+/// features.
 pub(crate) type FeatureId = u64;
-
-/// The id of a point made by feature `a` of shape A (a vertex or edge
-/// index) and feature `b` of shape B: `a << 32 | b`, one-to-one for
-/// indices below 2³².
-#[inline]
-pub(crate) fn feature_pair(a: usize, b: usize) -> FeatureId {
-    ((a as u64) << 32) | b as u64
-}
-
-/// The id of a face manifold of the exact model: whether the reference
-/// edge is A's (bit 63), its index (bits 40–60), and the codes of the
-/// first and last incident points (bits 20–39 and 0–19; see
-/// `incident_code`). Bits 61–62 are left for [`ContactFeatures::retain`]
-/// to say which point of two was kept.
-fn face_manifold(reference_is_a: bool, edge: usize, first: u64, last: u64) -> FeatureId {
-    ((reference_is_a as u64) << 63) | ((edge as u64) << 40) | (first << 20) | last
-}
 
 impl ContactFeatures {
     /// The identity of the features.
@@ -220,12 +199,10 @@ pub(crate) fn collide_on_face(
                     p
                 }
             };
-            let id = face_manifold(
-                f.reference_is_a,
-                f.edge,
-                incident_code(f.ids[0]),
-                incident_code(f.ids[f.count - 1]),
-            );
+            let id = ((f.reference_is_a as u64) << 63)
+                | ((f.edge as u64) << 40)
+                | (incident_code(f.ids[0]) << 20)
+                | incident_code(f.ids[f.count - 1]);
             Some((
                 m,
                 ContactFeatures::Face {

@@ -61,31 +61,18 @@ pub(crate) enum PolygonFeature {
     Vertex(usize),
 }
 
-/// The polygon's nearest feature to a circle, in the polygon's frame: what
-/// both contact models read (the exact model through
-/// [`closest_polygon_circle`], the soft step's speculative manifold
-/// directly, with the circle's centre given in the polygon's frame).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct LocalClosest {
-    /// Signed distance (m): the gap, or −(penetration depth).
-    pub distance: f64,
-    /// Unit normal from the polygon to the circle, polygon frame.
-    pub normal: Vector2<f64>,
-    /// The polygon's witness point, polygon frame (m).
-    pub on_polygon: Vector2<f64>,
-    /// The feature it lies on.
-    pub feature: PolygonFeature,
-}
-
-/// The closest feature of the convex polygon `v` (counter-clockwise
-/// vertices, its own frame, m) to a circle of `radius` (m) centred at `c`
-/// (same frame): exact (module documentation).
-pub(crate) fn closest_polygon_circle_local(
-    v: &[Vector2<f64>],
-    c: Vector2<f64>,
-    radius: f64,
-) -> LocalClosest {
+/// [`distance_polygon_circle`] and the polygon's feature it is attained at.
+pub(crate) fn closest_polygon_circle(
+    polygon: &ConvexPolygon,
+    pose_a: &Isometry2<f64>,
+    circle: &Circle,
+    pose_b: &Isometry2<f64>,
+) -> (Proximity, PolygonFeature) {
+    let v = polygon.vertices();
     let n = v.len();
+    let c = pose_a
+        .inverse_transform_point(&Point2::from(pose_b.translation.vector))
+        .coords;
     let (mut best_edge, mut best_s) = (0, f64::NEG_INFINITY);
     for i in 0..n {
         let s = edge_normal(v[i], v[(i + 1) % n]).dot(&(c - v[i]));
@@ -98,7 +85,7 @@ pub(crate) fn closest_polygon_circle_local(
         // edge; its foot lies on that edge.
         let normal = edge_normal(v[best_edge], v[(best_edge + 1) % n]);
         (
-            best_s - radius,
+            best_s - circle.radius,
             normal,
             c - best_s * normal,
             PolygonFeature::Edge(best_edge),
@@ -125,40 +112,19 @@ pub(crate) fn closest_polygon_circle_local(
         let d = c - q;
         let len = d.norm();
         // len > 0 since the centre is strictly outside.
-        (len - radius, d / len, q, feature)
+        (len - circle.radius, d / len, q, feature)
     };
-    LocalClosest {
-        distance,
-        normal,
-        on_polygon,
-        feature,
-    }
-}
-
-/// [`distance_polygon_circle`] and the polygon's feature it is attained at.
-pub(crate) fn closest_polygon_circle(
-    polygon: &ConvexPolygon,
-    pose_a: &Isometry2<f64>,
-    circle: &Circle,
-    pose_b: &Isometry2<f64>,
-) -> (Proximity, PolygonFeature) {
-    let c = pose_a
-        .inverse_transform_point(&Point2::from(pose_b.translation.vector))
-        .coords;
-    let local = closest_polygon_circle_local(polygon.vertices(), c, circle.radius);
     let rotation = pose_a.rotation;
-    let normal = rotation * local.normal;
-    let point_a = pose_a
-        .transform_point(&Point2::from(local.on_polygon))
-        .coords;
+    let normal = rotation * normal;
+    let point_a = pose_a.transform_point(&Point2::from(on_polygon)).coords;
     (
         Proximity {
-            distance: local.distance,
+            distance,
             normal,
             point_a,
             point_b: pose_b.translation.vector - circle.radius * normal,
         },
-        local.feature,
+        feature,
     )
 }
 

@@ -34,7 +34,7 @@ pub(crate) struct ContactPoint {
     /// Signed distance when the manifold was computed (m).
     pub computed_separation: f64,
     /// Feature id ([`manifold::LocalPoint::id`]).
-    pub id: crate::collision::features::FeatureId,
+    pub id: u32,
     /// Normal impulse accumulated over the last step (N·s).
     pub normal_impulse: f64,
     /// Friction impulse accumulated over the last step (N·s), along the

@@ -156,8 +156,20 @@ impl SolverShape {
     /// `(cos θ, sin θ)`.
     pub(crate) fn aabb(&self, p: Vector2<f64>, (c, s): (f64, f64)) -> Aabb {
         match self {
-            SolverShape::Circle { radius } => Aabb::of_ball(p, *radius),
-            SolverShape::Polygon(poly) => Aabb::of_vertices_at(&poly.vertices, p, (c, s)),
+            SolverShape::Circle { radius } => {
+                let r = Vector2::repeat(*radius);
+                Aabb::new(p - r, p + r)
+            }
+            SolverShape::Polygon(poly) => {
+                let mut min = Vector2::repeat(f64::INFINITY);
+                let mut max = Vector2::repeat(f64::NEG_INFINITY);
+                for v in &poly.vertices {
+                    let w = Vector2::new(c * v.x - s * v.y + p.x, s * v.x + c * v.y + p.y);
+                    min = min.inf(&w);
+                    max = max.sup(&w);
+                }
+                Aabb::new(min, max)
+            }
         }
     }
 }

@@ -27,8 +27,6 @@
 //! shape is called A; the normal points from A to B; lengths are in m.
 
 use super::geometry::{Polygon, SolverShape};
-use crate::collision::features::{FeatureId, feature_pair};
-use crate::collision::{circle_circle, polygon_circle};
 use nalgebra::{Isometry2, Vector2};
 
 /// Read from `engine/src/tunables.rs` (unit, value and source there).
@@ -42,8 +40,8 @@ pub(crate) struct LocalPoint {
     pub point: Vector2<f64>,
     /// Signed distance along the normal (m): < 0 overlapping.
     pub separation: f64,
-    /// Feature id ([`feature_pair`]: the feature of A and of B).
-    pub id: FeatureId,
+    /// Feature id: `(feature of A) << 16 | (feature of B)`.
+    pub id: u32,
 }
 
 /// A manifold in A's frame: 0, 1 or 2 points sharing a normal.
@@ -62,6 +60,10 @@ pub(crate) struct Scratch {
     a_vertices: Vec<Vector2<f64>>,
     b_vertices: Vec<Vector2<f64>>,
     b_normals: Vec<Vector2<f64>>,
+}
+
+fn feature_id(a: usize, b: usize) -> u32 {
+    ((a as u32) << 16) | b as u32
 }
 
 fn perp_left(v: Vector2<f64>) -> Vector2<f64> {
@@ -94,48 +96,80 @@ pub(crate) fn collide(
     }
 }
 
-/// Two circles of radii `ra`, `rb` (m), B's centre at `pb` in A's frame:
-/// the exact model's circle–circle geometry
-/// ([`circle_circle::proximity_of_centres`]) with A's centre at the origin.
-// Kept out of `collide`, so that the polygon pairs' path there (the
-// common case) compiles as when the circle pairs had their own short code.
-#[inline(never)]
+/// Two circles of radii `ra`, `rb` (m), B's centre at `pb` in A's frame.
 fn collide_circles(ra: f64, rb: f64, pb: Vector2<f64>, speculative: f64) -> LocalManifold {
-    let p = circle_circle::proximity_of_centres(Vector2::zeros(), ra, pb, rb);
-    one_point(p.normal, p.distance, p.point_a, p.point_b, speculative)
+    let distance = pb.norm();
+    let separation = distance - ra - rb;
+    if separation > speculative {
+        return LocalManifold::default();
+    }
+    // Concentric circles have no line of centres: push along A's y axis.
+    let normal = if distance > 0.0 {
+        pb / distance
+    } else {
+        Vector2::y()
+    };
+    let ca = normal * ra;
+    let cb = pb - normal * rb;
+    LocalManifold {
+        normal,
+        count: 1,
+        points: [
+            LocalPoint {
+                point: 0.5 * (ca + cb),
+                separation,
+                id: 0,
+            },
+            LocalPoint::default(),
+        ],
+    }
 }
 
 /// Polygon A against a circle of radius `rb` centred at `center` (A's
-/// frame): the exact model's polygon–circle geometry
-/// ([`polygon_circle::closest_polygon_circle_local`]).
-// Kept out of `collide`, so that the polygon pairs' path there (the
-// common case) compiles as when the circle pairs had their own short code.
-#[inline(never)]
+/// frame).
 fn collide_polygon_circle(
     poly: &Polygon,
     rb: f64,
     center: Vector2<f64>,
     speculative: f64,
 ) -> LocalManifold {
-    let c = polygon_circle::closest_polygon_circle_local(&poly.vertices, center, rb);
-    let on_circle = center - rb * c.normal;
-    one_point(c.normal, c.distance, c.on_polygon, on_circle, speculative)
-}
-
-/// The one-point manifold of witnesses `point_a`, `point_b` (A's frame, m)
-/// at signed distance `separation` along `normal`, when it is within
-/// `speculative` (m): the point midway between them, as the exact model's
-/// [`Proximity::one_point_manifold`](crate::collision::Proximity::one_point_manifold).
-fn one_point(
-    normal: Vector2<f64>,
-    separation: f64,
-    point_a: Vector2<f64>,
-    point_b: Vector2<f64>,
-    speculative: f64,
-) -> LocalManifold {
-    // A NaN separation (non-finite input) gives no point, as in the exact
-    // model.
-    if separation.is_nan() || separation > speculative {
+    let n = poly.vertices.len();
+    let (mut best, mut separation) = (0, f64::NEG_INFINITY);
+    for i in 0..n {
+        let s = poly.normals[i].dot(&(center - poly.vertices[i]));
+        if s > separation {
+            separation = s;
+            best = i;
+        }
+    }
+    if separation > rb + speculative {
+        return LocalManifold::default();
+    }
+    let v1 = poly.vertices[best];
+    let v2 = poly.vertices[(best + 1) % n];
+    let u1 = (center - v1).dot(&(v2 - v1));
+    let u2 = (center - v2).dot(&(v1 - v2));
+    let vertex_point = |v: Vector2<f64>| {
+        let d = center - v;
+        let distance = d.norm();
+        let normal = d / distance;
+        let separation = distance - rb;
+        let cb = center - rb * normal;
+        (normal, separation, 0.5 * (v + cb))
+    };
+    // The centre is beyond a vertex (and outside the polygon, so the
+    // direction to it is defined): the vertex is the closest feature.
+    let (normal, separation, point) = if u1 < 0.0 && separation > f64::EPSILON {
+        vertex_point(v1)
+    } else if u2 < 0.0 && separation > f64::EPSILON {
+        vertex_point(v2)
+    } else {
+        let normal = poly.normals[best];
+        let ca = center - (center - v1).dot(&normal) * normal;
+        let cb = center - rb * normal;
+        (normal, separation - rb, 0.5 * (ca + cb))
+    };
+    if separation > speculative {
         return LocalManifold::default();
     }
     LocalManifold {
@@ -143,7 +177,7 @@ fn one_point(
         count: 1,
         points: [
             LocalPoint {
-                point: 0.5 * (point_a + point_b),
+                point,
                 separation,
                 id: 0,
             },
@@ -291,7 +325,7 @@ fn apart(
                     LocalPoint {
                         point: 0.5 * (av[ia] + bv[ib]),
                         separation: distance,
-                        id: feature_pair(ia, ib),
+                        id: feature_id(ia, ib),
                     },
                     LocalPoint::default(),
                 ],
@@ -357,22 +391,22 @@ fn clip(
     let points = if flip {
         [
             LocalPoint {
-                id: feature_pair(i21, i12),
+                id: feature_id(i21, i12),
                 ..upper
             },
             LocalPoint {
-                id: feature_pair(i22, i11),
+                id: feature_id(i22, i11),
                 ..lower
             },
         ]
     } else {
         [
             LocalPoint {
-                id: feature_pair(i11, i22),
+                id: feature_id(i11, i22),
                 ..lower
             },
             LocalPoint {
-                id: feature_pair(i12, i21),
+                id: feature_id(i12, i21),
                 ..upper
             },
         ]
@@ -445,109 +479,6 @@ mod tests {
     use crate::collision::{self, test_rng::Rng};
     use crate::shape::{Circle, ConvexPolygon, Shape};
 
-    /// The soft step's own circle manifolds as they were before it took
-    /// the exact model's geometry (kept as the reference of
-    /// `circle_manifolds_agree_with_the_former_soft_step_ones`).
-    mod former {
-        use super::super::{LocalManifold, LocalPoint, Polygon};
-        use nalgebra::Vector2;
-
-        /// Two circles of radii `ra`, `rb` (m), B's centre at `pb` in A's frame.
-        pub(super) fn collide_circles(
-            ra: f64,
-            rb: f64,
-            pb: Vector2<f64>,
-            speculative: f64,
-        ) -> LocalManifold {
-            let distance = pb.norm();
-            let separation = distance - ra - rb;
-            if separation > speculative {
-                return LocalManifold::default();
-            }
-            // Concentric circles have no line of centres: push along A's y axis.
-            let normal = if distance > 0.0 {
-                pb / distance
-            } else {
-                Vector2::y()
-            };
-            let ca = normal * ra;
-            let cb = pb - normal * rb;
-            LocalManifold {
-                normal,
-                count: 1,
-                points: [
-                    LocalPoint {
-                        point: 0.5 * (ca + cb),
-                        separation,
-                        id: 0,
-                    },
-                    LocalPoint::default(),
-                ],
-            }
-        }
-
-        /// Polygon A against a circle of radius `rb` centred at `center` (A's
-        /// frame).
-        pub(super) fn collide_polygon_circle(
-            poly: &Polygon,
-            rb: f64,
-            center: Vector2<f64>,
-            speculative: f64,
-        ) -> LocalManifold {
-            let n = poly.vertices.len();
-            let (mut best, mut separation) = (0, f64::NEG_INFINITY);
-            for i in 0..n {
-                let s = poly.normals[i].dot(&(center - poly.vertices[i]));
-                if s > separation {
-                    separation = s;
-                    best = i;
-                }
-            }
-            if separation > rb + speculative {
-                return LocalManifold::default();
-            }
-            let v1 = poly.vertices[best];
-            let v2 = poly.vertices[(best + 1) % n];
-            let u1 = (center - v1).dot(&(v2 - v1));
-            let u2 = (center - v2).dot(&(v1 - v2));
-            let vertex_point = |v: Vector2<f64>| {
-                let d = center - v;
-                let distance = d.norm();
-                let normal = d / distance;
-                let separation = distance - rb;
-                let cb = center - rb * normal;
-                (normal, separation, 0.5 * (v + cb))
-            };
-            // The centre is beyond a vertex (and outside the polygon, so the
-            // direction to it is defined): the vertex is the closest feature.
-            let (normal, separation, point) = if u1 < 0.0 && separation > f64::EPSILON {
-                vertex_point(v1)
-            } else if u2 < 0.0 && separation > f64::EPSILON {
-                vertex_point(v2)
-            } else {
-                let normal = poly.normals[best];
-                let ca = center - (center - v1).dot(&normal) * normal;
-                let cb = center - rb * normal;
-                (normal, separation - rb, 0.5 * (ca + cb))
-            };
-            if separation > speculative {
-                return LocalManifold::default();
-            }
-            LocalManifold {
-                normal,
-                count: 1,
-                points: [
-                    LocalPoint {
-                        point,
-                        separation,
-                        id: 0,
-                    },
-                    LocalPoint::default(),
-                ],
-            }
-        }
-    }
-
     fn solver(shape: &Shape) -> SolverShape {
         SolverShape::new(shape)
     }
@@ -597,8 +528,8 @@ mod tests {
             0.02,
             &mut scratch,
         );
-        let ids1: Vec<FeatureId> = m1.points[..m1.count].iter().map(|p| p.id).collect();
-        let ids2: Vec<FeatureId> = m2.points[..m2.count].iter().map(|p| p.id).collect();
+        let ids1: Vec<u32> = m1.points[..m1.count].iter().map(|p| p.id).collect();
+        let ids2: Vec<u32> = m2.points[..m2.count].iter().map(|p| p.id).collect();
         assert_eq!(ids1, ids2);
     }
 
@@ -701,70 +632,5 @@ mod tests {
             compared += 1;
         }
         assert!(compared > 300, "only {compared} overlapping pairs");
-    }
-
-    #[test]
-    fn circle_manifolds_agree_with_the_former_soft_step_ones() {
-        let mut rng = Rng::new(19);
-        let speculative = 0.04;
-        // Circle–circle: the same operations in the same order, so the same
-        // bits, except concentric circles (normal +x now, +y before).
-        for _ in 0..20_000 {
-            let (ra, rb) = (rng.range(0.05, 1.0), rng.range(0.05, 1.0));
-            let pb = Vector2::new(rng.range(-2.0, 2.0), rng.range(-2.0, 2.0));
-            let new = collide_circles(ra, rb, pb, speculative);
-            let old = former::collide_circles(ra, rb, pb, speculative);
-            assert_eq!(new, old, "{ra} {rb} {pb}");
-        }
-        let concentric = collide_circles(0.5, 0.25, Vector2::zeros(), speculative);
-        assert_eq!(concentric.normal, Vector2::x());
-        assert_eq!(
-            former::collide_circles(0.5, 0.25, Vector2::zeros(), speculative).normal,
-            Vector2::y()
-        );
-        // Polygon–circle.
-        let (mut same, mut compared, mut worst) = (0, 0, 0.0f64);
-        for _ in 0..20_000 {
-            let n = rng.int(3, 9);
-            let pts: Vec<Vector2<f64>> = (0..n)
-                .map(|_| Vector2::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)))
-                .collect();
-            let Ok(polygon) = ConvexPolygon::convex_hull(&pts) else {
-                continue;
-            };
-            let SolverShape::Polygon(poly) = solver(&Shape::Polygon(polygon).centered()) else {
-                unreachable!()
-            };
-            let rb = rng.range(0.05, 1.0);
-            let center = Vector2::new(rng.range(-2.0, 2.0), rng.range(-2.0, 2.0));
-            let new = collide_polygon_circle(&poly, rb, center, speculative);
-            let old = former::collide_polygon_circle(&poly, rb, center, speculative);
-            compared += 1;
-            if new == old {
-                same += 1;
-                continue;
-            }
-            assert_eq!(new.count, old.count, "{center} {rb} {new:?} {old:?}");
-            // Only a centre outside the polygon differs: the former took
-            // the best edge's normal, or the vertex itself, where the exact
-            // geometry normalises centre − foot, the foot being
-            // `p + clamp(t)·(q − p)` on the nearest edge (at t = 1 that is
-            // the vertex q up to round-off). The foot carries a round-off of
-            // a few ε·S (S the coordinates' scale, ≤ 4 m here), so the
-            // normals differ by about ε·S/gap, the points by the radius
-            // times that, the separations by a few ε·S.
-            let closest = polygon_circle::closest_polygon_circle_local(&poly.vertices, center, rb);
-            assert!(closest.distance + rb > 0.0, "{center} {rb} {closest:?}");
-            let gap = closest.distance + rb;
-            let scale = 4.0;
-            let dn = (new.normal - old.normal).norm();
-            let dp = (new.points[0].point - old.points[0].point).norm();
-            let ds = (new.points[0].separation - old.points[0].separation).abs();
-            worst = worst.max(dn * gap / (f64::EPSILON * scale));
-            worst = worst.max((dp - rb * dn) / (f64::EPSILON * scale));
-            worst = worst.max(ds / (f64::EPSILON * scale));
-        }
-        eprintln!("polygon-circle: {same} of {compared} identical, worst {worst:e}");
-        assert!(worst < 8.0, "{worst}");
     }
 }
