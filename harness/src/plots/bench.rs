@@ -26,7 +26,9 @@ pub fn draw(dir: &Path, results: &[SceneResult]) -> Result<Vec<(String, String)>
     let series: Vec<&SceneResult> = results.iter().filter(|r| r.scene.scaling).collect();
     let mut out = Vec::new();
     if series.len() >= 2 {
-        let engines = series[0].rows.len();
+        // One thread each (the rows at more threads follow them and have
+        // their own chart, benchmark_threads.svg).
+        let engines = series[0].rows.iter().filter(|r| r.threads == 1).count();
         let scaling = Chart {
             title: "pyramids of base 10 to 100: cost per step".into(),
             x_label: "bodies".into(),
