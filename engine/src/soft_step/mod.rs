@@ -411,45 +411,36 @@ impl SoftStep {
                 }
                 self.parallel_substep(pool, core, (h, inv_h), gravity, general);
                 core.profiler.stop(Phase::Solve, started);
-                self.stats.evaluations += 1;
+            } else {
+                let started = core.profiler.start();
                 if watch_events {
-                    let t_end = if k + 1 == n { t1 } else { t_sub + h };
-                    if self.locate_events(core, (t_sub, t_end), found) {
-                        self.joints.store_impulses();
-                        self.report_touches();
-                        return Ok(());
-                    }
+                    self.substep_start.clone_from(&self.bodies);
                 }
-                continue;
+                self.integrate_velocities(core, h, gravity, general.then_some((t_sub, middle)));
+                core.profiler.stop(Phase::Integrate, started);
+
+                let started = core.profiler.start();
+                self.joints.warm_start(&mut self.bodies);
+                contact_solver::warm_start(&mut self.constraints, &mut self.bodies);
+                wide_solver::warm_start(&mut self.wide, &mut self.bodies, self.rolling);
+                core.profiler.stop(Phase::WarmStart, started);
+
+                let started = core.profiler.start();
+                self.joints.solve(&mut self.bodies, h, true);
+                contact_solver::solve(&mut self.constraints, &mut self.bodies, inv_h, true);
+                wide_solver::solve(&mut self.wide, &mut self.bodies, inv_h);
+                core.profiler.stop(Phase::Solve, started);
+
+                let started = core.profiler.start();
+                self.integrate_positions(h);
+                core.profiler.stop(Phase::Integrate, started);
+
+                let started = core.profiler.start();
+                self.joints.solve(&mut self.bodies, h, false);
+                contact_solver::solve(&mut self.constraints, &mut self.bodies, inv_h, false);
+                wide_solver::relax(&mut self.wide, &mut self.bodies, inv_h, self.rolling);
+                core.profiler.stop(Phase::Relax, started);
             }
-            let started = core.profiler.start();
-            if watch_events {
-                self.substep_start.clone_from(&self.bodies);
-            }
-            self.integrate_velocities(core, h, gravity, general.then_some((t_sub, middle)));
-            core.profiler.stop(Phase::Integrate, started);
-
-            let started = core.profiler.start();
-            self.joints.warm_start(&mut self.bodies);
-            contact_solver::warm_start(&mut self.constraints, &mut self.bodies);
-            wide_solver::warm_start(&mut self.wide, &mut self.bodies, self.rolling);
-            core.profiler.stop(Phase::WarmStart, started);
-
-            let started = core.profiler.start();
-            self.joints.solve(&mut self.bodies, h, true);
-            contact_solver::solve(&mut self.constraints, &mut self.bodies, inv_h, true);
-            wide_solver::solve(&mut self.wide, &mut self.bodies, inv_h);
-            core.profiler.stop(Phase::Solve, started);
-
-            let started = core.profiler.start();
-            self.integrate_positions(h);
-            core.profiler.stop(Phase::Integrate, started);
-
-            let started = core.profiler.start();
-            self.joints.solve(&mut self.bodies, h, false);
-            contact_solver::solve(&mut self.constraints, &mut self.bodies, inv_h, false);
-            wide_solver::relax(&mut self.wide, &mut self.bodies, inv_h, self.rolling);
-            core.profiler.stop(Phase::Relax, started);
             self.stats.evaluations += 1;
 
             if watch_events {

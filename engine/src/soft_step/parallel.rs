@@ -18,13 +18,14 @@
 //!   is reported for the lowest body id, as the serial loop does.
 
 use super::SoftStep;
-use super::colouring::{COLOURS, Slot};
+use super::colouring::{COLOURS, Colouring, Slot};
 use super::contact_solver;
 use super::integrate::{integrate_position, integrate_velocity};
 use super::pool::{Pool, SharedSlice, Worker};
 use super::wide_solver::{self, Bodies};
 use crate::world_core::WorldCore;
 use nalgebra::Vector2;
+use std::ops::Range;
 
 /// Which pass over the constraints.
 #[derive(Clone, Copy)]
@@ -89,13 +90,7 @@ impl SoftStep {
                     }
                 }
                 w.sync();
-                for colour in 0..COLOURS {
-                    let records = colouring.records(colour);
-                    if records.is_empty() {
-                        continue;
-                    }
-                    let mine = w.share(records.len());
-                    let mine = records.start + mine.start..records.start + mine.end;
+                each_colour_share(w, colouring, |mine| {
                     // SAFETY: the threads' shares of a colour are disjoint;
                     // see the module docs for the bodies.
                     let records = unsafe { wide.slice(mine) };
@@ -104,8 +99,7 @@ impl SoftStep {
                         Pass::Solve => wide_solver::solve_shared(records, bodies, inv_h),
                         Pass::Relax => wide_solver::relax_shared(records, bodies, inv_h, rolling),
                     }
-                    w.sync();
-                }
+                });
                 if let Pass::Solve = pass {
                     for id in w.share(sims.len()) {
                         // SAFETY: each thread its own bodies.
@@ -136,18 +130,11 @@ impl SoftStep {
                 contact_solver::restitution(overflow, all, threshold);
             }
             w.sync();
-            for colour in 0..COLOURS {
-                let records = colouring.records(colour);
-                if records.is_empty() {
-                    continue;
-                }
-                let mine = w.share(records.len());
-                let mine = records.start + mine.start..records.start + mine.end;
+            each_colour_share(w, colouring, |mine| {
                 // SAFETY: disjoint shares of one colour.
                 let part = unsafe { wide.slice(mine.clone()) };
                 wide_solver::restitution_shared(part, &extras[mine], bodies, threshold);
-                w.sync();
-            }
+            });
             // Store: the overflow on thread 0 while the others wait, then
             // the lanes, each constraint's contact its own.
             if w.index == 0 {
@@ -172,5 +159,22 @@ impl SoftStep {
                 }
             }
         });
+    }
+}
+
+/// Colour after colour, this thread's share of the colour's records
+/// (indices into the wide records) given to `each`, then a barrier: within
+/// a colour the threads' shares touch disjoint bodies, and a colour starts
+/// only when every thread has finished the one before.
+#[inline(always)]
+fn each_colour_share(w: &Worker<'_>, colouring: &Colouring, mut each: impl FnMut(Range<usize>)) {
+    for colour in 0..COLOURS {
+        let records = colouring.records(colour);
+        if records.is_empty() {
+            continue;
+        }
+        let mine = w.share(records.len());
+        each(records.start + mine.start..records.start + mine.end);
+        w.sync();
     }
 }

@@ -237,6 +237,37 @@ impl JointFrame {
         b.w += self.ib * (cross(rb, p) + l);
     }
 
+    /// One soft point row (two axes) whose accumulated impulse is bounded
+    /// in length by `max` (N·s): the target joint's and the motor joint's
+    /// linear row. `error` is the anchors' separation the row drives to zero
+    /// (m), `impulse` the accumulated impulse, updated and applied.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve_bounded_point(
+        &self,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        arms: (Vector2<f64>, Vector2<f64>),
+        softness: &Softness,
+        error: Vector2<f64>,
+        impulse: &mut Vector2<f64>,
+        max: f64,
+    ) {
+        let cdot = self.anchor_velocity(a, b, arms);
+        let row = RowScale::soft(softness);
+        let bias = row.bias_rate * error;
+        let (k11, k12, k22) = self.point_mass_matrix(arms);
+        let x = solve_2x2(k11, k12, k22, row.mass_scale * cdot + bias);
+        let old = *impulse;
+        let mut total = old - x - row.impulse_scale * old;
+        let size = total.norm();
+        if size > max {
+            total *= max / size;
+        }
+        *impulse = total;
+        self.apply(a, b, arms, total - old, 0.0);
+    }
+
     /// Applies the angular impulse `l` alone (N·m·s; −l on A, +l on B).
     #[inline(always)]
     pub fn apply_angular(&self, a: &mut SolverBody, b: &mut SolverBody, l: f64) {

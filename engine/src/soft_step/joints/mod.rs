@@ -663,6 +663,23 @@ pub(crate) fn non_negative(joint: &str, what: &str, v: f64) -> Result<()> {
     }
 }
 
+/// Checks that `axis` of joint `joint` has a direction: finite, non-zero,
+/// and finite once normalised (the prismatic's and the wheel's axis).
+pub(crate) fn direction(joint: &str, axis: Vector2<f64>) -> Result<()> {
+    let n = axis.norm();
+    if !(n.is_finite() && n > 0.0 && (axis / n).iter().all(|c| c.is_finite())) {
+        return Err(invalid(
+            joint,
+            format!(
+                "the axis [{}, {}] has no direction: give a finite, non-zero vector",
+                crate::error::readable(axis.x),
+                crate::error::readable(axis.y)
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Checks `[lower, upper]` limits: finite and in order.
 pub(crate) fn ordered(joint: &str, what: &str, unit: &str, (lo, hi): (f64, f64)) -> Result<()> {
     finite(joint, &format!("lower {what} ({unit})"), lo)?;

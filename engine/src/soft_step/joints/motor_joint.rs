@@ -25,7 +25,7 @@
 //! effective mass: a body released at an offset e₀ from its target with
 //! ζ = 1 reaches it as e₀ (1 + ωt) e^{−ωt}.
 
-use super::frame::{JointFrame, RowScale, solve_2x2};
+use super::frame::{JointFrame, RowScale};
 use super::{JointSpring, finite, positive};
 use crate::error::Result;
 use crate::soft_step::Softness;
@@ -152,18 +152,7 @@ impl MotorJointRows {
         let arms = self.arms(f, a, b);
         let (ra, rb) = arms;
         let e = (b.dp - a.dp) + f.delta_center + rb - ra;
-        let cdot = f.anchor_velocity(a, b, arms);
-        let row = RowScale::soft(&self.linear_softness);
-        let (k11, k12, k22) = f.point_mass_matrix(arms);
-        let x = solve_2x2(k11, k12, k22, row.mass_scale * cdot + row.bias_rate * e);
-        let old = self.linear;
-        let mut total = old - x - row.impulse_scale * old;
         let max = h * self.joint.max_force;
-        let size = total.norm();
-        if size > max {
-            total *= max / size;
-        }
-        self.linear = total;
-        f.apply(a, b, arms, total - old, 0.0);
+        f.solve_bounded_point(a, b, arms, &self.linear_softness, e, &mut self.linear, max);
     }
 }

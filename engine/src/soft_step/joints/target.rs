@@ -16,7 +16,7 @@
 //! exceeds F_max. The body's rotation is not damped: pulled by one point
 //! it swings about it.
 
-use super::frame::{JointFrame, RowScale, solve_2x2};
+use super::frame::JointFrame;
 use super::{JointSpring, invalid, positive};
 use crate::error::Result;
 use crate::soft_step::Softness;
@@ -100,19 +100,8 @@ impl TargetRows {
         h: f64,
     ) {
         let anchors = f.anchors(a, b);
-        let cdot = f.anchor_velocity(a, b, anchors);
-        let row = RowScale::soft(&self.softness);
-        let bias = row.bias_rate * f.separation(a, b, anchors);
-        let (k11, k12, k22) = f.point_mass_matrix(anchors);
-        let x = solve_2x2(k11, k12, k22, row.mass_scale * cdot + bias);
-        let old = self.linear;
-        let mut total = old - x - row.impulse_scale * old;
+        let error = f.separation(a, b, anchors);
         let max = h * self.joint.max_force;
-        let size = total.norm();
-        if size > max {
-            total *= max / size;
-        }
-        self.linear = total;
-        f.apply(a, b, anchors, total - old, 0.0);
+        f.solve_bounded_point(a, b, anchors, &self.softness, error, &mut self.linear, max);
     }
 }

@@ -27,7 +27,7 @@
 //! (Box2D's wheel without suspension).
 
 use super::frame::{JointFrame, RowScale, cross, limit_row};
-use super::{JointSpring, finite, invalid, ordered, positive};
+use super::{JointSpring, direction, finite, ordered, positive};
 use crate::error::Result;
 use crate::soft_step::Softness;
 use crate::soft_step::bodies::SolverBody;
@@ -85,17 +85,7 @@ impl Wheel {
     }
 
     pub(super) fn check(&self, name: &str) -> Result<()> {
-        let n = self.axis.norm();
-        if !(n.is_finite() && n > 0.0 && (self.axis / n).iter().all(|c| c.is_finite())) {
-            return Err(invalid(
-                name,
-                format!(
-                    "the axis [{}, {}] has no direction: give a finite, non-zero vector",
-                    crate::error::readable(self.axis.x),
-                    crate::error::readable(self.axis.y)
-                ),
-            ));
-        }
+        direction(name, self.axis)?;
         if let Some(s) = self.spring {
             s.check(name, "suspension spring")?;
         }
