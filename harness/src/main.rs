@@ -4,7 +4,7 @@
 use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand};
 use harness::cases::{CASES, Case, CaseRecord, find};
-use harness::shard::{Joined, Shard, ShardRecord, Unit};
+use harness::shard::{Joined, Run, Shard, ShardRecord, Unit};
 use harness::study::StudySummary;
 use harness::sweep::SweepSettings;
 use harness::{report, workspace};
@@ -411,10 +411,12 @@ fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Resu
         run_bench(dir)?;
     }
     let joined = Joined {
-        selection: selected.iter().map(|c| c.id.to_string()).collect(),
-        full,
-        quick,
-        provenance,
+        run: Run {
+            selection: selected.iter().map(|c| c.id.to_string()).collect(),
+            full,
+            quick,
+            provenance,
+        },
         cases: results,
         studies: study,
     };
@@ -511,16 +513,13 @@ fn run_shard(
         rows.extend(&study.rows);
     }
     let failed = rows.iter().filter(|r| !r.pass).count();
-    let record = ShardRecord::new(
-        shard,
-        ids.iter().map(|s| s.to_string()).collect(),
+    let run = Run {
+        selection: ids.iter().map(|s| s.to_string()).collect(),
         full,
         quick,
         provenance,
-        results.clone(),
-        study.clone(),
-        bench,
-    );
+    };
+    let record = ShardRecord::new(shard, run, results.clone(), study.clone(), bench);
     record.write(&stage)?;
     drop(staging.commit()?);
     println!(
@@ -541,13 +540,13 @@ fn merge(dirs: &[PathBuf], reasons: bool, out: Option<PathBuf>) -> Result<bool> 
         records.push((dir.display().to_string(), ShardRecord::read(dir)?));
     }
     let joined = harness::shard::join(records)?;
-    let Some(out) = out.or_else(|| default_out(joined.full, joined.quick)) else {
+    let Some(out) = out.or_else(|| default_out(joined.run.full, joined.run.quick)) else {
         bail!(
             "merge: these shards are of a run of selected cases, whose report goes nowhere by \
              default; give --out DIR"
         );
     };
-    announce(Some(&out), joined.full, joined.quick);
+    announce(Some(&out), joined.run.full, joined.run.quick);
     let staging = harness::interrupt::Staging::new(&out)?;
     for dir in dirs {
         harness::shard::copy_files(dir, staging.dir())?;
@@ -571,7 +570,7 @@ fn finish(
     let into_reports = out
         .as_deref()
         .is_some_and(|d| workspace::same_dir(d, &workspace::reports_dir()));
-    let readme_too = joined.full && !joined.quick && into_reports;
+    let readme_too = joined.run.full && !joined.run.quick && into_reports;
     let results = &joined.cases;
     let study = joined.studies.as_ref();
     if let Some(staging) = &staging {
@@ -587,7 +586,7 @@ fn finish(
         let ids: Vec<&str> = scenes.iter().map(|(id, _)| *id).collect();
         harness::replay_cases::write_case_replays(dir, &ids)?;
         // After the pictures, so that the pages can link them.
-        report::write(dir, results, study, &joined.provenance)?;
+        report::write(dir, results, study, &joined.run.provenance)?;
     }
     // Into place; a signal waits until the README is written too.
     let _hold = staging.map(|s| s.commit()).transpose()?;

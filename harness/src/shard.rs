@@ -26,7 +26,7 @@ use std::path::Path;
 pub const RECORD: &str = "shard.cbor";
 
 /// The version of [`ShardRecord`]'s layout; `merge` refuses another.
-const FORMAT: u32 = 1;
+const FORMAT: u32 = 2;
 
 /// Which share: shard `index` (from 1) of `count`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -157,14 +157,10 @@ pub fn assign(units: &[Unit], shard: Shard) -> Vec<Unit> {
         .collect()
 }
 
-/// What a shard writes beside its files, for `merge`.
+/// What identifies a run, the same in each of its shards.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ShardRecord {
-    /// [`FORMAT`].
-    pub format: u32,
-    /// Which shard.
-    pub shard: Shard,
-    /// The case ids of the whole run, in its order (every shard's list).
+pub struct Run {
+    /// The case ids of the whole run, in its order.
     pub selection: Vec<String>,
     /// Whether the run is of every case (then with the studies).
     pub full: bool,
@@ -172,6 +168,17 @@ pub struct ShardRecord {
     pub quick: bool,
     /// The report's provenance paragraph (machine, commit, build).
     pub provenance: String,
+}
+
+/// What a shard writes beside its files, for `merge`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ShardRecord {
+    /// [`FORMAT`].
+    pub format: u32,
+    /// Which shard.
+    pub shard: Shard,
+    /// The run this shard is a share of (the same in every shard).
+    pub run: Run,
     /// The records of this shard's cases, in the run's order.
     pub cases: Vec<CaseRecord>,
     /// The studies, when this shard ran them.
@@ -182,13 +189,9 @@ pub struct ShardRecord {
 
 impl ShardRecord {
     /// A record of this version's layout.
-    #[allow(clippy::too_many_arguments)]
     pub fn new(
         shard: Shard,
-        selection: Vec<String>,
-        full: bool,
-        quick: bool,
-        provenance: String,
+        run: Run,
         cases: Vec<CaseRecord>,
         studies: Option<StudySummary>,
         bench: bool,
@@ -196,10 +199,7 @@ impl ShardRecord {
         Self {
             format: FORMAT,
             shard,
-            selection,
-            full,
-            quick,
-            provenance,
+            run,
             cases,
             studies,
             bench,
@@ -241,14 +241,8 @@ impl ShardRecord {
 /// and the studies.
 #[derive(Debug, Clone)]
 pub struct Joined {
-    /// The run's case ids.
-    pub selection: Vec<String>,
-    /// Whether the run is of every case.
-    pub full: bool,
-    /// Whether it is `--quick`.
-    pub quick: bool,
-    /// Its provenance paragraph.
-    pub provenance: String,
+    /// The run.
+    pub run: Run,
     /// Every case's record, in the run's order.
     pub cases: Vec<CaseRecord>,
     /// The studies, on a full run.
@@ -265,11 +259,7 @@ pub fn join(records: Vec<(String, ShardRecord)>) -> Result<Joined> {
     let count = first.shard.count;
     let mut seen = vec![None::<&str>; count];
     for (dir, r) in &records {
-        let same_run = r.shard.count == count
-            && r.selection == first.selection
-            && r.full == first.full
-            && r.quick == first.quick
-            && r.provenance == first.provenance;
+        let same_run = r.shard.count == count && r.run == first.run;
         if !same_run {
             bail!(
                 "merge: {dir} (shard {}) and {first_dir} (shard {}) are shards of different runs \
@@ -292,7 +282,7 @@ pub fn join(records: Vec<(String, ShardRecord)>) -> Result<Joined> {
         bail!("merge: shard(s) {} missing", missing.join(", "));
     }
     let mut cases = Vec::new();
-    for id in &first.selection {
+    for id in &first.run.selection {
         let found: Vec<&CaseRecord> = records
             .iter()
             .flat_map(|(_, r)| &r.cases)
@@ -311,7 +301,7 @@ pub fn join(records: Vec<(String, ShardRecord)>) -> Result<Joined> {
         .iter()
         .filter_map(|(_, r)| r.studies.as_ref())
         .collect();
-    let studies = match (first.full, studies.as_slice()) {
+    let studies = match (first.run.full, studies.as_slice()) {
         (false, []) => None,
         (true, [one]) => Some((*one).clone()),
         _ => bail!(
@@ -320,15 +310,12 @@ pub fn join(records: Vec<(String, ShardRecord)>) -> Result<Joined> {
         ),
     };
     let benches = records.iter().filter(|(_, r)| r.bench).count();
-    let want = usize::from(first.full && !first.quick);
+    let want = usize::from(first.run.full && !first.run.quick);
     if benches != want {
         bail!("merge: {benches} shards ran the benchmark; this run needs {want}");
     }
     Ok(Joined {
-        selection: first.selection.clone(),
-        full: first.full,
-        quick: first.quick,
-        provenance: first.provenance.clone(),
+        run: first.run.clone(),
         cases,
         studies,
     })
