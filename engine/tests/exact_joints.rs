@@ -357,3 +357,226 @@ fn an_impact_on_a_pinned_disc_reverses_its_angular_velocity_by_e() {
         }
     }
 }
+
+/// A static floor (top at y = 0) and a bar of 1 m × 0.1 m hinged to it at
+/// (0, 0.1), its far end 0.05 m above the floor: the bar falls about the
+/// hinge. A joint's `collide_connected` off (Box2D's default) keeps its
+/// two bodies out of contact under the exact model as under the soft
+/// step: the bar swings through the floor. On, the bar strikes the floor
+/// (e = 0) with its far corner and stays on it.
+#[test]
+fn a_joint_keeps_its_bodies_out_of_contact_unless_collide_connected() {
+    for collide in [false, true] {
+        let mut w = world(Method::Rk4);
+        w.set_contact_settings(ContactSettings::new(0.0, 0.0))
+            .unwrap();
+        let floor = w
+            .add_body(BodyDef::fixed(
+                "floor",
+                Vector2::new(0.5, -0.1),
+                Some(Shape::rectangle(2.0, 0.2).unwrap()),
+            ))
+            .unwrap();
+        let mut def = BodyDef::rigid("bar", 1.0, Shape::rectangle(1.0, 0.1).unwrap());
+        def.state.position = Vector2::new(0.5, 0.1);
+        let bar = w.add_body(def).unwrap();
+        w.add_joint(
+            JointDef::revolute(
+                "hinge",
+                Some(floor),
+                Some(bar),
+                Vector2::new(0.0, 0.1),
+                Revolute::default(),
+            )
+            .with_collide_connected(collide),
+        )
+        .unwrap();
+        w.run(0.5, H).unwrap();
+        let s = w.states()[bar];
+        assert!(s.position.iter().all(|x| x.is_finite()), "{s:?}");
+        let impacts = w
+            .contact_events()
+            .iter()
+            .filter(|c| c.kind == etalon2d::ContactEventKind::Impact)
+            .count();
+        // The far bottom corner, (0.5, −0.05) in the bar's frame.
+        let (sin, cos) = s.angle.sin_cos();
+        let corner_y = s.position.y + sin * 0.5 - cos * 0.05;
+        if collide {
+            // The corner reaches the floor at sin φ + 0.05 cos φ = 0.1
+            // (φ ≈ 0.0501 rad) and rests there, within the contact
+            // tolerance ε = 1e-10 m (2ε: a resting point is released
+            // beyond it).
+            assert!(impacts >= 1, "collide_connected: {impacts} impacts");
+            assert!(corner_y.abs() < 2e-10, "corner at {corner_y} m");
+        } else {
+            // Swung through the floor: a quarter period of this
+            // physical pendulum from horizontal is about 0.45 s.
+            assert!(w.contact_events().is_empty(), "{:?}", w.contact_events());
+            assert!(corner_y < -0.5, "corner at {corner_y} m");
+        }
+    }
+}
+
+/// Two boxes of 1 m × 0.1 m overlapping over half their length, the first
+/// hinged to the world at its end, the second to the first at (0.75, 0),
+/// inside both (a double pendulum whose links overlap, as a crank and its
+/// rod do): with contacts on, the joint keeps them out of contact, so
+/// the run equals the one without contacts (no contact code acts; the
+/// same integrator steps) and nothing goes non-finite.
+#[test]
+fn overlapping_jointed_boxes_run_as_without_contacts() {
+    let run = |contacts: bool| {
+        let mut w = world(Method::Rk4);
+        if contacts {
+            w.set_contact_settings(ContactSettings::default()).unwrap();
+        }
+        let mut upper = BodyDef::rigid("upper", 1.0, Shape::rectangle(1.0, 0.1).unwrap());
+        upper.state.position = Vector2::new(0.5, 0.0);
+        let upper = w.add_body(upper).unwrap();
+        let mut lower = BodyDef::rigid("lower", 1.0, Shape::rectangle(1.0, 0.1).unwrap());
+        lower.state.position = Vector2::new(1.0, 0.0);
+        let lower = w.add_body(lower).unwrap();
+        w.add_joint(JointDef::revolute(
+            "shoulder",
+            None,
+            Some(upper),
+            Vector2::zeros(),
+            Revolute::default(),
+        ))
+        .unwrap();
+        w.add_joint(JointDef::revolute(
+            "elbow",
+            Some(upper),
+            Some(lower),
+            Vector2::new(0.75, 0.0),
+            Revolute::default(),
+        ))
+        .unwrap();
+        w.run(1.0, H).unwrap();
+        (w.states().to_vec(), w.contact_events())
+    };
+    let (free, _) = run(false);
+    let (with_contacts, events) = run(true);
+    assert!(events.is_empty(), "{events:?}");
+    for (a, b) in free.iter().zip(&with_contacts) {
+        assert!(b.position.iter().all(|x| x.is_finite()), "{b:?}");
+        // The same steps of the same integrator, projected alike.
+        assert!((a.position - b.position).norm() < 1e-12, "{a:?} vs {b:?}");
+        assert!((a.angle - b.angle).abs() < 1e-12, "{a:?} vs {b:?}");
+    }
+    // And they did swing, the lower link turning about the elbow across
+    // the upper one.
+    assert!(
+        free[0].angle.abs() > 1.0 && free[1].angle.abs() > 1.0,
+        "{free:?}"
+    );
+}
+
+/// A uniform bar of 1 m × 0.1 m, 1 kg, hinged to the world at its left
+/// end, at rest on a static disc under it at s = 0.95 m from the hinge
+/// (docs/joints.md, "Resting contact on jointed bodies"). Statics, the
+/// closed form: the support holds N = m g x_c / s (x_c = 0.5 m the
+/// centre's distance; m g / 2 for a support at the end), the hinge the
+/// rest of the weight, m g (1 − x_c / s), vertical. The contact force
+/// solved before the joints (with the free bar's mass) would give
+/// N = m g / (1 + m s_c² / I) ≈ 0.27 m g and let the bar sink and turn.
+#[test]
+fn a_hinged_bar_on_a_support_shares_its_weight_with_the_hinge() {
+    let mut w = world(Method::Rk4);
+    w.set_contact_settings(ContactSettings::new(0.0, 0.0))
+        .unwrap();
+    let mut def = BodyDef::rigid("bar", 1.0, Shape::rectangle(1.0, 0.1).unwrap());
+    def.state.position = Vector2::new(0.5, 0.1);
+    let bar = w.add_body(def).unwrap();
+    let s = 0.95;
+    w.add_body(BodyDef::fixed(
+        "support",
+        Vector2::new(s, 0.0),
+        Some(Shape::circle(0.05).unwrap()),
+    ))
+    .unwrap();
+    w.add_joint(JointDef::revolute(
+        "hinge",
+        None,
+        Some(bar),
+        Vector2::new(0.0, 0.1),
+        Revolute::default(),
+    ))
+    .unwrap();
+    let start = w.states()[bar];
+    w.run(1.0, H).unwrap();
+    let end = w.states()[bar];
+    // At rest: the accelerations are zero to round-off (the bar's
+    // coordinates are of order 1: 1e-12 is a few thousand ulps over the
+    // 1000 steps).
+    assert!((end.position - start.position).norm() < 1e-12, "{end:?}");
+    assert!(end.angle.abs() < 1e-12, "{end:?}");
+    let m_g = G;
+    let hinge = w.joint(0).unwrap().force;
+    let expected = m_g * (1.0 - 0.5 / s);
+    // The force of the last right-hand side, at a state at rest to 1e-12:
+    // the closed form to round-off of the 10 N load.
+    assert!(
+        (hinge - Vector2::new(0.0, expected)).norm() < 1e-9,
+        "hinge {hinge:?}, expected (0, {expected})"
+    );
+    // The support carries the rest of the weight (the bar at rest).
+    let support = m_g - hinge.y;
+    assert!(
+        (support - m_g * 0.5 / s).abs() < 1e-9,
+        "support {support} N"
+    );
+    assert!(
+        w.contact_events()
+            .iter()
+            .all(|c| c.kind == etalon2d::ContactEventKind::Rest),
+        "{:?}",
+        w.contact_events()
+    );
+}
+
+/// A disc of 1 kg on a rod of 1 m at θ = 0.3 rad from the vertical,
+/// resting against a static wall on the side it would swing to
+/// (frictionless): the closed form of its statics is the wall's push
+/// N = m g tan θ, horizontal, and the rod's tension T = m g / cos θ.
+/// Solved before the joint the contact would take no force (gravity has no
+/// horizontal part) and the rod would pull the disc into the wall.
+#[test]
+fn a_pendulum_resting_against_a_wall_pulls_its_rod_with_m_g_over_cos_theta() {
+    let theta = 0.3_f64;
+    let mut w = world(Method::Rk4);
+    w.set_contact_settings(ContactSettings::new(0.0, 0.0))
+        .unwrap();
+    let bob = w.add_body(disc_at("bob", theta)).unwrap();
+    let centre = w.states()[bob].position;
+    // The wall's right face touches the disc's leftmost point.
+    w.add_body(BodyDef::fixed(
+        "wall",
+        Vector2::new(centre.x - 0.1 - 0.2, centre.y),
+        Some(Shape::rectangle(0.4, 1.0).unwrap()),
+    ))
+    .unwrap();
+    w.add_joint(JointDef::distance(
+        "rod",
+        (None, Vector2::zeros()),
+        (Some(bob), centre),
+        Distance::default(),
+    ))
+    .unwrap();
+    w.run(1.0, H).unwrap();
+    let end = w.states()[bob];
+    assert!((end.position - centre).norm() < 1e-12, "{end:?}");
+    let rod = w.joint(0).unwrap().force;
+    let expected = -G / theta.cos() * centre / centre.norm();
+    assert!(
+        (rod - expected).norm() < 1e-9,
+        "rod {rod:?}, expected {expected:?}"
+    );
+    // The wall's push is what the rod and the weight leave: m g tan θ.
+    let wall = -(rod + Vector2::new(0.0, -G));
+    assert!(
+        (wall - Vector2::new(G * theta.tan(), 0.0)).norm() < 1e-9,
+        "wall {wall:?}"
+    );
+}

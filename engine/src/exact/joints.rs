@@ -684,6 +684,22 @@ impl ExactJoints {
         states: &[BodyState],
         accel: &mut [f64],
     ) {
+        self.constrain(bodies, layout, states, accel);
+        self.last_lambda.clone_from(&self.lambda);
+    }
+
+    /// The force laws' accelerations added to `accel` (positions long,
+    /// a₀ = M⁻¹ f on entry), then the constraint forces' (J M⁻¹ Jᵀ) λ =
+    /// −(J a₀ + γ): [`Self::accelerate`] without recording λ. The resting
+    /// contacts read it to see the accelerations the joints leave their
+    /// points (`crate::contact::resting`).
+    pub(crate) fn constrain(
+        &mut self,
+        bodies: &[Body],
+        layout: &Layout,
+        states: &[BodyState],
+        accel: &mut [f64],
+    ) {
         joint_forces::apply(
             &self.set,
             (bodies, layout, states),
@@ -700,7 +716,6 @@ impl ExactJoints {
         }
         self.solve(n);
         self.apply(n, accel);
-        self.last_lambda.clone_from(&self.lambda);
     }
 
     /// The constrained mobility at `states`: each of the `columns.len() / n`

@@ -199,6 +199,8 @@ impl ExactModel {
         self.resting.friction = self.settings.friction;
         self.resting.tolerance = self.settings.tolerance;
         self.joints.invalidate();
+        // The contact search asks the joints about every body's pairs.
+        self.joints.set.know_bodies(bodies.len());
         self.stale = false;
     }
 

@@ -163,7 +163,9 @@ impl OdeSystem for WorldOde<'_> {
             f.force.apply(&ctx, self.wrenches);
         }
         if let Some(contacts) = self.contacts.as_deref_mut() {
-            contacts.apply(self.bodies, self.states, self.wrenches);
+            // With joints, the contact forces are solved with them.
+            let joints = self.joints.as_deref_mut().map(|j| (j, self.layout));
+            contacts.apply(self.bodies, self.states, self.wrenches, joints);
         }
         dydt[..n].copy_from_slice(&y[n..]);
         for ((slot, body), w) in self

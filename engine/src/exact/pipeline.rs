@@ -4,7 +4,10 @@
 //!
 //! **Settle** (the response, seed §7.2 "calculer l'état après la
 //! collision"), at a time t where the world stands still:
-//! 1. broad phase: bounding boxes grown by ε, sort-and-sweep;
+//! 1. broad phase: bounding boxes grown by ε, sort-and-sweep; a pair of
+//!    bodies a joint keeps apart (`collide_connected` off, the default:
+//!    the soft step's filter, Box2D's `b2ShouldShapesCollide`) is skipped
+//!    here and in the search of the first event;
 //! 2. narrow phase: the manifold of every candidate pair within ε, with the
 //!    features it is made of;
 //! 3. projection: a pair overlapping by more than [`PROJECTION_SLOP`] ε is
@@ -63,6 +66,7 @@ use crate::contact::solver::{MAX_CONTACT_ROWS, solve};
 use crate::contact::{ContactEvent, ContactEventKind};
 use crate::error::{EngineError, Result};
 use crate::profile::{Phase, Profiler};
+use crate::soft_step::joints::JointSet;
 use nalgebra::Vector2;
 
 /// Read from `engine/src/tunables.rs` (unit, value and source there).
@@ -165,12 +169,16 @@ impl ContactPipeline {
     /// Candidate pairs `(a < b)`, at least one dynamic, whose boxes at
     /// `states` grown by `margin` overlap; with `swept = Some((start, h))`
     /// the boxes cover the whole motion from `start` over a step of `h`.
+    /// A pair that a live joint of `joints` keeps apart (its
+    /// `collide_connected` off, Box2D's default) is no candidate: the
+    /// soft step's pair filter, [`JointSet::keeps_apart`].
     pub(super) fn candidates(
         &mut self,
         bodies: &[Body],
         states: &[BodyState],
         margin: f64,
         swept: Option<(&[BodyState], f64)>,
+        joints: Option<&JointSet>,
         profiler: &mut Profiler,
     ) -> Vec<(usize, usize)> {
         let started = profiler.start();
@@ -202,6 +210,7 @@ impl ContactPipeline {
             .into_iter()
             .map(|(i, j)| (collidable[i], collidable[j]))
             .filter(|&(a, b)| bodies[a].is_dynamic() || bodies[b].is_dynamic())
+            .filter(|&(a, b)| !joints.is_some_and(|j| j.keeps_apart(a, b)))
             .collect();
         profiler.profile.candidate_pairs += pairs.len() as u64;
         pairs
@@ -222,7 +231,7 @@ impl ContactPipeline {
         let layout = sys.layout;
         layout.unpack(y, sys.states);
         let eps = self.settings.tolerance;
-        let mut found = self.touching(bodies, sys.states, profiler);
+        let mut found = self.touching(bodies, sys.states, joint_set(sys), profiler);
         // Pairs that sank by more than the slop are pushed apart first, as
         // often as it takes (the projection is linearised: deep overlaps,
         // bodies created inside each other, need a few passes), then the
@@ -242,7 +251,7 @@ impl ContactPipeline {
                 break;
             }
             moved = true;
-            found = self.touching(bodies, sys.states, profiler);
+            found = self.touching(bodies, sys.states, joint_set(sys), profiler);
         }
         let started = profiler.start();
         let resting = sys
@@ -258,15 +267,16 @@ impl ContactPipeline {
     }
 
     /// The manifolds (with their features) of the pairs within ε at
-    /// `states`.
+    /// `states` (none between bodies `joints` keeps apart).
     fn touching(
         &mut self,
         bodies: &[Body],
         states: &[BodyState],
+        joints: Option<&JointSet>,
         profiler: &mut Profiler,
     ) -> Vec<Found> {
         let eps = self.settings.tolerance;
-        let pairs = self.candidates(bodies, states, eps, None, profiler);
+        let pairs = self.candidates(bodies, states, eps, None, joints, profiler);
         let started = profiler.start();
         let mut found: Vec<Found> = Vec::new();
         for (a, b) in pairs {
@@ -388,15 +398,18 @@ impl ContactPipeline {
                 .extend(rows.iter().map(|r| r.velocity(&self.views) - r.target));
             match joints.as_deref_mut() {
                 // The joints held through the impact: K = J_c P W_cᵀ.
-                Some(j) => constrained::effective_mass(
-                    j,
-                    bodies,
-                    layout,
-                    states,
-                    &rows,
-                    &mut self.k,
-                    &mut self.columns,
-                ),
+                Some(j) => {
+                    constrained::effective_mass(
+                        j,
+                        bodies,
+                        layout,
+                        states,
+                        &rows,
+                        &mut self.k,
+                        &mut self.columns,
+                    );
+                    constrained::drop_locked(&rows, &self.views, &mut self.k, &mut self.b);
+                }
                 None => effective_mass(&rows, &self.views, &mut self.k),
             }
             solve(&rows, &self.k, &self.b, &mut lambda);
@@ -752,6 +765,12 @@ impl ContactPipeline {
         }
         Ok(moved)
     }
+}
+
+/// The joints of `sys` whose `collide_connected` the contact search reads
+/// (`None` without joints).
+pub(super) fn joint_set<'s>(sys: &'s WorldOde<'_>) -> Option<&'s JointSet> {
+    sys.joints.as_deref().map(|j| &j.set)
 }
 
 /// Refuses a contact problem of `rows` rows (over `pairs` touching pairs)

@@ -9,7 +9,7 @@
 //! length, so the event lies on the method's solution.
 
 use super::ode::WorldOde;
-use super::pipeline::{ContactPipeline, PROJECTION_SLOP};
+use super::pipeline::{ContactPipeline, PROJECTION_SLOP, joint_set};
 use crate::body::{Body, BodyState};
 use crate::collision::narrow_phase::{inner_radius, rotation_radius};
 use crate::collision::proximity;
@@ -54,7 +54,7 @@ impl ContactPipeline {
         let method = self.settings.toi_method;
         let ca = method == ToiMethod::ConservativeAdvancement;
         let swept = (method != ToiMethod::Bisection).then_some((states_a.as_slice(), h));
-        let pairs = self.candidates(bodies, &states_b, eps, swept, profiler);
+        let pairs = self.candidates(bodies, &states_b, eps, swept, joint_set(sys), profiler);
         // The earliest event so far: a search that can only end later is
         // abandoned (its bracket's early end passed it), so when several
         // pairs meet in one step the searches after the first are short.

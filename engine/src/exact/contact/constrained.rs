@@ -30,12 +30,17 @@
 //! where the free solve would take 1/m + (r × n)²/I_cm.
 //! The joints' own impulse μ (the pivot's reaction) is implied; it is
 //! never needed.
+//!
+//! Resting contacts on jointed bodies use the same K at the acceleration
+//! level ([`super::resting`], "On jointed bodies"), with the free
+//! accelerations the joints leave ([`accelerations`]).
 
 use super::rows::{BodyView, Row};
 use crate::body::{Body, BodyState};
 use crate::exact::joints::ExactJoints;
 use crate::exact::ode::Layout;
 use crate::shape::cross;
+use crate::tunables::REDUNDANT_PIVOT;
 use nalgebra::Vector2;
 
 /// Adds row `row`'s generalised column along `direction` (its measure u
@@ -95,6 +100,59 @@ pub(crate) fn effective_mass(
         for c in 0..m {
             let pw = &scratch[c * n..(c + 1) * n];
             k[i * m + c] = j.iter().zip(pw).map(|(a, b)| a * b).sum();
+        }
+    }
+}
+
+/// Zeroes the rows and columns of K (and b) of the rows along which the
+/// joints allow no motion: their constrained K_ii below
+/// [`REDUNDANT_PIVOT`] of the free J M⁻¹ Wᵀ diagonal (a slider's contact
+/// across its rail). Their λ stays 0 (the joints carry the load), where
+/// the solver would divide a round-off residual by a round-off mass.
+pub(crate) fn drop_locked(rows: &[Row], views: &[BodyView], k: &mut [f64], b: &mut [f64]) {
+    let m = rows.len();
+    for (i, row) in rows.iter().enumerate() {
+        let free = row.coupling(row, views);
+        if k[i * m + i] > REDUNDANT_PIVOT * free.abs() {
+            continue;
+        }
+        for c in 0..m {
+            k[i * m + c] = 0.0;
+            k[c * m + i] = 0.0;
+        }
+        b[i] = 0.0;
+    }
+}
+
+/// The accelerations the joints leave the bodies, a_j = a₀ + M⁻¹ J_jᵀ λ₀
+/// with (J_j M⁻¹ J_jᵀ) λ₀ = −(J_j a₀ + γ_j) (the joints' force laws in
+/// a₀ too): `accelerations` (per body, linear m/s² and angular rad/s²)
+/// holds a₀ on entry and a_j on exit; `scratch` is the generalised
+/// vector.
+pub(crate) fn accelerations(
+    joints: &mut ExactJoints,
+    bodies: &[Body],
+    layout: &Layout,
+    states: &[BodyState],
+    scratch: &mut Vec<f64>,
+    accelerations: &mut [(Vector2<f64>, f64)],
+) {
+    scratch.clear();
+    scratch.resize(layout.positions, 0.0);
+    for (slot, (a, alpha)) in layout.slots.iter().zip(accelerations.iter()) {
+        let Some(slot) = slot else { continue };
+        scratch[slot.offset] = a.x;
+        scratch[slot.offset + 1] = a.y;
+        if slot.rotates {
+            scratch[slot.offset + 2] = *alpha;
+        }
+    }
+    joints.constrain(bodies, layout, states, scratch);
+    for (slot, (a, alpha)) in layout.slots.iter().zip(accelerations.iter_mut()) {
+        let Some(slot) = slot else { continue };
+        *a = Vector2::new(scratch[slot.offset], scratch[slot.offset + 1]);
+        if slot.rotates {
+            *alpha = scratch[slot.offset + 2];
         }
     }
 }

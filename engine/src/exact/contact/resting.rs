@@ -35,6 +35,25 @@
 //! left out, and the drift it may cause is caught between steps (the pair is
 //! re-classified at every settle).
 //!
+//! # On jointed bodies
+//!
+//! With joints (`crate::exact::joints`), the contact forces are solved
+//! with the joints, as the impacts are (module `constrained`): a body's
+//! acceleration is a = a₀ + M⁻¹ (W_cᵀ λ_c + J_jᵀ λ_j) with J_j a + γ_j =
+//! 0, so that, a_j = a₀ + M⁻¹ J_jᵀ λ_j0 being the accelerations the
+//! joints alone leave ((J_j M⁻¹ J_jᵀ) λ_j0 = −(J_j a₀ + γ_j)),
+//!
+//! a = a_j + P W_cᵀ λ_c,   P = M⁻¹ − M⁻¹ J_jᵀ (J_j M⁻¹ J_jᵀ)⁻¹ J_j M⁻¹.
+//!
+//! The complementarity problem keeps its form with b read from a_j and
+//! K = J_c P W_cᵀ; the joints' forces then follow from the contact
+//! forces (the right-hand side solves them with a₀ + M⁻¹ W_cᵀ λ_c). A
+//! row along which the joints allow no motion (K_ii below
+//! [`crate::tunables::REDUNDANT_PIVOT`] of its free value) gets no force:
+//! the joints carry that load. A pinned rod resting on a support at s
+//! from the pin is held by N = m g x_c / s, its pin by the rest of its
+//! weight (`engine/tests/exact_joints.rs`).
+//!
 //! Limits: with a large μ the kinetic friction riding on the normal force
 //! can make the problem inconsistent (Painlevé's paradox: the effective
 //! mass of a row turns ≤ 0); the solver then skips that row and returns its
@@ -43,12 +62,15 @@
 //! `Slip` event recorded, at the end of the first piece of step over which
 //! it slid.
 
+use super::constrained;
 use super::persistent::{FollowedPoint, follow};
 use super::rows::{BodyView, Row, RowKind, Side, effective_mass, perp};
 use super::solver::solve;
 use crate::body::{Body, BodyState};
 use crate::collision::Manifold;
 use crate::collision::features::{ContactFeatures, collide_with_features};
+use crate::exact::joints::ExactJoints;
+use crate::exact::ode::Layout;
 use crate::forces::Wrench;
 use nalgebra::{Isometry2, Vector2};
 
@@ -224,6 +246,9 @@ pub(crate) struct Scratch {
     pub lambda: Vec<f64>,
     pub accelerations: Vec<(Vector2<f64>, f64)>,
     pub out: Vec<(Vector2<f64>, f64)>,
+    /// Generalised vectors (the layout's positions long, or the columns
+    /// P W_cᵀ) of the solve on jointed bodies.
+    pub generalized: Vec<f64>,
 }
 
 /// The resting pairs of a world and what their forces need: the contact
@@ -241,8 +266,16 @@ pub(crate) struct RestingContacts {
 
 impl RestingContacts {
     /// Contact forces for the resting pairs at `states`, given the applied
-    /// `wrenches`; added to `wrenches`.
-    pub(crate) fn apply(&mut self, bodies: &[Body], states: &[BodyState], wrenches: &mut [Wrench]) {
+    /// `wrenches`; added to `wrenches`. With `joints` (and the state's
+    /// layout) the forces are solved in the joints' constrained space
+    /// (module docs, "On jointed bodies").
+    pub(crate) fn apply(
+        &mut self,
+        bodies: &[Body],
+        states: &[BodyState],
+        wrenches: &mut [Wrench],
+        mut joints: Option<(&mut ExactJoints, &Layout)>,
+    ) {
         if self.pairs.is_empty() {
             return;
         }
@@ -274,7 +307,21 @@ impl RestingContacts {
         if manifolds.is_empty() {
             return;
         }
-        let keys: Vec<(usize, usize)> = manifolds.iter().map(|m| (m.0, m.1)).collect();
+        let mut keys: Vec<(usize, usize)> = manifolds.iter().map(|m| (m.0, m.1)).collect();
+        if let Some((j, layout)) = joints.as_mut() {
+            // The accelerations the joints leave the bodies (a₀ + M⁻¹ J_jᵀ
+            // λ₀), which the rows' free accelerations b read; jointed
+            // bodies share an island.
+            constrained::accelerations(
+                j,
+                bodies,
+                layout,
+                states,
+                &mut s.generalized,
+                &mut s.accelerations,
+            );
+            keys.extend(constrained::joint_pairs(j));
+        }
         let island = islands(&s.views, &keys);
         let mut order: Vec<usize> = (0..manifolds.len()).collect();
         order.sort_by_key(|&i| island[i]);
@@ -313,7 +360,22 @@ impl RestingContacts {
                     .zip(&s.corrections)
                     .map(|(r, c)| r.acceleration(&s.views, &s.accelerations) + c),
             );
-            effective_mass(&s.rows, &s.views, &mut s.k);
+            match joints.as_mut() {
+                // K = J_c P W_cᵀ: the contact rows' mass with the joints held.
+                Some((j, layout)) => {
+                    constrained::effective_mass(
+                        j,
+                        bodies,
+                        layout,
+                        states,
+                        &s.rows,
+                        &mut s.k,
+                        &mut s.generalized,
+                    );
+                    constrained::drop_locked(&s.rows, &s.views, &mut s.k, &mut s.b);
+                }
+                None => effective_mass(&s.rows, &s.views, &mut s.k),
+            }
             solve(&s.rows, &s.k, &s.b, &mut s.lambda);
             for (row, &l) in s.rows.iter().zip(&s.lambda) {
                 if l != 0.0 {
