@@ -26,6 +26,11 @@ pub enum EngineError {
         /// What is wrong with it.
         reason: &'static str,
     },
+    /// An outline that is not a simple counter-clockwise polygon, given
+    /// to [`crate::Shape::simple_polygon`] or
+    /// [`crate::shape::decompose::convex_parts`].
+    #[error("invalid polygon outline: {0}")]
+    InvalidOutline(#[from] crate::shape::decompose::OutlineError),
     /// A force or event refers to a body that is not in the world.
     #[error("unknown body index {index} (the world has {count} bodies)")]
     UnknownBody {

@@ -6,6 +6,8 @@
 //! the geometry. When a shape is attached to a body, the body's position is
 //! its centre of mass: a polygon is re-centred on its centroid.
 
+pub mod decompose;
+
 use crate::error::{EngineError, Result, require_positive};
 use crate::material::ShapeOverrides;
 use nalgebra::Vector2;
@@ -28,6 +30,34 @@ pub fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
 /// too small. A turn within this bound has no trustworthy sign: the three
 /// vertices are collinear as far as f64 can tell.
 const TURN_ROUNDING: f64 = 4.0 * f64::EPSILON;
+
+/// Which way a path `a → b → c` turns at `b`, as far as f64 can tell.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Turn {
+    /// Counter-clockwise: `c` is strictly left of the line `a → b`.
+    Left,
+    /// Clockwise: `c` is strictly right of it.
+    Right,
+    /// Within the rounding of [`TURN_ROUNDING`]: the three points are
+    /// collinear as far as f64 can tell.
+    Straight,
+}
+
+/// The turn of `a → b → c` at `b`: the sign of `(b − a) × (c − b)`, or
+/// [`Turn::Straight`] when that cross product is within its rounding bound.
+/// Exact points of comparable magnitude (see [`rescaled`]) are assumed.
+pub(crate) fn turn(a: Vector2<f64>, b: Vector2<f64>, c: Vector2<f64>) -> Turn {
+    let (e1, e2) = (b - a, c - b);
+    let value = cross(e1, e2);
+    let rounding = TURN_ROUNDING * ((e1.x * e2.y).abs() + (e1.y * e2.x).abs());
+    if value.abs() <= rounding {
+        Turn::Straight
+    } else if value > 0.0 {
+        Turn::Left
+    } else {
+        Turn::Right
+    }
+}
 
 /// A convex polygon, counter-clockwise, in its body's frame (m).
 #[derive(Debug, Clone, PartialEq)]
@@ -73,16 +103,14 @@ impl ConvexPolygon {
         for i in 0..n {
             let prev = vertices[(i + n - 1) % n];
             let next = vertices[(i + 1) % n];
-            let (e1, e2) = (vertices[i] - prev, next - vertices[i]);
-            let turn = cross(e1, e2);
-            let rounding = TURN_ROUNDING * ((e1.x * e2.y).abs() + (e1.y * e2.x).abs());
-            if turn.abs() <= rounding {
+            let turn = turn(prev, vertices[i], next);
+            if turn == Turn::Straight {
                 return Err(EngineError::InvalidPolygon {
                     vertex: i,
                     reason: "collinear vertex",
                 });
             }
-            if turn < 0.0 {
+            if turn == Turn::Right {
                 return Err(EngineError::InvalidPolygon {
                     vertex: i,
                     reason: if signed_area < 0.0 {
@@ -226,7 +254,7 @@ impl ConvexPolygon {
 /// coordinates some 2^1000 times smaller than the largest, far below any
 /// turn's rounding), and it keeps the products of the convexity test from
 /// overflowing (coordinates of ±1e300) or underflowing (±1e-300).
-fn rescaled(vertices: &[Vector2<f64>]) -> Vec<Vector2<f64>> {
+pub(crate) fn rescaled(vertices: &[Vector2<f64>]) -> Vec<Vector2<f64>> {
     let largest = vertices
         .iter()
         .map(|v| v.x.abs().max(v.y.abs()))

@@ -399,6 +399,9 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     };
     println!("{header}");
     println!("{}", run_text::model_line(&world, dt));
+    if let Some(line) = run_text::outlines_line(scene.file()) {
+        println!("{line}");
+    }
     for warning in warnings::before_run(&scene, dt, args.dt.is_some(), until) {
         eprintln!("{warning}");
     }

@@ -86,17 +86,17 @@ fn an_unknown_field_is_named_with_its_line() {
 }
 
 #[test]
-fn a_non_convex_polygon_names_the_body_and_the_vertex() {
+fn a_self_intersecting_polygon_names_the_body_and_the_edges() {
     let scene = format!(
-        "{HEAD}mass = 1.0\nshape = {{ type = \"polygon\", vertices = [[0, 0], [2, 0], [1, 0.5], [2, 2], [0, 2]] }}\n"
+        "{HEAD}mass = 1.0\nshape = {{ type = \"polygon\", vertices = [[0, 0], [2, 0], [0, 2], [2, 2]] }}\n"
     );
     refused(
         &scene,
         &[
             "scene.toml:8:",
-            "bodies[0].shape.vertices[2]",
+            "bodies[0].shape.vertices[1]",
             "'plate'",
-            "not convex at vertex 2",
+            "self-intersecting outline: edge 1 crosses or touches edge 3 at vertex 1",
         ],
     );
 }

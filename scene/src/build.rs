@@ -8,8 +8,9 @@
 //! 1. `[simulation]`: a known method id, dt > 0, duration > 0, at most
 //!    [`engine::MAX_RUN_STEPS`] steps, tolerance > 0;
 //! 2. `[[bodies]]`: unique names, mass xor density (> 0), inertia > 0,
-//!    shapes (boxes and circles > 0, polygons convex and counter-clockwise,
-//!    checked by [`ConvexPolygon::new`]), static bodies without mass or
+//!    shapes (boxes and circles > 0, polygons simple and counter-clockwise,
+//!    checked and cut into convex parts by [`Shape::simple_polygon`],
+//!    compounds of such parts), static bodies without mass or
 //!    velocity, particles without rotation, colours `#rrggbb`;
 //! 3. `[[forces]]` and `[[events]]`: every body name defined, parameters in
 //!    their domain, windows with `end > start`, no force on static bodies
@@ -23,15 +24,15 @@ use crate::colour::Colour;
 use crate::error::{ErrorKind, FieldPath, Problem};
 use crate::format::{
     BodyKindSpec, BodySpec, ContactModelSpec, ContactSpec, DEFAULT_METHOD, DEFAULT_TOLERANCE,
-    FilterSpec, LinearTestSpec, MixingSpec, SceneFile, ShapeSpec, ToiMethodSpec, Window, Xy,
+    FilterSpec, LinearTestSpec, MixingSpec, PartSpec, SceneFile, ShapeSpec, ToiMethodSpec, Window,
+    Xy,
 };
 use crate::linear_test::LinearTest;
 use engine::error::readable;
 use engine::forces::{AngularDrag, Gravity, PointForce, QuadraticDrag, Spring, TimeWindow, Torque};
 use engine::{
-    BodyDef, BodyKind, BodyState, Circle, Compound, ContactModel, ContactSettings, ConvexPolygon,
-    EngineError, EventSpec, Force, MAX_RUN_STEPS, Method, Shape, SoftStepSettings, ToiMethod,
-    Tolerance, World,
+    BodyDef, BodyKind, BodyState, Circle, Compound, CompoundPart, ContactModel, ContactSettings,
+    EventSpec, Force, MAX_RUN_STEPS, Method, Shape, SoftStepSettings, ToiMethod, Tolerance, World,
 };
 use nalgebra::Vector2;
 
@@ -886,6 +887,7 @@ fn derived_in_range(path: &FieldPath, spec: &BodySpec, body: &engine::Body) -> C
         Some(ShapeSpec::Box { .. }) => path.key("shape").key("width"),
         Some(ShapeSpec::Polygon { .. }) => path.key("shape").key("vertices"),
         Some(ShapeSpec::HollowBox { .. }) => path.key("shape").key("wall"),
+        Some(ShapeSpec::Compound { .. }) => path.key("shape").key("parts"),
         None => path.key("inertia"),
     };
     let name = &spec.name;
@@ -1070,30 +1072,72 @@ fn shape(path: &FieldPath, spec: &ShapeSpec, body: &str) -> Checked<Shape> {
                 .enumerate()
                 .map(|(i, v)| xy(&vpath.index(i), v))
                 .collect::<Checked<Vec<_>>>()?;
-            let n = points.len();
-            match ConvexPolygon::new(points) {
-                Ok(p) => Ok(Shape::Polygon(p)),
-                Err(EngineError::InvalidPolygon { vertex, reason }) if vertex < n => {
+            Shape::simple_polygon(&points).map_err(|e| match e.vertex() {
+                Some(vertex) if vertex < vertices.len() => {
                     let v = vertices[vertex];
-                    Err(Problem::new(
+                    Problem::new(
                         &vpath.index(vertex),
                         ErrorKind::InvalidPolygon,
                         format!(
-                            "polygon of body '{body}': {reason} at vertex {vertex} [{}, {}]",
+                            "polygon of body '{body}': {e} [{}, {}]",
                             readable(v.x),
                             readable(v.y)
                         ),
-                    ))
+                    )
                 }
-                Err(EngineError::InvalidPolygon { reason, .. }) => Err(Problem::new(
+                _ => Problem::new(
                     &vpath,
                     ErrorKind::InvalidPolygon,
-                    format!("polygon of body '{body}' has {n} vertices: {reason}"),
-                )),
-                Err(e) => Err(Problem::engine(&vpath, e)),
-            }
+                    format!(
+                        "polygon of body '{body}' has {} vertices: {e}",
+                        vertices.len()
+                    ),
+                ),
+            })
+        }
+        ShapeSpec::Compound { parts } => compound(&path.key("parts"), parts, body),
+    }
+}
+
+/// A `compound` shape: each part built as a shape of its own, then placed;
+/// a part that is itself several shapes (a concave polygon, a hollow box)
+/// adds each of them, placed through both placements.
+fn compound(path: &FieldPath, parts: &[PartSpec], body: &str) -> Checked<Shape> {
+    if parts.is_empty() {
+        return Err(Problem::new(
+            path,
+            ErrorKind::InvalidValue,
+            format!("compound shape of body '{body}' needs at least one part"),
+        ));
+    }
+    let mut placed = Vec::new();
+    for (i, part) in parts.iter().enumerate() {
+        let ppath = path.index(i);
+        if let ShapeSpec::Compound { .. } = part.shape {
+            return Err(Problem::new(
+                &ppath.key("shape").key("type"),
+                ErrorKind::InvalidValue,
+                format!(
+                    "part {i} of the compound shape of body '{body}' is a compound: list its parts in this one"
+                ),
+            ));
+        }
+        let offset = xy(&ppath.key("offset"), &part.offset)?;
+        let angle = finite(&ppath.key("angle"), part.angle)?;
+        let turn = nalgebra::UnitComplex::new(angle);
+        for (inner_offset, inner_angle, piece) in
+            shape(&ppath.key("shape"), &part.shape, body)?.pieces()
+        {
+            placed.push(CompoundPart::new(
+                offset + turn * inner_offset,
+                angle + inner_angle,
+                piece.clone(),
+            ));
         }
     }
+    Compound::new(placed)
+        .map(Shape::Compound)
+        .map_err(|e| Problem::engine(path, e))
 }
 
 /// The body's colour: its own, else grey for a static body, else the

@@ -44,7 +44,8 @@ pub enum ErrorKind {
     /// A number or combination out of its domain (mass ≤ 0, dt ≤ 0, a window
     /// that ends before it starts, both `mass` and `density`, ...).
     InvalidValue,
-    /// A polygon that is not convex, is clockwise, or is degenerate.
+    /// A polygon outline that is not simple (edges crossing or touching, a
+    /// point twice), is clockwise, or is degenerate.
     InvalidPolygon,
     /// A force or event names a body that the file does not define.
     UnknownBody,

@@ -194,9 +194,13 @@ pub enum ShapeSpec {
         /// Extent along the body's y axis (m), > 0.
         height: f64,
     },
-    /// `{ type = "polygon", vertices = [[x, y], ...] }`: a convex polygon,
-    /// at least 3 vertices, counter-clockwise (m). The engine re-centres it
-    /// on its centroid, so `position` is the centre of mass.
+    /// `{ type = "polygon", vertices = [[x, y], ...] }`: a simple polygon,
+    /// at least 3 vertices, counter-clockwise (m), no edges crossing or
+    /// touching, no point twice, no vertex on the line through its
+    /// neighbours. A convex one is one shape; a concave one is cut into
+    /// convex parts ([`engine::shape::decompose`]): one rigid body of
+    /// several shapes, soft-step contact model only. The engine re-centres
+    /// it on its centroid, so `position` is the centre of mass.
     Polygon {
         /// Vertices counter-clockwise (m).
         vertices: Vec<Xy>,
@@ -218,6 +222,31 @@ pub enum ShapeSpec {
         /// Wall thickness (m), > 0.
         wall: f64,
     },
+    /// `{ type = "compound", parts = [{ shape = {...}, offset = [x, y],
+    /// angle = a }, ...] }`: one rigid body of several shapes placed in
+    /// its frame, of uniform density; soft-step contact model only. The
+    /// engine re-centres it on its centroid.
+    Compound {
+        /// The parts, at least one.
+        parts: Vec<PartSpec>,
+    },
+}
+
+/// One part of a `compound` shape.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PartSpec {
+    /// The part in its own frame: a box, circle, polygon (a concave one
+    /// adds each of its convex parts) or hollow_box (its four walls); not
+    /// a compound.
+    pub shape: ShapeSpec,
+    /// Where the part's origin sits in the body frame (m). Default `[0, 0]`.
+    #[serde(default)]
+    pub offset: Xy,
+    /// The part's orientation in the body frame (rad), counter-clockwise.
+    /// Default 0.
+    #[serde(default)]
+    pub angle: f64,
 }
 
 /// `[[forces]]`: a force generator, tagged by `type`. Every force takes an

@@ -51,7 +51,7 @@
 //! [[bodies]]
 //! name = "wedge"
 //! density = 2.0           # kg/m²: mass = 2 × area
-//! shape = { type = "polygon", vertices = [[0, 0], [1, 0], [0, 1]] }  # CCW, convex
+//! shape = { type = "polygon", vertices = [[0, 0], [1, 0], [0, 1]] }  # CCW, simple
 //! position = [5.0, 1.0]
 //!
 //! [[bodies]]
@@ -161,6 +161,7 @@ mod joints;
 mod linear_test;
 mod load;
 mod location;
+pub mod outlines;
 mod ragdoll;
 mod read;
 

@@ -110,19 +110,77 @@ fn a_vector_must_have_exactly_two_numbers() {
 }
 
 #[test]
-fn non_convex_polygon_names_the_body_and_the_vertex() {
+fn self_intersecting_polygon_names_the_body_and_the_edge() {
+    // A bow tie: edge 0, (0, 0) to (2, 2), crosses edge 2, (2, 0) to (0, 2).
     let e = error(&body(
-        "mass = 1.0\nshape = { type = \"polygon\", vertices = [\n  [0, 0],\n  [2, 0],\n  [1, 0.5],\n  [2, 2],\n  [0, 2],\n] }\n",
+        "mass = 1.0\nshape = { type = \"polygon\", vertices = [\n  [0, 0],\n  [2, 2],\n  [2, 0],\n  [0, 2],\n] }\n",
     ));
     check(
         &e,
         ErrorKind::InvalidPolygon,
-        Some("bodies[0].shape.vertices[2]"),
-        Some(11),
+        Some("bodies[0].shape.vertices[0]"),
+        Some(9),
     );
     assert!(e.message().contains("'box'"), "{e}");
-    assert!(e.message().contains("vertex 2"), "{e}");
-    assert!(e.message().contains("not convex"), "{e}");
+    assert!(e.message().contains("self-intersecting"), "{e}");
+    assert!(
+        e.message().contains("edge 0 crosses or touches edge 2"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_concave_polygon_is_cut_into_convex_parts() {
+    let scene = scene::Scene::parse_str(
+        "l.toml",
+        &body(
+            "density = 1.0\nshape = { type = \"polygon\", vertices = [[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]] }\n",
+        ),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let Some(engine::Shape::Compound(c)) = &scene.bodies()[0].shape else {
+        panic!("an L is a compound")
+    };
+    assert_eq!(c.parts().len(), 2);
+    // Area 3 m², density 1 kg/m².
+    let (built, _) = engine::Body::from_def(&scene.bodies()[0]).unwrap();
+    assert!((built.mass - 3.0).abs() < 1e-15, "{}", built.mass);
+}
+
+#[test]
+fn a_bad_compound_part_is_located() {
+    let e = error(&body(
+        "mass = 1.0\nshape = { type = \"compound\", parts = [\n  { shape = { type = \"box\", width = 1, height = 1 } },\n  { shape = { type = \"circle\", radius = -1 }, offset = [1, 0] },\n] }\n",
+    ));
+    check(
+        &e,
+        ErrorKind::InvalidValue,
+        Some("bodies[0].shape.parts[1].shape.radius"),
+        Some(10),
+    );
+    let e = error(&body(
+        "mass = 1.0\nshape = { type = \"compound\", parts = [\n  { shape = { type = \"compound\", parts = [] } },\n] }\n",
+    ));
+    assert_eq!(
+        e.field(),
+        Some("bodies[0].shape.parts[0].shape.type"),
+        "{e}"
+    );
+    assert!(e.message().contains("list its parts in this one"), "{e}");
+    let e = error(&body(
+        "mass = 1.0\nshape = { type = \"compound\", parts = [] }\n",
+    ));
+    assert_eq!(e.field(), Some("bodies[0].shape.parts"), "{e}");
+    let e = error(&body(
+        "mass = 1.0\nshape = { type = \"compound\", parts = [\n  { shape = { type = \"polygon\", vertices = [[0, 0], [1, 1], [1, 0], [0, 1]] }, angle = 0.5 },\n] }\n",
+    ));
+    assert!(
+        e.field()
+            .unwrap()
+            .starts_with("bodies[0].shape.parts[0].shape.vertices["),
+        "{e}"
+    );
+    assert_eq!(e.line(), Some(9));
 }
 
 #[test]

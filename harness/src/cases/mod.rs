@@ -58,6 +58,7 @@ registry! {
     projectile_drag,
     angular_drag,
     hoffman,
+    shape_mass,
     collision_parry,
     queries_parry,
     collision_toi,

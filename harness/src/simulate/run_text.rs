@@ -7,6 +7,36 @@ use super::fmt_short as short;
 use engine::{ContactModel, ToiMethod, World};
 use std::fmt::Write as _;
 
+/// `concave polygons: body 'l' (bodies[2].shape, 6 vertices) → 2 convex
+/// parts`: what the engine cut each concave outline of the file into
+/// (listed up to [`LISTED_OUTLINES`], then counted), or `None` if none.
+pub fn outlines_line(file: &scene::SceneFile) -> Option<String> {
+    let cuts = scene::outlines::cut_outlines(file);
+    if cuts.is_empty() {
+        return None;
+    }
+    let one = |c: &scene::outlines::CutOutline| {
+        format!(
+            "body '{}' ({}, {} vertices) → {} convex parts",
+            c.body, c.field, c.vertices, c.parts
+        )
+    };
+    let listed: Vec<String> = cuts.iter().take(LISTED_OUTLINES).map(one).collect();
+    let mut line = format!("concave polygons: {}", listed.join("; "));
+    if cuts.len() > LISTED_OUTLINES {
+        let parts: usize = cuts.iter().map(|c| c.parts).sum();
+        let _ = write!(
+            line,
+            "; … {} outlines cut into {parts} convex parts in all",
+            cuts.len()
+        );
+    }
+    Some(line)
+}
+
+/// Concave outlines listed one by one in [`outlines_line`].
+const LISTED_OUTLINES: usize = 3;
+
 /// Above this many bodies the final state is summarised (the CSV trace has
 /// every body).
 pub const LISTED_BODIES: usize = 12;
