@@ -4,7 +4,7 @@
 //!
 //! Why: the constraints of one colour are independent (solving one does not
 //! change the velocities another reads), so the wide solver
-//! ([`super::wide_solver`]) can solve four of them at once in lanes and get
+//! ([`super::wide_solver`]) can solve eight of them at once in lanes and get
 //! exactly what solving them one after the other would give. Projected
 //! Gauss–Seidel then runs colour after colour instead of contact after
 //! contact; that is another valid order of the same iteration.
@@ -53,8 +53,8 @@ pub(crate) enum Slot {
 /// its colour and its position in that colour; the colours' sizes.
 ///
 /// Colour `c` occupies the wide records from `first_record[c]` to
-/// `first_record[c + 1]` (excluded), its k-th constraint in lane k mod 4
-/// of record `first_record[c] + k / 4`: the records are colour after
+/// `first_record[c + 1]` (excluded), its k-th constraint in lane k mod 8
+/// of record `first_record[c] + k / 8`: the records are colour after
 /// colour, the solve order.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Colouring {

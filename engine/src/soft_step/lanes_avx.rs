@@ -19,8 +19,7 @@
 //! invariant every `unsafe` block here relies on. The type is private to
 //! the soft step.
 
-use super::bodies::SolverBody;
-use super::lanes::{F64x4, LANES, Lanes};
+use super::lanes::{F64x4, F64x8, LANES, Lanes, body_of, group_of};
 use super::wide_solver::{Bodies, FIXED};
 use std::arch::x86_64::{
     __m256d, _CMP_EQ_OQ, _CMP_GT_OQ, _mm256_add_pd, _mm256_blendv_pd, _mm256_cmp_pd, _mm256_div_pd,
@@ -45,11 +44,31 @@ pub(crate) struct Avx4(__m256d);
 #[derive(Clone, Copy)]
 pub(crate) struct AvxMask(__m256d);
 
-// `F64x4` is 32 bytes aligned to 32 (the `wide` crate's layout), so its
-// address is valid for an aligned 256-bit load or store.
+// `F64x8` is 64 bytes aligned to 64, two halves of four lanes: the
+// address of a half is valid for an aligned 256-bit load or store.
 const _: () = assert!(
-    std::mem::size_of::<F64x4>() == 32 && std::mem::align_of::<F64x4>() == 32 && LANES == 4
+    std::mem::size_of::<F64x8>() == 64 && std::mem::align_of::<F64x8>() == 64 && LANES == 8
 );
+
+impl Avx4 {
+    /// The lanes of `a`.
+    #[inline(always)]
+    pub(crate) fn from_array(a: [f64; 4]) -> Self {
+        // SAFETY: AVX is available (module invariant); `a` is 32 readable
+        // bytes (an unaligned load).
+        Avx4(unsafe { _mm256_loadu_pd(a.as_ptr()) })
+    }
+
+    /// The lanes as an array.
+    #[inline(always)]
+    pub(crate) fn to_array(self) -> [f64; 4] {
+        let mut a = [0.0; 4];
+        // SAFETY: AVX is available (module invariant); `a` is 32 writable
+        // bytes (an unaligned store).
+        unsafe { _mm256_storeu_pd(a.as_mut_ptr(), self.0) };
+        a
+    }
+}
 
 macro_rules! binary {
     ($trait:ident, $method:ident, $intrinsic:ident) => {
@@ -94,19 +113,20 @@ impl SubAssign for Avx4 {
 }
 
 impl Lanes for Avx4 {
+    const WIDTH: usize = 4;
     type Mask = AvxMask;
 
     #[inline(always)]
-    fn load(x: &F64x4) -> Self {
-        // SAFETY: AVX is available (module invariant); `x` is 32 readable
-        // bytes aligned to 32 (checked above).
-        Avx4(unsafe { _mm256_load_pd((x as *const F64x4).cast::<f64>()) })
+    fn load(x: &F64x8, group: usize) -> Self {
+        // SAFETY: AVX is available (module invariant); the half is 32
+        // readable bytes aligned to 32 (checked above).
+        Avx4(unsafe { _mm256_load_pd((x.half(group) as *const F64x4).cast::<f64>()) })
     }
 
     #[inline(always)]
-    fn store(self, x: &mut F64x4) {
+    fn store(self, x: &mut F64x8, group: usize) {
         // SAFETY: as `load`, for 32 writable bytes.
-        unsafe { _mm256_store_pd((x as *mut F64x4).cast::<f64>(), self.0) }
+        unsafe { _mm256_store_pd((x.half_mut(group) as *mut F64x4).cast::<f64>(), self.0) }
     }
 
     #[inline(always)]
@@ -116,19 +136,8 @@ impl Lanes for Avx4 {
     }
 
     #[inline(always)]
-    fn from_array(a: [f64; LANES]) -> Self {
-        // SAFETY: AVX is available (module invariant); `a` is 32 readable
-        // bytes (an unaligned load).
-        Avx4(unsafe { _mm256_loadu_pd(a.as_ptr()) })
-    }
-
-    #[inline(always)]
-    fn to_array(self) -> [f64; LANES] {
-        let mut a = [0.0; LANES];
-        // SAFETY: AVX is available (module invariant); `a` is 32 writable
-        // bytes (an unaligned store).
-        unsafe { _mm256_storeu_pd(a.as_mut_ptr(), self.0) };
-        a
+    fn map(self, f: impl Fn(f64) -> f64) -> Self {
+        Avx4::from_array(self.to_array().map(f))
     }
 
     #[inline(always)]
@@ -176,12 +185,13 @@ impl Lanes for Avx4 {
     /// Four aligned 32-byte loads and a 4 × 4 transpose (eight shuffles),
     /// instead of sixteen scalar loads and inserts.
     #[inline(always)]
-    fn gather_row(b: &[&SolverBody; LANES], row: usize) -> [Self; 4] {
+    fn gather_row(bodies: Bodies<'_>, index: &[u32; LANES], group: usize, row: usize) -> [Self; 4] {
         let load = |l: usize| -> __m256d {
+            let b = body_of(bodies, group_of(index, group)[l]);
             // SAFETY: AVX is available (module invariant); the row is 32
             // readable bytes of a `SolverBody`, aligned to 32 (its rows
             // start at 0 and 32 of a 64-aligned record).
-            unsafe { _mm256_load_pd(b[l].rows()[row].as_ptr()) }
+            unsafe { _mm256_load_pd(b.rows()[row].as_ptr()) }
         };
         transpose([load(0), load(1), load(2), load(3)]).map(Avx4)
     }
@@ -189,9 +199,9 @@ impl Lanes for Avx4 {
     /// The 4 × 4 transpose back to rows and four aligned 32-byte stores of
     /// `[v.x, v.y, ω, Δp.x]` (`Δp.x` as gathered: unchanged).
     #[inline(always)]
-    fn scatter_head(head: [Self; 4], bodies: Bodies<'_>, index: &[u32; LANES]) {
+    fn scatter_head(head: [Self; 4], bodies: Bodies<'_>, index: &[u32; LANES], group: usize) {
         let rows = transpose(head.map(|x| x.0));
-        for (l, &i) in index.iter().enumerate() {
+        for (l, &i) in group_of(index, group).iter().enumerate() {
             if i & FIXED != 0 {
                 continue;
             }
@@ -232,88 +242,10 @@ mod tests {
     #[test]
     fn avx_lanes_give_the_bits_of_the_sse2_lanes() {
         if !detected() {
-            return; // Nothing to compare on this CPU.
+            eprintln!("skipped: this CPU has no AVX, the AVX lanes cannot run");
+            return;
         }
-        let (x, y) = ([1.5, -2.0, 0.1, -0.0], [0.5, 4.0, 0.1, 0.0]);
-        let (a, b) = (F64x4::new(x), F64x4::new(y));
         // The CPU has AVX (checked above): Avx4 values may exist.
-        let (p, q) = (Avx4::from_array(x), Avx4::from_array(y));
-        let same = |avx: Avx4, sse: F64x4| {
-            let bits = |v: [f64; 4]| v.map(f64::to_bits);
-            assert_eq!(bits(avx.to_array()), bits(sse.to_array()));
-        };
-        same(p + q, a + b);
-        same(p - q, a - b);
-        same(p * q, a * b);
-        // Division by a divisor without zeros: 0/0's NaN has no defined
-        // sign bit (the CPU gives -NaN, a constant-folded one +NaN).
-        let z = [0.5, 4.0, 0.1, 2.0];
-        same(p / Avx4::from_array(z), a / F64x4::new(z));
-        same(-p, -a);
-        same(p.max(q), Lanes::max(a, b));
-        same(p.min(q), Lanes::min(a, b));
-        same(p.clamp(-q, q), a.clamp(-b, b));
-        same(Avx4::select(p.gt(q), p, q), F64x4::select(a.gt(b), a, b));
-        same(Avx4::select(p.eq(q), p, q), F64x4::select(a.eq(b), a, b));
-        assert_eq!(
-            Avx4::all(Avx4::or(p.gt(q), q.gt(p))),
-            F64x4::all(F64x4::or(a.gt(b), b.gt(a)))
-        );
-        let mut stored = F64x4::default();
-        Avx4::load(&a).store(&mut stored);
-        assert_eq!(stored, a);
-        same(Avx4::splat(3.0), Lanes::splat(3.0));
-        // The transposed gather and scatter of body records.
-        let mut bodies: Vec<SolverBody> = (0..5)
-            .map(|i| {
-                let f = |k: usize| (8 * i + k) as f64 - 0.5;
-                SolverBody {
-                    v: nalgebra::Vector2::new(f(0), f(1)),
-                    w: f(2),
-                    dp: nalgebra::Vector2::new(f(3), f(4)),
-                    dtheta: f(5),
-                    dq: [f(6), f(7)],
-                }
-            })
-            .collect();
-        let index = [3, 0, 4, 0];
-        let refs = index.map(|i| &bodies[i as usize]);
-        for row in 0..2 {
-            let (avx, sse) = (
-                Avx4::gather_row(&refs, row),
-                <F64x4 as Lanes>::gather_row(&refs, row),
-            );
-            for k in 0..4 {
-                same(avx[k], sse[k]);
-            }
-        }
-        // New velocities for bodies 3, 1, 4, 2, with their Δp.x as gathered.
-        let index = [3, 1, 4, 2];
-        let dpx = Avx4::gather_row(&index.map(|i| &bodies[i as usize]), 0)[3];
-        let lanes = |x: f64| [x, -x, 10.0 * x, -10.0 * x];
-        let head = [1.0, 2.0, 3.0].map(|x| Avx4::from_array(lanes(x)));
-        let sse_head = [1.0, 2.0, 3.0].map(|x| F64x4::new(lanes(x)));
-        let mut expected = bodies.clone();
-        <F64x4 as Lanes>::scatter_head(
-            [
-                sse_head[0],
-                sse_head[1],
-                sse_head[2],
-                F64x4::new(dpx.to_array()),
-            ],
-            Bodies::new(&mut expected),
-            &index,
-        );
-        Avx4::scatter_head(
-            [head[0], head[1], head[2], dpx],
-            Bodies::new(&mut bodies),
-            &index,
-        );
-        assert_eq!(bodies, expected);
-        // Body 4 is lane 2: v.x, v.y, ω = 10, 20, 30.
-        assert_eq!(
-            (bodies[4].v.x, bodies[4].v.y, bodies[4].w),
-            (10.0, 20.0, 30.0)
-        );
+        crate::soft_step::lanes::tests::lanes_give_the_bits_of_the_sse2_lanes::<Avx4>();
     }
 }

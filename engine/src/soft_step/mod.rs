@@ -20,7 +20,7 @@
 //!    coloured (`colouring.rs`: no two constraints of a colour share a
 //!    dynamic body) and each becomes a constraint (`contact_solver.rs`:
 //!    anchors, effective masses, inherited impulses, approach speed),
-//!    written into its lane of a four-lane record of its colour
+//!    written into its lane of an eight-lane record of its colour
 //!    (`wide_solver.rs`); the few that find no colour (the overflow) stay
 //!    scalar; each joint of an awake body gets its frame for the step
 //!    ([`joints`]);
@@ -31,8 +31,9 @@
 //!    x += h v, θ += h ω), **relax** (solve again without bias, with
 //!    friction); each solver pass runs the joints one at a time
 //!    ([`joints`]), the contact overflow one constraint at a time
-//!    (`contact_solver.rs`), then the records, colour after colour, four
-//!    constraints at a time (`wide_solver.rs`);
+//!    (`contact_solver.rs`), then the records, colour after colour, eight
+//!    constraints at a time (`wide_solver.rs`: eight lanes at once with
+//!    AVX-512, four and four with AVX or SSE2);
 //! 5. **restitution**: points that approached faster than the threshold
 //!    bounce with their restitution (overflow, then records);
 //! 6. **store**: impulses back into the contacts, states into the world;
@@ -76,6 +77,8 @@ pub mod joints;
 mod lanes;
 #[cfg(target_arch = "x86_64")]
 mod lanes_avx;
+#[cfg(target_arch = "x86_64")]
+mod lanes_avx512;
 mod manifold;
 mod parallel;
 mod pool;
@@ -99,11 +102,17 @@ pub use settings::SoftStepSettings;
 pub use softness::Softness;
 
 /// The lane arithmetic the wide solver passes take on this CPU, as the
-/// dispatch in `lanes.rs` chooses it at run time: "AVX (4 f64 lanes)" when
-/// the CPU has AVX, "SSE2 (4 f64 lanes)" otherwise on x86-64, the portable
-/// 4-lane type elsewhere. Every path gives the same bits; this says which
-/// one runs (for benchmark reports).
+/// dispatch in `lanes.rs` chooses it at run time: "AVX-512 (8 f64 lanes)"
+/// when the CPU has AVX-512F, "AVX (4 f64 lanes)" when it has AVX, "SSE2
+/// (4 f64 lanes)" otherwise on x86-64, the portable 4-lane type elsewhere
+/// (records of eight lanes in every case, visited four by four by the
+/// 4-lane types). Every path gives the same bits; this says which one runs
+/// (for benchmark reports).
 pub fn lanes_in_use() -> &'static str {
+    #[cfg(target_arch = "x86_64")]
+    if lanes_avx512::detected() {
+        return "AVX-512 (8 f64 lanes)";
+    }
     #[cfg(target_arch = "x86_64")]
     if lanes_avx::detected() {
         return "AVX (4 f64 lanes)";
@@ -160,7 +169,7 @@ pub struct SoftStep {
     bodies: Vec<SolverBody>,
     broad: BroadPhase,
     contacts: ContactSet,
-    /// The constraints of the step's colours, four per record, colour
+    /// The constraints of the step's colours, eight per record, colour
     /// after colour.
     #[cfg_attr(feature = "serde", serde(skip))]
     wide: Vec<WideConstraint>,

@@ -62,7 +62,7 @@ impl SoftStep {
     }
 
     /// Stage 3: a constraint per touching contact with an awake body,
-    /// coloured ([`super::colouring`]) and packed four by four for the wide
+    /// coloured ([`super::colouring`]) and packed eight by eight for the wide
     /// solver; those that found no colour stay scalar (the overflow).
     #[inline(never)]
     pub(super) fn prepare(&mut self, core: &mut WorldCore, h: f64, pool: Option<&Pool>) {

@@ -1,8 +1,9 @@
-//! The contact solver four constraints at a time (Box2D v3's SIMD path of
+//! The contact solver eight constraints at a time (Box2D v3's SIMD path of
 //! `contact_solver.c`, written anew for f64): the constraints of one colour
-//! ([`super::colouring`]) share no dynamic body, so four of them are packed
-//! side by side, one per lane of [`F64x4`], and every pass (warm start,
-//! solve, relax, restitution) runs on the four at once.
+//! ([`super::colouring`]) share no dynamic body, so eight of them are packed
+//! side by side, one per lane of [`F64x8`], and every pass (warm start,
+//! solve, relax, restitution) runs on them at once: the eight together
+//! with AVX-512, four and four with AVX or SSE2 ([`super::lanes`]).
 //!
 //! Each pass gathers the two bodies of each lane (velocities, motion since
 //! the step began), applies the scalar solver's formulas lane by lane, and
@@ -13,17 +14,17 @@
 //! other would give (tested below).
 //!
 //! Layout: what the passes read and write every substep is in
-//! [`WideConstraint`] (structure of arrays, 992 bytes per four constraints);
+//! [`WideConstraint`] (structure of arrays, 2304 bytes per eight constraints, checked below);
 //! what only restitution and the store read is in [`WideExtra`]. A
 //! constraint of one point has a second point with zero mass, and a colour
-//! whose size is not a multiple of four has padding lanes between the
+//! whose size is not a multiple of eight has padding lanes between the
 //! static dummy body and itself, with zero masses: both give zero impulses
 //! and change nothing.
 
 use super::bodies::SolverBody;
 use super::contact_solver::{ConstraintPoint, ContactConstraint};
 use super::contacts::Contact;
-use super::lanes::{F64x4, LANES, Lanes, dispatch};
+use super::lanes::{F64x8, LANES, Lanes, dispatch};
 use super::pool::SharedSlice;
 
 /// The solver records as the passes see them: shared by the threads of a
@@ -39,62 +40,65 @@ pub(crate) type Bodies<'a> = SharedSlice<'a, SolverBody>;
 /// those of writing back the unchanged value).
 pub(crate) const FIXED: u32 = 1 << 31;
 
-/// One point of four constraints.
+/// One point of eight constraints.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct WidePoint {
     /// Anchors from each centre of mass (m).
-    pub ra_x: F64x4,
-    pub ra_y: F64x4,
-    pub rb_x: F64x4,
-    pub rb_y: F64x4,
+    pub ra_x: F64x8,
+    pub ra_y: F64x8,
+    pub rb_x: F64x8,
+    pub rb_y: F64x8,
     /// Separation minus n·(r_B − r_A) at the step's start (m).
-    pub base_separation: F64x4,
+    pub base_separation: F64x8,
     /// Effective masses along the normal and the tangent (kg).
-    pub normal_mass: F64x4,
-    pub tangent_mass: F64x4,
+    pub normal_mass: F64x8,
+    pub tangent_mass: F64x8,
     /// Accumulated impulses (N·s).
-    pub normal_impulse: F64x4,
-    pub tangent_impulse: F64x4,
+    pub normal_impulse: F64x8,
+    pub tangent_impulse: F64x8,
     /// Sum of the normal impulses applied this step (N·s).
-    pub total_normal_impulse: F64x4,
+    pub total_normal_impulse: F64x8,
 }
 
-/// Four constraints of one colour, one per lane: what every substep reads.
+/// Eight constraints of one colour, one per lane: what every substep reads.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct WideConstraint {
     /// Solver indices of the bodies (0: the static dummy).
     pub a: [u32; LANES],
     pub b: [u32; LANES],
     /// Unit normal from A to B.
-    pub normal_x: F64x4,
-    pub normal_y: F64x4,
-    pub friction: F64x4,
-    pub inv_mass_a: F64x4,
-    pub inv_inertia_a: F64x4,
-    pub inv_mass_b: F64x4,
-    pub inv_inertia_b: F64x4,
+    pub normal_x: F64x8,
+    pub normal_y: F64x8,
+    pub friction: F64x8,
+    pub inv_mass_a: F64x8,
+    pub inv_inertia_a: F64x8,
+    pub inv_mass_b: F64x8,
+    pub inv_inertia_b: F64x8,
     /// Softness ([`super::Softness`]) of each lane.
-    pub bias_rate: F64x4,
-    pub mass_scale: F64x4,
-    pub impulse_scale: F64x4,
+    pub bias_rate: F64x8,
+    pub mass_scale: F64x8,
+    pub impulse_scale: F64x8,
     /// Minus each lane's push-out bound (m/s): the bias is at least this.
-    pub min_bias: F64x4,
+    pub min_bias: F64x8,
     /// Tangent speed of the surfaces (m/s).
-    pub tangent_speed: F64x4,
+    pub tangent_speed: F64x8,
     /// Rolling resistance (m), its effective mass (kg·m²) and accumulated
     /// angular impulse (N·m·s).
-    pub rolling_resistance: F64x4,
-    pub rolling_mass: F64x4,
-    pub rolling_impulse: F64x4,
+    pub rolling_resistance: F64x8,
+    pub rolling_mass: F64x8,
+    pub rolling_impulse: F64x8,
     pub points: [WidePoint; 2],
 }
 
-/// What restitution and the store read of four constraints.
+// The size the module documentation gives.
+const _: () = assert!(std::mem::size_of::<WideConstraint>() == 2304);
+
+/// What restitution and the store read of eight constraints.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct WideExtra {
-    pub restitution: F64x4,
+    pub restitution: F64x8,
     /// Normal velocity of each point before the solve (m/s).
-    pub normal_velocity: [F64x4; 2],
+    pub normal_velocity: [F64x8; 2],
 }
 
 /// Writes constraint `c` into lane `l` of `(w, e)`, every field of the lane
@@ -183,8 +187,9 @@ pub(crate) fn set_padding_lane((w, e): (&mut WideConstraint, &mut WideExtra), l:
     set_lane((w, e), l, &padding);
 }
 
-/// Four bodies' velocities (what the passes change), and their Δp.x as
-/// gathered (written back with them, unchanged).
+/// The velocities of the bodies of a group of lanes (what the passes
+/// change), and their Δp.x as gathered (written back with them,
+/// unchanged).
 #[derive(Clone, Copy)]
 pub(super) struct WideBody<L> {
     pub(super) vx: L,
@@ -201,37 +206,38 @@ impl<L: Lanes> WideBody<L> {
     }
 }
 
-/// The records of the four lanes' bodies.
+/// Reads the velocities (and Δp.x) of the bodies of group `g` of a
+/// record's lanes (`index`: the record's body indices).
 #[inline(always)]
-pub(super) fn lanes_of<'a>(bodies: Bodies<'a>, index: &[u32; LANES]) -> [&'a SolverBody; LANES] {
-    // SAFETY: a dynamic body of a lane is written only by this thread
-    // (the colouring; the reference is dropped before the scatter), a
-    // fixed one by no thread.
-    [0, 1, 2, 3].map(|l| unsafe { bodies.get((index[l] & !FIXED) as usize) })
-}
-
-/// Reads the velocities (and Δp.x) of the four lanes' bodies.
-#[inline(always)]
-pub(super) fn gather<L: Lanes>(bodies: Bodies<'_>, index: &[u32; LANES]) -> WideBody<L> {
-    let [vx, vy, w, dpx] = L::gather_row(&lanes_of(bodies, index), 0);
+pub(super) fn gather<L: Lanes>(bodies: Bodies<'_>, index: &[u32; LANES], g: usize) -> WideBody<L> {
+    let [vx, vy, w, dpx] = L::gather_row(bodies, index, g, 0);
     WideBody { vx, vy, w, dpx }
 }
 
-/// The second row of the four lanes' bodies: `[Δp.y, Δθ, cos Δθ, sin
+/// The second row of the bodies of group `g`: `[Δp.y, Δθ, cos Δθ, sin
 /// Δθ]`.
 #[inline(always)]
-pub(super) fn gather_motion<L: Lanes>(bodies: Bodies<'_>, index: &[u32; LANES]) -> [L; 4] {
-    L::gather_row(&lanes_of(bodies, index), 1)
+pub(super) fn gather_motion<L: Lanes>(
+    bodies: Bodies<'_>,
+    index: &[u32; LANES],
+    g: usize,
+) -> [L; 4] {
+    L::gather_row(bodies, index, g, 1)
 }
 
-/// Writes back the velocities of the four lanes (see
+/// Writes back the velocities of the bodies of group `g` (see
 /// [`Lanes::scatter_head`]).
 #[inline(always)]
-pub(super) fn scatter<L: Lanes>(bodies: Bodies<'_>, index: &[u32; LANES], w: &WideBody<L>) {
-    L::scatter_head([w.vx, w.vy, w.w, w.dpx], bodies, index);
+pub(super) fn scatter<L: Lanes>(
+    bodies: Bodies<'_>,
+    index: &[u32; LANES],
+    g: usize,
+    w: &WideBody<L>,
+) {
+    L::scatter_head([w.vx, w.vy, w.w, w.dpx], bodies, index, g);
 }
 
-/// The current separation of both points of the four lanes, from the
+/// The current separation of both points of group `g`, from the
 /// bodies' motion since the step began: s = s0 + n·(Δp_B + R(Δθ_B) r_B −
 /// Δp_A − R(Δθ_A) r_A) (the passes change velocities only, so this is
 /// computed once per pass, before the impulses); `(a, b)` the lanes'
@@ -239,11 +245,11 @@ pub(super) fn scatter<L: Lanes>(bodies: Bodies<'_>, index: &[u32; LANES], w: &Wi
 #[inline(always)]
 fn separations<L: Lanes>(
     bodies: Bodies<'_>,
-    c: &WideConstraint,
+    (c, g): (&WideConstraint, usize),
     (a, b): (&WideBody<L>, &WideBody<L>),
 ) -> [L; 2] {
-    let [dpy_a, _, ca, sa] = gather_motion::<L>(bodies, &c.a);
-    let [dpy_b, _, cb, sb] = gather_motion::<L>(bodies, &c.b);
+    let [dpy_a, _, ca, sa] = gather_motion::<L>(bodies, &c.a, g);
+    let [dpy_b, _, cb, sb] = gather_motion::<L>(bodies, &c.b, g);
     let motion = Motion {
         dpx: b.dpx - a.dpx,
         dpy: dpy_b - dpy_a,
@@ -251,17 +257,17 @@ fn separations<L: Lanes>(
         sa,
         cb,
         sb,
-        nx: L::load(&c.normal_x),
-        ny: L::load(&c.normal_y),
+        nx: L::load(&c.normal_x, g),
+        ny: L::load(&c.normal_y, g),
     };
     [
-        motion.separation(&c.points[0]),
-        motion.separation(&c.points[1]),
+        motion.separation(&c.points[0], g),
+        motion.separation(&c.points[1], g),
     ]
 }
 
-/// The relative motion of four pairs of bodies since the step began, and
-/// their normals.
+/// The relative motion of a group's pairs of bodies since the step began,
+/// and their normals.
 #[derive(Clone, Copy)]
 struct Motion<L> {
     /// Δp_B − Δp_A.
@@ -277,21 +283,21 @@ struct Motion<L> {
 }
 
 impl<L: Lanes> Motion<L> {
-    /// The current separation of point `p`.
+    /// The current separation of point `p` in group `g`.
     #[inline(always)]
-    fn separation(&self, p: &WidePoint) -> L {
-        let (ra_x, ra_y) = (L::load(&p.ra_x), L::load(&p.ra_y));
-        let (rb_x, rb_y) = (L::load(&p.rb_x), L::load(&p.rb_y));
+    fn separation(&self, p: &WidePoint, g: usize) -> L {
+        let (ra_x, ra_y) = (L::load(&p.ra_x, g), L::load(&p.ra_y, g));
+        let (rb_x, rb_y) = (L::load(&p.rb_x, g), L::load(&p.rb_y, g));
         let (cb, sb, ca, sa) = (self.cb, self.sb, self.ca, self.sa);
         let (rbx, rby) = (cb * rb_x - sb * rb_y, sb * rb_x + cb * rb_y);
         let (rax, ray) = (ca * ra_x - sa * ra_y, sa * ra_x + ca * ra_y);
         let dsx = self.dpx + rbx - rax;
         let dsy = self.dpy + rby - ray;
-        L::load(&p.base_separation) + (dsx * self.nx + dsy * self.ny)
+        L::load(&p.base_separation, g) + (dsx * self.nx + dsy * self.ny)
     }
 }
 
-/// The inverse masses of four constraints' bodies.
+/// The inverse masses of a group's bodies.
 #[derive(Clone, Copy)]
 struct Masses<L> {
     a: L,
@@ -302,12 +308,12 @@ struct Masses<L> {
 
 impl<L: Lanes> Masses<L> {
     #[inline(always)]
-    fn of(c: &WideConstraint) -> Self {
+    fn of(c: &WideConstraint, g: usize) -> Self {
         Masses {
-            a: L::load(&c.inv_mass_a),
-            ia: L::load(&c.inv_inertia_a),
-            b: L::load(&c.inv_mass_b),
-            ib: L::load(&c.inv_inertia_b),
+            a: L::load(&c.inv_mass_a, g),
+            ia: L::load(&c.inv_inertia_a, g),
+            b: L::load(&c.inv_mass_b, g),
+            ib: L::load(&c.inv_inertia_b, g),
         }
     }
 }
@@ -323,12 +329,12 @@ struct Anchors<L> {
 
 impl<L: Lanes> Anchors<L> {
     #[inline(always)]
-    fn of(p: &WidePoint) -> Self {
+    fn of(p: &WidePoint, g: usize) -> Self {
         Anchors {
-            ra_x: L::load(&p.ra_x),
-            ra_y: L::load(&p.ra_y),
-            rb_x: L::load(&p.rb_x),
-            rb_y: L::load(&p.rb_y),
+            ra_x: L::load(&p.ra_x, g),
+            ra_y: L::load(&p.ra_y, g),
+            rb_x: L::load(&p.rb_x, g),
+            rb_y: L::load(&p.rb_y, g),
         }
     }
 
@@ -377,7 +383,7 @@ pub(crate) fn warm_start_shared(
     bodies: Bodies<'_>,
     rolling: bool,
 ) {
-    dispatch!(warm_start_with, warm_start_avx, (constraints: &mut [WideConstraint], bodies: Bodies<'_>, rolling: bool));
+    dispatch!(warm_start_with, warm_start_avx512, warm_start_avx, (constraints: &mut [WideConstraint], bodies: Bodies<'_>, rolling: bool));
 }
 
 #[inline(always)]
@@ -387,28 +393,43 @@ fn warm_start_with<L: Lanes>(
     rolling: bool,
 ) {
     for c in constraints.iter_mut() {
-        let (mut a, mut b) = (gather::<L>(bodies, &c.a), gather::<L>(bodies, &c.b));
-        let m = Masses::of(c);
-        let (nx, ny) = (L::load(&c.normal_x), L::load(&c.normal_y));
-        let (tx, ty) = (ny, -nx);
-        for p in &mut c.points {
-            let (normal_impulse, tangent_impulse) =
-                (L::load(&p.normal_impulse), L::load(&p.tangent_impulse));
-            let px = normal_impulse * nx + tangent_impulse * tx;
-            let py = normal_impulse * ny + tangent_impulse * ty;
-            (L::load(&p.total_normal_impulse) + normal_impulse).store(&mut p.total_normal_impulse);
-            apply(&m, (&mut a, &mut b), &Anchors::of(p), (px, py));
+        // Group by group, each written out with its number as a constant
+        // (a loop over the groups kept values on the stack: 9 % more
+        // instructions for the AVX passes).
+        warm_start_group::<L>(c, 0, bodies, rolling);
+        if L::GROUPS == 2 {
+            warm_start_group::<L>(c, 1, bodies, rolling);
         }
-        if rolling {
-            let impulse = L::load(&c.rolling_impulse);
-            if !L::all(impulse.eq(L::splat(0.0))) {
-                a.w -= m.ia * impulse;
-                b.w += m.ib * impulse;
-            }
-        }
-        scatter(bodies, &c.a, &a);
-        scatter(bodies, &c.b, &b);
     }
+}
+
+/// [`warm_start_with`] on group `g` of record `c`.
+#[inline(always)]
+fn warm_start_group<L: Lanes>(c: &mut WideConstraint, g: usize, bodies: Bodies<'_>, rolling: bool) {
+    let (mut a, mut b) = (gather::<L>(bodies, &c.a, g), gather::<L>(bodies, &c.b, g));
+    let m = Masses::of(c, g);
+    let (nx, ny) = (L::load(&c.normal_x, g), L::load(&c.normal_y, g));
+    let (tx, ty) = (ny, -nx);
+    for p in &mut c.points {
+        let (normal_impulse, tangent_impulse) = (
+            L::load(&p.normal_impulse, g),
+            L::load(&p.tangent_impulse, g),
+        );
+        let px = normal_impulse * nx + tangent_impulse * tx;
+        let py = normal_impulse * ny + tangent_impulse * ty;
+        (L::load(&p.total_normal_impulse, g) + normal_impulse)
+            .store(&mut p.total_normal_impulse, g);
+        apply(&m, (&mut a, &mut b), &Anchors::of(p, g), (px, py));
+    }
+    if rolling {
+        let impulse = L::load(&c.rolling_impulse, g);
+        if !L::all(impulse.eq(L::splat(0.0))) {
+            a.w -= m.ia * impulse;
+            b.w += m.ib * impulse;
+        }
+    }
+    scatter(bodies, &c.a, g, &a);
+    scatter(bodies, &c.b, g, &b);
 }
 
 /// The solve pass, with the soft bias (see [`super::contact_solver::solve`]).
@@ -420,7 +441,7 @@ pub(crate) fn solve(constraints: &mut [WideConstraint], bodies: &mut [SolverBody
 /// [`solve`] on shared records (see [`warm_start_shared`]).
 #[inline(never)]
 pub(crate) fn solve_shared(constraints: &mut [WideConstraint], bodies: Bodies<'_>, inv_h: f64) {
-    dispatch!(solve_with, solve_avx, (constraints: &mut [WideConstraint], bodies: Bodies<'_>, inv_h: f64));
+    dispatch!(solve_with, solve_avx512, solve_avx, (constraints: &mut [WideConstraint], bodies: Bodies<'_>, inv_h: f64));
 }
 
 #[inline(always)]
@@ -448,7 +469,7 @@ pub(crate) fn relax_shared(
     inv_h: f64,
     rolling: bool,
 ) {
-    dispatch!(relax_with, relax_avx, (constraints: &mut [WideConstraint], bodies: Bodies<'_>, inv_h: f64, rolling: bool));
+    dispatch!(relax_with, relax_avx512, relax_avx, (constraints: &mut [WideConstraint], bodies: Bodies<'_>, inv_h: f64, rolling: bool));
 }
 
 #[inline(always)]
@@ -461,7 +482,8 @@ fn relax_with<L: Lanes>(
     pass::<L, false>(constraints, bodies, inv_h, rolling);
 }
 
-/// One pass of sequential impulses over four lanes at a time.
+/// One pass of sequential impulses over the records, a group of lanes at
+/// a time.
 #[inline(always)]
 fn pass<L: Lanes, const BIAS: bool>(
     constraints: &mut [WideConstraint],
@@ -470,73 +492,87 @@ fn pass<L: Lanes, const BIAS: bool>(
     rolling: bool,
 ) {
     let inv_h = L::splat(inv_h);
-    let (zero, one) = (L::splat(0.0), L::splat(1.0));
     for c in constraints.iter_mut() {
-        let (mut a, mut b) = (gather::<L>(bodies, &c.a), gather::<L>(bodies, &c.b));
-        let separation = separations::<L>(bodies, c, (&a, &b));
-        let m = Masses::of(c);
-        let (nx, ny) = (L::load(&c.normal_x), L::load(&c.normal_y));
-        let (bias_rate, mass_scale, impulse_scale, min_bias) = if BIAS {
-            let mass_scale = L::load(&c.mass_scale);
-            (
-                mass_scale * L::load(&c.bias_rate),
-                mass_scale,
-                L::load(&c.impulse_scale),
-                L::load(&c.min_bias),
-            )
-        } else {
-            // Relax: no bias (0 · s is ±0, and max(±0, −0) is ±0 as before).
-            (zero, one, zero, L::splat(-0.0))
-        };
-        for (p, s) in c.points.iter_mut().zip(separation) {
-            let speculative = s.gt(zero);
-            let bias = L::select(speculative, s * inv_h, (bias_rate * s).max(min_bias));
-            let point_mass_scale = L::select(speculative, one, mass_scale);
-            let point_impulse_scale = L::select(speculative, zero, impulse_scale);
-            let r = Anchors::of(p);
-            let (dvx, dvy) = r.relative_velocity((&a, &b));
-            let vn = dvx * nx + dvy * ny;
-            let normal_impulse = L::load(&p.normal_impulse);
-            let impulse = -L::load(&p.normal_mass) * (point_mass_scale * vn + bias)
-                - point_impulse_scale * normal_impulse;
-            let accumulated = (normal_impulse + impulse).max(zero);
-            let impulse = accumulated - normal_impulse;
-            accumulated.store(&mut p.normal_impulse);
-            (L::load(&p.total_normal_impulse) + impulse).store(&mut p.total_normal_impulse);
-            apply(&m, (&mut a, &mut b), &r, (impulse * nx, impulse * ny));
+        pass_group::<L, BIAS>(c, 0, bodies, (inv_h, rolling));
+        if L::GROUPS == 2 {
+            pass_group::<L, BIAS>(c, 1, bodies, (inv_h, rolling));
         }
-        if !BIAS {
-            let friction = L::load(&c.friction);
-            let tangent_speed = L::load(&c.tangent_speed);
-            let (tx, ty) = (ny, -nx);
-            for p in &mut c.points {
-                let r = Anchors::of(p);
-                let (dvx, dvy) = r.relative_velocity((&a, &b));
-                let vt = dvx * tx + dvy * ty - tangent_speed;
-                let max_friction = friction * L::load(&p.normal_impulse);
-                let tangent_impulse = L::load(&p.tangent_impulse);
-                let accumulated = (tangent_impulse - L::load(&p.tangent_mass) * vt)
-                    .clamp(-max_friction, max_friction);
-                let impulse = accumulated - tangent_impulse;
-                accumulated.store(&mut p.tangent_impulse);
-                apply(&m, (&mut a, &mut b), &r, (impulse * tx, impulse * ty));
-            }
-            let rolling_resistance = L::load(&c.rolling_resistance);
-            if rolling && !L::all(rolling_resistance.eq(zero)) {
-                let normal =
-                    L::load(&c.points[0].normal_impulse) + L::load(&c.points[1].normal_impulse);
-                let max = rolling_resistance * normal;
-                let old = L::load(&c.rolling_impulse);
-                let accumulated = (old - L::load(&c.rolling_mass) * (b.w - a.w)).clamp(-max, max);
-                accumulated.store(&mut c.rolling_impulse);
-                let delta = accumulated - old;
-                a.w -= m.ia * delta;
-                b.w += m.ib * delta;
-            }
-        }
-        scatter(bodies, &c.a, &a);
-        scatter(bodies, &c.b, &b);
     }
+}
+
+/// [`pass`] on group `g` of record `c`.
+#[inline(always)]
+fn pass_group<L: Lanes, const BIAS: bool>(
+    c: &mut WideConstraint,
+    g: usize,
+    bodies: Bodies<'_>,
+    (inv_h, rolling): (L, bool),
+) {
+    let (zero, one) = (L::splat(0.0), L::splat(1.0));
+    let (mut a, mut b) = (gather::<L>(bodies, &c.a, g), gather::<L>(bodies, &c.b, g));
+    let separation = separations::<L>(bodies, (c, g), (&a, &b));
+    let m = Masses::of(c, g);
+    let (nx, ny) = (L::load(&c.normal_x, g), L::load(&c.normal_y, g));
+    let (bias_rate, mass_scale, impulse_scale, min_bias) = if BIAS {
+        let mass_scale = L::load(&c.mass_scale, g);
+        (
+            mass_scale * L::load(&c.bias_rate, g),
+            mass_scale,
+            L::load(&c.impulse_scale, g),
+            L::load(&c.min_bias, g),
+        )
+    } else {
+        // Relax: no bias (0 · s is ±0, and max(±0, −0) is ±0 as before).
+        (zero, one, zero, L::splat(-0.0))
+    };
+    for (p, s) in c.points.iter_mut().zip(separation) {
+        let speculative = s.gt(zero);
+        let bias = L::select(speculative, s * inv_h, (bias_rate * s).max(min_bias));
+        let point_mass_scale = L::select(speculative, one, mass_scale);
+        let point_impulse_scale = L::select(speculative, zero, impulse_scale);
+        let r = Anchors::of(p, g);
+        let (dvx, dvy) = r.relative_velocity((&a, &b));
+        let vn = dvx * nx + dvy * ny;
+        let normal_impulse = L::load(&p.normal_impulse, g);
+        let impulse = -L::load(&p.normal_mass, g) * (point_mass_scale * vn + bias)
+            - point_impulse_scale * normal_impulse;
+        let accumulated = (normal_impulse + impulse).max(zero);
+        let impulse = accumulated - normal_impulse;
+        accumulated.store(&mut p.normal_impulse, g);
+        (L::load(&p.total_normal_impulse, g) + impulse).store(&mut p.total_normal_impulse, g);
+        apply(&m, (&mut a, &mut b), &r, (impulse * nx, impulse * ny));
+    }
+    if !BIAS {
+        let friction = L::load(&c.friction, g);
+        let tangent_speed = L::load(&c.tangent_speed, g);
+        let (tx, ty) = (ny, -nx);
+        for p in &mut c.points {
+            let r = Anchors::of(p, g);
+            let (dvx, dvy) = r.relative_velocity((&a, &b));
+            let vt = dvx * tx + dvy * ty - tangent_speed;
+            let max_friction = friction * L::load(&p.normal_impulse, g);
+            let tangent_impulse = L::load(&p.tangent_impulse, g);
+            let accumulated = (tangent_impulse - L::load(&p.tangent_mass, g) * vt)
+                .clamp(-max_friction, max_friction);
+            let impulse = accumulated - tangent_impulse;
+            accumulated.store(&mut p.tangent_impulse, g);
+            apply(&m, (&mut a, &mut b), &r, (impulse * tx, impulse * ty));
+        }
+        let rolling_resistance = L::load(&c.rolling_resistance, g);
+        if rolling && !L::all(rolling_resistance.eq(zero)) {
+            let normal =
+                L::load(&c.points[0].normal_impulse, g) + L::load(&c.points[1].normal_impulse, g);
+            let max = rolling_resistance * normal;
+            let old = L::load(&c.rolling_impulse, g);
+            let accumulated = (old - L::load(&c.rolling_mass, g) * (b.w - a.w)).clamp(-max, max);
+            accumulated.store(&mut c.rolling_impulse, g);
+            let delta = accumulated - old;
+            a.w -= m.ia * delta;
+            b.w += m.ib * delta;
+        }
+    }
+    scatter(bodies, &c.a, g, &a);
+    scatter(bodies, &c.b, g, &b);
 }
 
 /// The restitution pass (see [`super::contact_solver::restitution`]).
@@ -558,7 +594,7 @@ pub(crate) fn restitution_shared(
     bodies: Bodies<'_>,
     threshold: f64,
 ) {
-    dispatch!(restitution_with, restitution_avx, (constraints: &mut [WideConstraint], extras: &[WideExtra], bodies: Bodies<'_>, threshold: f64));
+    dispatch!(restitution_with, restitution_avx512, restitution_avx, (constraints: &mut [WideConstraint], extras: &[WideExtra], bodies: Bodies<'_>, threshold: f64));
 }
 
 #[inline(always)]
@@ -569,38 +605,52 @@ fn restitution_with<L: Lanes>(
     threshold: f64,
 ) {
     let min_approach = L::splat(-threshold);
-    let zero = L::splat(0.0);
     for (c, e) in constraints.iter_mut().zip(extras) {
-        let restitution = L::load(&e.restitution);
-        if L::all(restitution.eq(zero)) {
-            continue;
+        restitution_group::<L>((c, e), 0, bodies, min_approach);
+        if L::GROUPS == 2 {
+            restitution_group::<L>((c, e), 1, bodies, min_approach);
         }
-        let (mut a, mut b) = (gather::<L>(bodies, &c.a), gather::<L>(bodies, &c.b));
-        let m = Masses::of(c);
-        let (nx, ny) = (L::load(&c.normal_x), L::load(&c.normal_y));
-        for (p, relative) in c.points.iter_mut().zip(&e.normal_velocity) {
-            let relative = L::load(relative);
-            let total = L::load(&p.total_normal_impulse);
-            // No restitution, slow approach, or no push during the solve:
-            // no bounce.
-            let skip = L::or(
-                L::or(relative.gt(min_approach), total.eq(zero)),
-                restitution.eq(zero),
-            );
-            let r = Anchors::of(p);
-            let (dvx, dvy) = r.relative_velocity((&a, &b));
-            let vn = dvx * nx + dvy * ny;
-            let normal_impulse = L::load(&p.normal_impulse);
-            let impulse = -L::load(&p.normal_mass) * (vn + restitution * relative);
-            let accumulated = (normal_impulse + impulse).max(zero);
-            let impulse = L::select(skip, zero, accumulated - normal_impulse);
-            L::select(skip, normal_impulse, accumulated).store(&mut p.normal_impulse);
-            L::select(skip, total, total + impulse).store(&mut p.total_normal_impulse);
-            apply(&m, (&mut a, &mut b), &r, (impulse * nx, impulse * ny));
-        }
-        scatter(bodies, &c.a, &a);
-        scatter(bodies, &c.b, &b);
     }
+}
+
+/// [`restitution_with`] on group `g` of record `c` (`e` its extra).
+#[inline(always)]
+fn restitution_group<L: Lanes>(
+    (c, e): (&mut WideConstraint, &WideExtra),
+    g: usize,
+    bodies: Bodies<'_>,
+    min_approach: L,
+) {
+    let zero = L::splat(0.0);
+    let restitution = L::load(&e.restitution, g);
+    if L::all(restitution.eq(zero)) {
+        return;
+    }
+    let (mut a, mut b) = (gather::<L>(bodies, &c.a, g), gather::<L>(bodies, &c.b, g));
+    let m = Masses::of(c, g);
+    let (nx, ny) = (L::load(&c.normal_x, g), L::load(&c.normal_y, g));
+    for (p, relative) in c.points.iter_mut().zip(&e.normal_velocity) {
+        let relative = L::load(relative, g);
+        let total = L::load(&p.total_normal_impulse, g);
+        // No restitution, slow approach, or no push during the solve:
+        // no bounce.
+        let skip = L::or(
+            L::or(relative.gt(min_approach), total.eq(zero)),
+            restitution.eq(zero),
+        );
+        let r = Anchors::of(p, g);
+        let (dvx, dvy) = r.relative_velocity((&a, &b));
+        let vn = dvx * nx + dvy * ny;
+        let normal_impulse = L::load(&p.normal_impulse, g);
+        let impulse = -L::load(&p.normal_mass, g) * (vn + restitution * relative);
+        let accumulated = (normal_impulse + impulse).max(zero);
+        let impulse = L::select(skip, zero, accumulated - normal_impulse);
+        L::select(skip, normal_impulse, accumulated).store(&mut p.normal_impulse, g);
+        L::select(skip, total, total + impulse).store(&mut p.total_normal_impulse, g);
+        apply(&m, (&mut a, &mut b), &r, (impulse * nx, impulse * ny));
+    }
+    scatter(bodies, &c.a, g, &a);
+    scatter(bodies, &c.b, g, &b);
 }
 
 /// Copies the impulses of lane `l` of `(w, e)` back into its contact.
@@ -625,6 +675,10 @@ mod tests {
     use super::*;
     use nalgebra::Vector2;
 
+    use crate::soft_step::lanes::F64x4;
+    use crate::soft_step::lanes::tests::lane_type_runs;
+    use crate::soft_step::lanes_avx::Avx4;
+    use crate::soft_step::lanes_avx512::Avx8;
     use crate::soft_step::test_numbers::Numbers;
 
     /// Twelve moving bodies and the static dummy, a chain of contacts
@@ -749,33 +803,47 @@ mod tests {
         }
         let mut reference = set.contacts.clone();
         contact_solver::store_impulses(&scalar, &mut reference);
-        // The SSE2 lanes (every x86-64 CPU), then the lanes this CPU runs
-        // (AVX when it has it): same operations in the same order on the
-        // same data as the scalar solver, so equal bits.
-        for sse2 in [true, false] {
-            let (mut wide, mut wide_bodies) = (wide.clone(), bodies.clone());
+        // Each lane type (SSE2 on every x86-64 CPU, AVX and AVX-512 where
+        // the CPU has them), then the dispatched passes (the lanes this CPU
+        // runs): same operations in the same order on the same data as the
+        // scalar solver, so equal bits.
+        fn passes<L: Lanes>(
+            (wide, extra): (&mut [WideConstraint], &[WideExtra]),
+            bodies: &mut [SolverBody],
+            inv_h: f64,
+        ) {
             for _ in 0..3 {
-                if sse2 {
-                    warm_start_with::<F64x4>(&mut wide, Bodies::new(&mut wide_bodies), true);
-                    solve_with::<F64x4>(&mut wide, Bodies::new(&mut wide_bodies), inv_h);
-                    relax_with::<F64x4>(&mut wide, Bodies::new(&mut wide_bodies), inv_h, true);
-                } else {
-                    warm_start(&mut wide, &mut wide_bodies, true);
-                    solve(&mut wide, &mut wide_bodies, inv_h);
-                    relax(&mut wide, &mut wide_bodies, inv_h, true);
+                warm_start_with::<L>(wide, Bodies::new(bodies), true);
+                solve_with::<L>(wide, Bodies::new(bodies), inv_h);
+                relax_with::<L>(wide, Bodies::new(bodies), inv_h, true);
+            }
+            restitution_with::<L>(wide, extra, Bodies::new(bodies), 1.0);
+        }
+        for path in ["SSE2", "AVX", "AVX-512", "dispatched"] {
+            if !lane_type_runs(path) {
+                continue;
+            }
+            let (mut wide, mut wide_bodies) = (wide.clone(), bodies.clone());
+            let records = (&mut wide[..], &extra[..]);
+            match path {
+                "SSE2" => passes::<F64x4>(records, &mut wide_bodies, inv_h),
+                "AVX" => passes::<Avx4>(records, &mut wide_bodies, inv_h),
+                "AVX-512" => passes::<Avx8>(records, &mut wide_bodies, inv_h),
+                _ => {
+                    for _ in 0..3 {
+                        warm_start(records.0, &mut wide_bodies, true);
+                        solve(records.0, &mut wide_bodies, inv_h);
+                        relax(records.0, &mut wide_bodies, inv_h, true);
+                    }
+                    restitution(records.0, records.1, &mut wide_bodies, 1.0);
                 }
             }
-            if sse2 {
-                restitution_with::<F64x4>(&mut wide, &extra, Bodies::new(&mut wide_bodies), 1.0);
-            } else {
-                restitution(&mut wide, &extra, &mut wide_bodies, 1.0);
-            }
-            assert_eq!(scalar_bodies, wide_bodies, "SSE2 only: {sse2}");
+            assert_eq!(scalar_bodies, wide_bodies, "{path}");
             let mut contacts = set.contacts.clone();
             for (i, &(record, lane)) in order.iter().enumerate() {
                 store_lane((&wide[record], &extra[record]), lane, &mut contacts[i]);
             }
-            assert_eq!(reference, contacts, "SSE2 only: {sse2}");
+            assert_eq!(reference, contacts, "{path}");
         }
         // Restitution acted somewhere (the test covers it).
         assert!(

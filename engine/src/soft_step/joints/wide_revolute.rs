@@ -1,8 +1,9 @@
-//! Revolute joints four at a time, as the contacts are
+//! Revolute joints eight at a time, as the contacts are
 //! ([`crate::soft_step::wide_solver`]): the joints of one colour (the
 //! joints' own colouring, [`crate::soft_step::colouring`]) share no dynamic
-//! body, so four of them are packed side by side, one per lane of
-//! [`F64x4`], and warm started, solved and relaxed at once.
+//! body, so eight of them are packed side by side, one per lane of
+//! [`F64x8`], and warm started, solved and relaxed at once (four and four
+//! without AVX-512).
 //!
 //! The formulas and their order of operations are those of the scalar
 //! solver, [`super::revolute`] (its `warm_start` and `solve`, with the
@@ -16,7 +17,7 @@
 //!
 //! Layout: [`WideRevolute`] holds what the point rows read and write
 //! (the bodies, masses, anchors, the centres' distance, the rigid rows'
-//! softness, the point impulse: 576 bytes per four joints, 144 per joint
+//! softness, the point impulse: 1088 bytes per eight joints, 136 per joint
 //! against the 336 of a joint's scalar record); [`WideAxial`], beside it,
 //! the angle rows' parameters and impulses, read only by the records that
 //! have some. Padding lanes join the static dummy body to itself with zero
@@ -26,7 +27,7 @@ use super::frame::{JointFrame, RowScale};
 use super::revolute::RevoluteRows;
 use super::wrap_angle;
 use crate::soft_step::bodies::SolverBody;
-use crate::soft_step::lanes::{F64x4, LANES, Lanes, dispatch};
+use crate::soft_step::lanes::{F64x8, LANES, Lanes, dispatch};
 use crate::soft_step::wide_solver::{WideBody, gather, gather_motion, scatter};
 
 /// Four revolute joints' point rows: what every pass reads.
@@ -39,59 +40,62 @@ pub(crate) struct WideRevolute {
     /// passes read this record's [`WideAxial`]).
     pub axial: bool,
     /// Inverse masses (1/kg) and inertias (1/(kg·m²)).
-    ma: F64x4,
-    ia: F64x4,
-    mb: F64x4,
-    ib: F64x4,
+    ma: F64x8,
+    ia: F64x8,
+    mb: F64x8,
+    ib: F64x8,
     /// Anchors from each centre of mass at the step's start, world frame
     /// (m).
-    ra_x: F64x4,
-    ra_y: F64x4,
-    rb_x: F64x4,
-    rb_y: F64x4,
+    ra_x: F64x8,
+    ra_y: F64x8,
+    rb_x: F64x8,
+    rb_y: F64x8,
     /// c_B − c_A at the step's start (m).
-    dc_x: F64x4,
-    dc_y: F64x4,
+    dc_x: F64x8,
+    dc_y: F64x8,
     /// The rigid rows' coefficients in the solve pass ([`RowScale::soft`]
     /// of the joint's softness).
-    bias_rate: F64x4,
-    mass_scale: F64x4,
-    impulse_scale: F64x4,
+    bias_rate: F64x8,
+    mass_scale: F64x8,
+    impulse_scale: F64x8,
     /// Accumulated point impulse (N·s).
-    linear_x: F64x4,
-    linear_y: F64x4,
+    linear_x: F64x8,
+    linear_y: F64x8,
 }
 
 /// Four revolute joints' angle rows: spring, motor, limits.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct WideAxial {
     /// θB − θA − θref at the step's start (rad).
-    angle: F64x4,
+    angle: F64x8,
     /// 1/(i_A + i_B).
-    axial_mass: F64x4,
+    axial_mass: F64x8,
     /// 1 where the joint has the row and its bodies turn, else 0.
-    spring_on: F64x4,
-    motor_on: F64x4,
-    limits_on: F64x4,
+    spring_on: F64x8,
+    motor_on: F64x8,
+    limits_on: F64x8,
     /// The spring's coefficients ([`RowScale::soft`]) and rest angle
     /// (rad).
-    spring_bias_rate: F64x4,
-    spring_mass_scale: F64x4,
-    spring_impulse_scale: F64x4,
-    spring_target: F64x4,
+    spring_bias_rate: F64x8,
+    spring_mass_scale: F64x8,
+    spring_impulse_scale: F64x8,
+    spring_target: F64x8,
     /// The motor's speed (rad/s) and largest impulse per substep, h τ_max
     /// (N·m·s).
-    motor_speed: F64x4,
-    motor_max: F64x4,
+    motor_speed: F64x8,
+    motor_max: F64x8,
     /// The limits (rad).
-    lower: F64x4,
-    upper: F64x4,
+    lower: F64x8,
+    upper: F64x8,
     /// Accumulated impulses (N·m·s).
-    spring: F64x4,
-    motor: F64x4,
-    lower_impulse: F64x4,
-    upper_impulse: F64x4,
+    spring: F64x8,
+    motor: F64x8,
+    lower_impulse: F64x8,
+    upper_impulse: F64x8,
 }
+
+// The size the module documentation gives.
+const _: () = assert!(std::mem::size_of::<WideRevolute>() == 1088);
 
 /// Writes joint (`frame`, `rows`), prepared for substeps of `h` (s), into
 /// lane `l` of `(w, x)`, every field of the lane (the caller clears
@@ -190,11 +194,14 @@ pub(crate) fn store_lane((w, x): (&WideRevolute, &WideAxial), l: usize, rows: &m
 /// (as [`SolverBody::rotate`]; `motion_a`, `motion_b` the bodies' second
 /// rows, `[Δp.y, Δθ, cos Δθ, sin Δθ]`): (r_Ax, r_Ay, r_Bx, r_By).
 #[inline(always)]
-fn anchors<L: Lanes>(w: &WideRevolute, (motion_a, motion_b): (&[L; 4], &[L; 4])) -> [L; 4] {
+fn anchors<L: Lanes>(
+    (w, g): (&WideRevolute, usize),
+    (motion_a, motion_b): (&[L; 4], &[L; 4]),
+) -> [L; 4] {
     let (ca, sa) = (motion_a[2], motion_a[3]);
     let (cb, sb) = (motion_b[2], motion_b[3]);
-    let (rax, ray) = (L::load(&w.ra_x), L::load(&w.ra_y));
-    let (rbx, rby) = (L::load(&w.rb_x), L::load(&w.rb_y));
+    let (rax, ray) = (L::load(&w.ra_x, g), L::load(&w.ra_y, g));
+    let (rbx, rby) = (L::load(&w.rb_x, g), L::load(&w.rb_y, g));
     [
         ca * rax - sa * ray,
         sa * rax + ca * ray,
@@ -203,14 +210,14 @@ fn anchors<L: Lanes>(w: &WideRevolute, (motion_a, motion_b): (&[L; 4], &[L; 4]))
     ]
 }
 
-/// The inverse masses of four joints' bodies: (m_A, i_A, m_B, i_B).
+/// The inverse masses of a group of joints' bodies: (m_A, i_A, m_B, i_B).
 #[inline(always)]
-fn masses<L: Lanes>(w: &WideRevolute) -> [L; 4] {
+fn masses<L: Lanes>(w: &WideRevolute, g: usize) -> [L; 4] {
     [
-        L::load(&w.ma),
-        L::load(&w.ia),
-        L::load(&w.mb),
-        L::load(&w.ib),
+        L::load(&w.ma, g),
+        L::load(&w.ia, g),
+        L::load(&w.mb, g),
+        L::load(&w.ib, g),
     ]
 }
 
@@ -248,7 +255,7 @@ fn apply_angular<L: Lanes>(
 /// Applies every joint's accumulated impulses.
 #[inline(never)]
 pub(crate) fn warm_start(records: &[WideRevolute], axial: &[WideAxial], bodies: &mut [SolverBody]) {
-    dispatch!(warm_start_with, warm_start_avx, (records: &[WideRevolute], axial: &[WideAxial], bodies: &mut [SolverBody]));
+    dispatch!(warm_start_with, warm_start_avx512, warm_start_avx, (records: &[WideRevolute], axial: &[WideAxial], bodies: &mut [SolverBody]));
 }
 
 #[inline(always)]
@@ -259,21 +266,26 @@ fn warm_start_with<L: Lanes>(
 ) {
     let bodies = super::super::wide_solver::Bodies::new(bodies);
     for (w, x) in records.iter().zip(axial) {
-        let (mut a, mut b) = (gather::<L>(bodies, &w.a), gather::<L>(bodies, &w.b));
-        let motion = (gather_motion(bodies, &w.a), gather_motion(bodies, &w.b));
-        let r = anchors::<L>(w, (&motion.0, &motion.1));
-        // The scalar joint's spring + motor + lower − upper, all 0 without
-        // angle rows.
-        let l = if w.axial {
-            ((L::load(&x.spring) + L::load(&x.motor)) + L::load(&x.lower_impulse))
-                - L::load(&x.upper_impulse)
-        } else {
-            L::splat(0.0)
-        };
-        let p = (L::load(&w.linear_x), L::load(&w.linear_y));
-        apply(masses(w), (&mut a, &mut b), r, p, l);
-        scatter(bodies, &w.a, &a);
-        scatter(bodies, &w.b, &b);
+        for g in 0..L::GROUPS {
+            let (mut a, mut b) = (gather::<L>(bodies, &w.a, g), gather::<L>(bodies, &w.b, g));
+            let motion = (
+                gather_motion(bodies, &w.a, g),
+                gather_motion(bodies, &w.b, g),
+            );
+            let r = anchors::<L>((w, g), (&motion.0, &motion.1));
+            // The scalar joint's spring + motor + lower − upper, all 0 without
+            // angle rows.
+            let l = if w.axial {
+                ((L::load(&x.spring, g) + L::load(&x.motor, g)) + L::load(&x.lower_impulse, g))
+                    - L::load(&x.upper_impulse, g)
+            } else {
+                L::splat(0.0)
+            };
+            let p = (L::load(&w.linear_x, g), L::load(&w.linear_y, g));
+            apply(masses(w, g), (&mut a, &mut b), r, p, l);
+            scatter(bodies, &w.a, g, &a);
+            scatter(bodies, &w.b, g, &b);
+        }
     }
 }
 
@@ -285,7 +297,7 @@ pub(crate) fn solve(
     bodies: &mut [SolverBody],
     inv_h: f64,
 ) {
-    dispatch!(solve_with, solve_avx, (records: &mut [WideRevolute], axial: &mut [WideAxial], bodies: &mut [SolverBody], inv_h: f64));
+    dispatch!(solve_with, solve_avx512, solve_avx, (records: &mut [WideRevolute], axial: &mut [WideAxial], bodies: &mut [SolverBody], inv_h: f64));
 }
 
 #[inline(always)]
@@ -306,7 +318,7 @@ pub(crate) fn relax(
     bodies: &mut [SolverBody],
     inv_h: f64,
 ) {
-    dispatch!(relax_with, relax_avx, (records: &mut [WideRevolute], axial: &mut [WideAxial], bodies: &mut [SolverBody], inv_h: f64));
+    dispatch!(relax_with, relax_avx512, relax_avx, (records: &mut [WideRevolute], axial: &mut [WideAxial], bodies: &mut [SolverBody], inv_h: f64));
 }
 
 #[inline(always)]
@@ -328,7 +340,7 @@ struct Row<L> {
     impulse_scale: L,
 }
 
-/// One pass over four joints at a time.
+/// One pass over the joints, a group of lanes at a time.
 #[inline(always)]
 fn pass<L: Lanes, const BIAS: bool>(
     records: &mut [WideRevolute],
@@ -340,86 +352,89 @@ fn pass<L: Lanes, const BIAS: bool>(
     let inv_h = L::splat(inv_h);
     let (zero, one) = (L::splat(0.0), L::splat(1.0));
     for (w, x) in records.iter_mut().zip(axial.iter_mut()) {
-        let (mut a, mut b) = (gather::<L>(bodies, &w.a), gather::<L>(bodies, &w.b));
-        let (motion_a, motion_b) = (
-            gather_motion::<L>(bodies, &w.a),
-            gather_motion(bodies, &w.b),
-        );
-        let r = anchors::<L>(w, (&motion_a, &motion_b));
-        // Δp_B − Δp_A and Δθ_B − Δθ_A since the step began.
-        let delta = if BIAS {
-            (b.dpx - a.dpx, motion_b[0] - motion_a[0])
-        } else {
-            (zero, zero)
-        };
-        let turned = if w.axial {
-            motion_b[1] - motion_a[1]
-        } else {
-            zero
-        };
-        let m = masses::<L>(w);
-        let row = if BIAS {
-            Row {
-                bias_rate: L::load(&w.bias_rate),
-                mass_scale: L::load(&w.mass_scale),
-                impulse_scale: L::load(&w.impulse_scale),
+        for g in 0..L::GROUPS {
+            let (mut a, mut b) = (gather::<L>(bodies, &w.a, g), gather::<L>(bodies, &w.b, g));
+            let (motion_a, motion_b) = (
+                gather_motion::<L>(bodies, &w.a, g),
+                gather_motion(bodies, &w.b, g),
+            );
+            let r = anchors::<L>((w, g), (&motion_a, &motion_b));
+            // Δp_B − Δp_A and Δθ_B − Δθ_A since the step began.
+            let delta = if BIAS {
+                (b.dpx - a.dpx, motion_b[0] - motion_a[0])
+            } else {
+                (zero, zero)
+            };
+            let turned = if w.axial {
+                motion_b[1] - motion_a[1]
+            } else {
+                zero
+            };
+            let m = masses::<L>(w, g);
+            let row = if BIAS {
+                Row {
+                    bias_rate: L::load(&w.bias_rate, g),
+                    mass_scale: L::load(&w.mass_scale, g),
+                    impulse_scale: L::load(&w.impulse_scale, g),
+                }
+            } else {
+                Row {
+                    bias_rate: zero,
+                    mass_scale: one,
+                    impulse_scale: zero,
+                }
+            };
+            if w.axial {
+                angle_rows::<L, BIAS>((x, g), (&mut a, &mut b), (m[1], m[3]), (turned, row, inv_h));
             }
-        } else {
-            Row {
-                bias_rate: zero,
-                mass_scale: one,
-                impulse_scale: zero,
-            }
-        };
-        if w.axial {
-            angle_rows::<L, BIAS>(x, (&mut a, &mut b), (m[1], m[3]), (turned, row, inv_h));
+            point_rows::<L, BIAS>((w, g), (&mut a, &mut b), (m, r), (delta, row));
+            scatter(bodies, &w.a, g, &a);
+            scatter(bodies, &w.b, g, &b);
         }
-        point_rows::<L, BIAS>(w, (&mut a, &mut b), (m, r), (delta, row));
-        scatter(bodies, &w.a, &a);
-        scatter(bodies, &w.b, &b);
     }
 }
 
-/// The spring, motor and limit rows of four joints (the scalar
+/// The spring, motor and limit rows of a group of joints (the scalar
 /// [`RevoluteRows::solve`]'s first part), each kept only in the lanes
 /// that have it; `turned` is Δθ_B − Δθ_A since the step began.
 #[inline(always)]
 fn angle_rows<L: Lanes, const BIAS: bool>(
-    x: &mut WideAxial,
+    (x, g): (&mut WideAxial, usize),
     (a, b): (&mut WideBody<L>, &mut WideBody<L>),
     (ia, ib): (L, L),
     (turned, rigid, inv_h): (L, Row<L>, L),
 ) {
     let zero = L::splat(0.0);
-    let k = L::load(&x.axial_mass);
-    let angle = L::load(&x.angle) + turned;
+    let k = L::load(&x.axial_mass, g);
+    let angle = L::load(&x.angle, g) + turned;
     // Spring.
-    let on = L::load(&x.spring_on).gt(zero);
-    let c = wrap(angle - L::load(&x.spring_target));
-    let spring = L::load(&x.spring);
-    let d = -k * (L::load(&x.spring_mass_scale) * (b.w - a.w) + L::load(&x.spring_bias_rate) * c)
-        - L::load(&x.spring_impulse_scale) * spring;
-    L::select(on, spring + d, spring).store(&mut x.spring);
+    let on = L::load(&x.spring_on, g).gt(zero);
+    let c = wrap(angle - L::load(&x.spring_target, g));
+    let spring = L::load(&x.spring, g);
+    let d = -k
+        * (L::load(&x.spring_mass_scale, g) * (b.w - a.w) + L::load(&x.spring_bias_rate, g) * c)
+        - L::load(&x.spring_impulse_scale, g) * spring;
+    L::select(on, spring + d, spring).store(&mut x.spring, g);
     apply_angular((ia, ib), (a, b), d, on);
     // Motor.
-    let on = L::load(&x.motor_on).gt(zero);
-    let max = L::load(&x.motor_max);
-    let old = L::load(&x.motor);
-    let new = (old - k * ((b.w - a.w) - L::load(&x.motor_speed))).clamp(-max, max);
-    L::select(on, new, old).store(&mut x.motor);
+    let on = L::load(&x.motor_on, g).gt(zero);
+    let max = L::load(&x.motor_max, g);
+    let old = L::load(&x.motor, g);
+    let new = (old - k * ((b.w - a.w) - L::load(&x.motor_speed, g))).clamp(-max, max);
+    L::select(on, new, old).store(&mut x.motor, g);
     apply_angular((ia, ib), (a, b), new - old, on);
     // Limits: lower on ω_B − ω_A, upper on ω_A − ω_B.
-    let on = L::load(&x.limits_on).gt(zero);
+    let on = L::load(&x.limits_on, g).gt(zero);
     let d = limit_row::<L, BIAS>(
-        &mut x.lower_impulse,
-        (k, b.w - a.w, angle - L::load(&x.lower)),
+        (&mut x.lower_impulse, g),
+        (k, b.w - a.w, angle - L::load(&x.lower, g)),
         (rigid, inv_h),
         on,
     );
     apply_angular((ia, ib), (a, b), d, on);
     let d = limit_row::<L, BIAS>(
-        &mut x.upper_impulse,
-        (k, a.w - b.w, L::load(&x.upper) - angle),
+        (&mut x.upper_impulse, g),
+        (k, a.w - b.w, L::load(&x.upper, g) - angle),
         (rigid, inv_h),
         on,
     );
@@ -432,7 +447,7 @@ fn angle_rows<L: Lanes, const BIAS: bool>(
 /// ≥ 0 in the lanes of `on` (the others keep theirs).
 #[inline(always)]
 fn limit_row<L: Lanes, const BIAS: bool>(
-    impulse: &mut F64x4,
+    (impulse, g): (&mut F64x8, usize),
     (mass, cdot, c): (L, L, L),
     (rigid, inv_h): (Row<L>, L),
     on: L::Mask,
@@ -447,24 +462,24 @@ fn limit_row<L: Lanes, const BIAS: bool>(
     } else {
         L::select(speculative, c, zero)
     };
-    let old = L::load(impulse);
+    let old = L::load(impulse, g);
     let new = (old + (-mass * (mass_scale * cdot + bias_rate * c) - impulse_scale * old)).max(zero);
-    L::select(on, new, old).store(impulse);
+    L::select(on, new, old).store(impulse, g);
     new - old
 }
 
 /// Each lane wrapped into [−π, π) by the scalar [`wrap_angle`].
 #[inline(always)]
 fn wrap<L: Lanes>(x: L) -> L {
-    L::from_array(x.to_array().map(wrap_angle))
+    x.map(wrap_angle)
 }
 
-/// The two point rows of four joints (the scalar
+/// The two point rows of a group of joints (the scalar
 /// [`RevoluteRows::solve`]'s second part); `delta` is Δp_B − Δp_A since
 /// the step began (used in the solve pass only).
 #[inline(always)]
 fn point_rows<L: Lanes, const BIAS: bool>(
-    w: &mut WideRevolute,
+    (w, g): (&mut WideRevolute, usize),
     (a, b): (&mut WideBody<L>, &mut WideBody<L>),
     (m, r): ([L; 4], [L; 4]),
     ((dx, dy), row): ((L, L), Row<L>),
@@ -476,8 +491,8 @@ fn point_rows<L: Lanes, const BIAS: bool>(
     let cdot_x = (b.vx + -b.w * rby) - (a.vx + -a.w * ray);
     let cdot_y = (b.vy + b.w * rbx) - (a.vy + a.w * rax);
     let (bias_x, bias_y) = if BIAS {
-        let sx = (dx + L::load(&w.dc_x)) + (rbx - rax);
-        let sy = (dy + L::load(&w.dc_y)) + (rby - ray);
+        let sx = (dx + L::load(&w.dc_x, g)) + (rbx - rax);
+        let sy = (dy + L::load(&w.dc_y, g)) + (rby - ray);
         (row.bias_rate * sx, row.bias_rate * sy)
     } else {
         (zero, zero)
@@ -494,13 +509,13 @@ fn point_rows<L: Lanes, const BIAS: bool>(
     let inv = L::splat(1.0) / det;
     let sol_x = L::select(singular, zero, inv * (k22 * hx - k12 * hy));
     let sol_y = L::select(singular, zero, inv * (k11 * hy - k12 * hx));
-    let (lx, ly) = (L::load(&w.linear_x), L::load(&w.linear_y));
+    let (lx, ly) = (L::load(&w.linear_x, g), L::load(&w.linear_y, g));
     let d = (
         -sol_x - row.impulse_scale * lx,
         -sol_y - row.impulse_scale * ly,
     );
-    (lx + d.0).store(&mut w.linear_x);
-    (ly + d.1).store(&mut w.linear_y);
+    (lx + d.0).store(&mut w.linear_x, g);
+    (ly + d.1).store(&mut w.linear_y, g);
     apply(m, (a, b), r, d, zero);
 }
 
@@ -512,6 +527,10 @@ mod tests {
     use crate::soft_step::colouring::{Colouring, Slot};
     use nalgebra::Vector2;
 
+    use crate::soft_step::lanes::F64x4;
+    use crate::soft_step::lanes::tests::lane_type_runs;
+    use crate::soft_step::lanes_avx::Avx4;
+    use crate::soft_step::lanes_avx512::Avx8;
     use crate::soft_step::test_numbers::Numbers;
 
     /// Twelve moving bodies and the static dummy; a chain of revolute
@@ -575,7 +594,8 @@ mod tests {
             rows.lower = some(joint.limits.is_some(), 0.001 * n.next().abs());
             rows.upper = some(joint.limits.is_some(), 0.001 * n.next().abs());
             if k % 6 == 5 || k >= 19 {
-                // A free joint (the last four: a record of them).
+                // A free joint (the last ones: a record without angle rows,
+                // checked below).
                 rows = RevoluteRows::new(Revolute::default());
                 rows.prepare(&frame, Softness::RIGID, true);
             }
@@ -633,18 +653,36 @@ mod tests {
                 }
             }
         }
-        for sse2 in [true, false] {
+        // Each lane type (SSE2 on every x86-64 CPU, AVX and AVX-512 where
+        // the CPU has them), then the dispatched passes.
+        fn passes<L: Lanes>(
+            (wide, axial): (&mut [WideRevolute], &mut [WideAxial]),
+            bodies: &mut [SolverBody],
+            inv_h: f64,
+        ) {
+            for _ in 0..3 {
+                warm_start_with::<L>(wide, axial, bodies);
+                solve_with::<L>(wide, axial, bodies, inv_h);
+                relax_with::<L>(wide, axial, bodies, inv_h);
+            }
+        }
+        for path in ["SSE2", "AVX", "AVX-512", "dispatched"] {
+            if !lane_type_runs(path) {
+                continue;
+            }
             let (mut wide, mut axial, mut wide_bodies) =
                 (wide.clone(), axial.clone(), bodies.clone());
-            for _ in 0..3 {
-                if sse2 {
-                    warm_start_with::<F64x4>(&wide, &axial, &mut wide_bodies);
-                    solve_with::<F64x4>(&mut wide, &mut axial, &mut wide_bodies, inv_h);
-                    relax_with::<F64x4>(&mut wide, &mut axial, &mut wide_bodies, inv_h);
-                } else {
-                    warm_start(&wide, &axial, &mut wide_bodies);
-                    solve(&mut wide, &mut axial, &mut wide_bodies, inv_h);
-                    relax(&mut wide, &mut axial, &mut wide_bodies, inv_h);
+            let records = (&mut wide[..], &mut axial[..]);
+            match path {
+                "SSE2" => passes::<F64x4>(records, &mut wide_bodies, inv_h),
+                "AVX" => passes::<Avx4>(records, &mut wide_bodies, inv_h),
+                "AVX-512" => passes::<Avx8>(records, &mut wide_bodies, inv_h),
+                _ => {
+                    for _ in 0..3 {
+                        warm_start(records.0, records.1, &mut wide_bodies);
+                        solve(records.0, records.1, &mut wide_bodies, inv_h);
+                        relax(records.0, records.1, &mut wide_bodies, inv_h);
+                    }
                 }
             }
             let bits = |b: &[SolverBody]| -> Vec<[u64; 3]> {
@@ -652,22 +690,14 @@ mod tests {
                     .map(|s| [s.v.x.to_bits(), s.v.y.to_bits(), s.w.to_bits()])
                     .collect()
             };
-            assert_eq!(
-                bits(&scalar_bodies),
-                bits(&wide_bodies),
-                "SSE2 only: {sse2}"
-            );
+            assert_eq!(bits(&scalar_bodies), bits(&wide_bodies), "{path}");
             for (i, &(record, lane)) in order.iter().enumerate() {
                 let mut rows = joints[i].1;
                 store_lane((&wide[record], &axial[record]), lane, &mut rows);
                 let impulses = |r: &RevoluteRows| {
                     [r.linear.x, r.linear.y, r.spring, r.motor, r.lower, r.upper].map(f64::to_bits)
                 };
-                assert_eq!(
-                    impulses(&rows),
-                    impulses(&scalar[i].1),
-                    "joint {i}, SSE2 only: {sse2}"
-                );
+                assert_eq!(impulses(&rows), impulses(&scalar[i].1), "joint {i}, {path}");
             }
         }
         // Every option acted somewhere.
