@@ -46,7 +46,9 @@
 //! they come ([`contacts_off`]); the pictures and the replay, which draw
 //! from the whole run, keep their samples in memory ([`Samples`], at most
 //! `--max-samples` of every body), and `--compare` keeps what
-//! [`compare`] says. `--verbose` prints the process's peak resident set
+//! [`compare`] says. The printed run time leaves out the time spent
+//! keeping samples (writing the trace's rows, searching for overlaps).
+//! `--verbose` prints the process's peak resident set
 //! (`getrusage`), and `harness bench` measures it on the large scenes
 //! ([`crate::bench::memory`]).
 //!
