@@ -402,7 +402,8 @@ fn check_run(scene: &Scene) -> Result<(), String> {
     let Ok(recorded) = record(&mut world, until, scene.dt(), &limits, ticker, |_, _, _| {}) else {
         return Ok(()); // a typed error: the run is refused, not garbage
     };
-    for (k, (states, energy)) in recorded.states.iter().zip(&recorded.energies).enumerate() {
+    let samples = &recorded.samples;
+    for (k, (states, energy)) in samples.states.iter().zip(&samples.energies).enumerate() {
         let finite = states.iter().all(|s| {
             s.position.iter().all(|v| v.is_finite())
                 && s.velocity.iter().all(|v| v.is_finite())

@@ -5,6 +5,7 @@
 //! harness simulate scene.toml [--method M] [--dt H] [--until T]
 //!     [--trace out.csv] [--svg out.svg] [--gif out.gif] [--html out.html]
 //!     [--compare rapier,box2d] [--verbose] [--budget SECONDS]
+//!     [--max-samples N] [--frames N] [--threads N]
 //! ```
 //!
 //! - the scene runs with its own `[simulation]` method, step and duration,
@@ -16,7 +17,8 @@
 //!   world's total, kinetic plus potential, repeated on each body's row).
 //!   Numbers are written in Rust's shortest round-trip form, so they read
 //!   back bit for bit. A `[linear_test]` trace has `t, y, exact, error`.
-//!   Written by hand (no csv crate): names are quoted when they need it;
+//!   Written by hand (no csv crate): names are quoted when they need it
+//!   ([`trace`]);
 //! - `--svg`: a filmstrip of six frames; `--gif`: an animation (at most
 //!   `--frames`, default 120, ≤ 200); a `[linear_test]` gets its y(t) curve
 //!   as SVG and no animation;
@@ -33,11 +35,29 @@
 //! - on a terminal, a progress bar appears once a run has lasted a second,
 //!   redrawn while a slow step goes on ([`crate::progress`]).
 //!
+//! Memory does not grow with the number of steps: a run keeps only what
+//! its outputs need. [`stream`] steps the world and hands each sample (at
+//! most `--max-samples`: every k-th step, the first and the last) to its
+//! consumers, keeping only what the printed summary needs ([`Run`]: the
+//! steps, the first, last and highest energy, the end time, the events);
+//! with no output asked, nothing else is kept. `--trace` writes each
+//! sample's rows to its temporary file as the run goes ([`trace`]), the
+//! overlap warning of a scene without contacts searches the samples as
+//! they come ([`contacts_off`]); the pictures and the replay, which draw
+//! from the whole run, keep their samples in memory ([`Samples`], at most
+//! `--max-samples` of every body), and `--compare` keeps what
+//! [`compare`] says. The printed run time leaves out the time spent
+//! keeping samples (writing the trace's rows, searching for overlaps).
+//! `--verbose` prints the process's peak resident set
+//! (`getrusage`), and `harness bench` measures it on the large scenes
+//! ([`crate::bench::memory`]).
+//!
 //! Bad input never panics and never costs the user's work: the scene file
 //! is only read, every error (the scene's, with file, field and line, or a
 //! command-line value) is reported before the run, and the outputs are
 //! written only after the run succeeded, each to a temporary file renamed
-//! into place. An output path must end in its format's extension
+//! into place (the trace's is in the destination folder from the start of
+//! the run, and removed when the run fails). An output path must end in its format's extension
 //! (`--trace` .csv, `--svg` .svg, `--gif` .gif, in any case): `--svg a.png`
 //! is refused rather than writing SVG into a `.png`. An output path equal
 //! to the scene file is refused, and so
@@ -58,15 +78,17 @@ mod diagnosis;
 mod linear_test;
 mod outputs;
 mod run_text;
+pub mod trace;
 mod warnings;
 
 use outputs::{Output, check_outputs, outputs, write_all};
 pub use outputs::{refuse_special, write_atomically};
+use trace::TraceFile;
 
 use crate::pictures::{self, Film, GifOptions};
 use crate::progress::{Budget, Ticker};
 use crate::report::fmt_num;
-use anyhow::{Result, anyhow, bail};
+use anyhow::{Context, Result, anyhow, bail};
 use clap::{Args, ValueEnum};
 use engine::time_grid::grid_time;
 use engine::{BodyState, EventRecord, MAX_RUN_STEPS, Method, Tolerance, World};
@@ -109,8 +131,9 @@ pub struct SimulateArgs {
     #[arg(long, value_name = "N", default_value_t = 120,
           value_parser = clap::value_parser!(u16).range(2..=200))]
     pub frames: u16,
-    /// Most samples kept in the trace: a longer run keeps every k-th step
-    /// (and always the first and the last).
+    /// Most samples kept in the trace, the pictures and the replay: a
+    /// longer run keeps every k-th step (and always the first and the
+    /// last).
     #[arg(long, value_name = "N", default_value_t = 100_000,
           value_parser = clap::value_parser!(u64).range(2..=100_000_000))]
     pub max_samples: u64,
@@ -123,7 +146,8 @@ pub struct SimulateArgs {
     /// rapier, box2d, or both (`--compare rapier,box2d`).
     #[arg(long, value_name = "ENGINE", value_delimiter = ',')]
     pub compare: Vec<CompareWith>,
-    /// Print how each engine of --compare is configured.
+    /// Print how each engine of --compare is configured, and the run's peak
+    /// memory (resident set, getrusage).
     #[arg(long)]
     pub verbose: bool,
     /// Threads of the soft step's parallel stages (1 to 256) instead of
@@ -198,29 +222,65 @@ impl Default for RunLimits {
     }
 }
 
-/// A run, sampled.
+/// What a run did, kept as it goes whatever the outputs: what the printed
+/// summary and the warnings need, of a size independent of the number of
+/// steps (save the located events, which are few: a landing ends the run).
 #[derive(Debug, Clone, Default)]
-pub struct Recorded {
-    /// Sample times (s).
-    pub times: Vec<f64>,
-    /// Every body's state at each sample.
-    pub states: Vec<Vec<BodyState>>,
-    /// Total energy at each sample (J).
-    pub energies: Vec<f64>,
-    /// Events located, in time order.
-    pub events: Vec<EventRecord>,
+pub struct Run {
     /// Steps taken.
     pub steps: u64,
-    /// Every `stride`-th step was kept.
+    /// Every `stride`-th step was sampled (and the first and the last).
     pub stride: u64,
+    /// Samples taken, the initial state included.
+    pub samples: u64,
+    /// Time of the last sample, where the run ended (s).
+    pub end_time: f64,
+    /// Total energy at t = 0 (J).
+    pub first_energy: f64,
+    /// Total energy at the last sample (J).
+    pub last_energy: f64,
+    /// The largest total energy of the samples after the first (J); −∞
+    /// when there is none.
+    pub highest_energy: f64,
+    /// Events located, in time order.
+    pub events: Vec<EventRecord>,
     /// Whether a terminal event (a landing) ended the run.
     pub stopped_by_event: bool,
     /// Whether the wall-time budget ended the run early.
     pub stopped_by_budget: bool,
 }
 
-impl Recorded {
-    fn push(&mut self, world: &World, energy: f64) {
+impl Run {
+    /// Counts a sample of total energy `energy` (J) taken at `t` (s).
+    fn note(&mut self, t: f64, energy: f64) {
+        if self.samples == 0 {
+            self.first_energy = energy;
+            self.highest_energy = f64::NEG_INFINITY;
+        } else {
+            self.highest_energy = self.highest_energy.max(energy);
+        }
+        self.samples += 1;
+        self.end_time = t;
+        self.last_energy = energy;
+    }
+}
+
+/// Samples of a run held in memory: what the pictures and the replay
+/// draw from (at most `--max-samples` of them, every body's state in
+/// each), kept only when one of them is asked for.
+#[derive(Debug, Clone, Default)]
+pub struct Samples {
+    /// Sample times (s).
+    pub times: Vec<f64>,
+    /// Every body's state at each sample.
+    pub states: Vec<Vec<BodyState>>,
+    /// Total energy at each sample (J).
+    pub energies: Vec<f64>,
+}
+
+impl Samples {
+    /// Keeps the world's current state, of total energy `energy` (J).
+    pub fn push(&mut self, world: &World, energy: f64) {
         self.times.push(world.time());
         self.states.push(world.states().to_vec());
         self.energies.push(energy);
@@ -234,46 +294,69 @@ impl Recorded {
     }
 }
 
+/// A run with its samples in memory: what [`record`] returns.
+#[derive(Debug, Clone, Default)]
+pub struct Recorded {
+    /// What the run did.
+    pub run: Run,
+    /// Its samples.
+    pub samples: Samples,
+}
+
 /// Every how many steps [`record`] keeps a sample of a run of `steps`
 /// steps to keep at most `max_samples` (≥ 2), the first and last included.
 pub fn stride_for(steps: u64, max_samples: u64) -> u64 {
     (steps.div_ceil(max_samples.max(2) - 1)).max(1)
 }
 
+/// Samples a run of `steps` steps takes at `stride`: the initial state,
+/// every `stride`-th step and the last (fewer when the run ends early).
+pub fn samples_for(steps: u64, stride: u64) -> u64 {
+    steps.div_ceil(stride.max(1)) + 1
+}
+
 /// Runs `world` from its current time to `until` (s) in steps of `dt`
 /// (s), on the grid of [`World::run`] (times `t0 + i·dt`, the last step
-/// shortened to end at `until`), and keeps at most `limits.max_samples`
-/// samples. After every step, `on_step(i, whole, world)` is called, with
-/// `whole` true when the world stands at exactly `t0 + i·dt` (not after a
-/// shortened last step or a terminal event). `ticker` counts the steps.
-/// A sampled step whose energy is not a finite number fails the run
-/// ([`engine::EngineError::BlowUp`]). When `limits.budget` is spent, the run stops after the current step
-/// with what it has (`stopped_by_budget`), and says so on stderr.
-pub fn record(
+/// shortened to end at `until`), sampling at most `limits.max_samples`
+/// times, and keeps no sample: `on_sample(world, energy)` is called at
+/// each (the initial state first; `energy` is the world's total, J), and
+/// may stream it somewhere or keep what it needs; an error it returns
+/// ends the run with that error. After every step, `on_step(i, whole,
+/// world)` is called, before the step's sample, with `whole` true when the
+/// world stands at exactly `t0 + i·dt` (not after a shortened last step or
+/// a terminal event). `ticker` counts the steps. A sampled step whose
+/// energy is not a finite number fails the run
+/// ([`engine::EngineError::BlowUp`]). When `limits.budget` is spent, the
+/// run stops after the current step with what it has
+/// (`stopped_by_budget`), and says so on stderr.
+pub fn stream(
     world: &mut World,
     until: f64,
     dt: f64,
     limits: &RunLimits,
     mut ticker: Ticker,
     mut on_step: impl FnMut(u64, bool, &World),
-) -> Result<Recorded> {
+    mut on_sample: impl FnMut(&World, f64) -> Result<()>,
+) -> Result<Run> {
     let t0 = world.time();
     let span = until - t0;
     let steps = engine::step_count(span, dt)?;
     let last_is_whole = (steps as f64 * dt - span).abs() <= 1e-9 * span;
     let stride = stride_for(steps, limits.max_samples);
-    let mut rec = Recorded {
+    let mut run = Run {
         stride,
-        ..Recorded::default()
+        ..Run::default()
     };
-    rec.push(world, world.energy());
+    let energy = world.energy();
+    run.note(world.time(), energy);
+    on_sample(world, energy)?;
     let budget = Budget::new(limits.budget);
     for i in 1..=steps {
         let t = grid_time(t0, until, dt, i, steps);
         let events = world
             .step_to(t)
             .map_err(|e| diagnosis::step_failed(e, i, steps, world.time()))?;
-        rec.events.extend(events);
+        run.events.extend(events);
         let stopped = world.is_stopped();
         let out_of_time = !stopped && i < steps && budget.exhausted();
         let sampled = i % stride == 0 || i == steps || stopped || out_of_time;
@@ -291,26 +374,46 @@ pub fn record(
         }
         ticker.tick();
         on_step(i, !stopped && (i < steps || last_is_whole), world);
-        rec.steps = i;
+        run.steps = i;
         if sampled {
-            rec.push(world, energy);
+            run.note(world.time(), energy);
+            on_sample(world, energy)?;
         }
         if stopped {
-            rec.stopped_by_event = true;
+            run.stopped_by_event = true;
             break;
         }
         if out_of_time {
-            rec.stopped_by_budget = true;
+            run.stopped_by_budget = true;
             break;
         }
     }
     // The bar is cleared before the note, which would otherwise be drawn
     // over.
     ticker.finish();
-    if rec.stopped_by_budget {
-        budget.say_stopped(world.time(), rec.steps, steps);
+    if run.stopped_by_budget {
+        budget.say_stopped(world.time(), run.steps, steps);
     }
-    Ok(rec)
+    Ok(run)
+}
+
+/// [`stream`], keeping every sample in memory: for the callers that draw
+/// or check the whole run (pictures, replays, the fuzzer), whose memory
+/// is at most `limits.max_samples` samples of every body.
+pub fn record(
+    world: &mut World,
+    until: f64,
+    dt: f64,
+    limits: &RunLimits,
+    ticker: Ticker,
+    on_step: impl FnMut(u64, bool, &World),
+) -> Result<Recorded> {
+    let mut samples = Samples::default();
+    let run = stream(world, until, dt, limits, ticker, on_step, |w, energy| {
+        samples.push(w, energy);
+        Ok(())
+    })?;
+    Ok(Recorded { run, samples })
 }
 
 /// Step count of the run, with the command-line options named when they
@@ -386,14 +489,16 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
             engines.push(*e);
         }
     }
+    let stride = stride_for(steps, args.max_samples);
     let mut comparison = if engines.is_empty() {
         None
     } else {
         Some(compare::Comparison::prepare(
             &scene,
             &engines,
-            (dt, steps, stride_for(steps, args.max_samples)),
+            (dt, steps, stride),
             world.states(),
+            args.html.is_some(),
             args.verbose,
         )?)
     };
@@ -409,19 +514,51 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         max_samples: args.max_samples,
         budget: args.budget,
     };
+    // What the outputs asked keep of the run as it goes: the trace streams
+    // its rows to its temporary file, the pictures and the replay keep
+    // their samples; with none asked, nothing is kept per step.
+    let names = scene.body_names();
+    let mut trace = match requested.iter().find(|o| o.option == "--trace") {
+        Some(out) => Some((
+            out,
+            TraceFile::create(out.path, &names)
+                .with_context(|| format!("--trace {}", out.path.display()))?,
+        )),
+        None => None,
+    };
+    let drawn = args.svg.is_some() || args.gif.is_some() || args.html.is_some();
+    let mut samples = drawn.then(Samples::default);
+    let mut overlap = contacts_off::OverlapWatch::new(&world, samples_for(steps, stride));
     let ticker = Ticker::for_loop(steps, "simulating");
     let run_started = Instant::now();
-    let recorded = record(&mut world, until, dt, &limits, ticker, |i, whole, w| {
+    // Time spent keeping samples (the trace's rows, the overlap search),
+    // not counted in the run's time.
+    let mut keeping = std::time::Duration::ZERO;
+    let on_step = |i, whole, w: &World| {
         if let Some(c) = comparison.as_mut() {
             c.observe(i, whole, w);
         }
-    })
-    .map_err(|e| diagnosis::explain(e, &scene, &world, dt).context(scene.origin().to_owned()))?;
-    let run_time = run_started.elapsed();
-    print!(
-        "{}",
-        summary(&scene, &world, &recorded, run_time.as_secs_f64())
-    );
+    };
+    let on_sample = |w: &World, energy| {
+        let started = Instant::now();
+        if let Some(watch) = overlap.as_mut() {
+            watch.sample(w);
+        }
+        if let Some(samples) = samples.as_mut() {
+            samples.push(w, energy);
+        }
+        if let Some((out, file)) = trace.as_mut() {
+            file.sample(w.time(), w.states(), energy)
+                .with_context(|| format!("--trace {}", out.path.display()))?;
+        }
+        keeping += started.elapsed();
+        Ok(())
+    };
+    let run = stream(&mut world, until, dt, &limits, ticker, on_step, on_sample).map_err(|e| {
+        diagnosis::explain(e, &scene, &world, dt).context(scene.origin().to_owned())
+    })?;
+    let run_time = run_started.elapsed().saturating_sub(keeping);
+    print!("{}", summary(&scene, &world, &run, run_time.as_secs_f64()));
     let references = match comparison {
         Some(c) => {
             let (text, runs) = c.report()?;
@@ -433,13 +570,15 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         }
         None => Vec::new(),
     };
-    if let Some(warning) =
-        warnings::energy_growth(scene.origin(), method.id(), dt, &recorded.energies)
-    {
+    if let Some(warning) = warnings::energy_growth(
+        scene.origin(),
+        method.id(),
+        dt,
+        (run.first_energy, run.highest_energy),
+    ) {
         eprintln!("{warning}");
     }
-    if let Some((t, a, b)) = contacts_off::first_overlap(&world, &recorded) {
-        let names = scene.body_names();
+    if let Some((t, a, b)) = overlap.as_ref().and_then(contacts_off::OverlapWatch::first) {
         let warning = format!(
             "warning: {}: bodies '{}' and '{}' overlap at t = {} s, but contacts are off (the scene has no [contact] table), so they pass through each other; add `[contact]` (model = \"soft_step\", the default, or \"exact\") to make them collide",
             scene.origin(),
@@ -449,14 +588,14 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         );
         eprintln!("{warning}");
     }
-    // Everything ran: now build the outputs in memory, then write them.
-    let names = scene.body_names();
+    // Everything ran: now build the pictures and the replay in memory,
+    // then write them and rename the trace into place.
+    let samples = samples.unwrap_or_default();
     let mut files: Vec<(&Output<'_>, Vec<u8>)> = Vec::new();
     for out in &requested {
         let bytes = match out.option {
-            "--trace" => world_csv(&names, &recorded).into_bytes(),
             "--svg" | "--gif" => {
-                let film = film_of(&scene, &world, &recorded, method, dt);
+                let film = film_of(&scene, &world, (&samples, &run.events), method, dt);
                 if out.option == "--svg" {
                     pictures::svg::filmstrip(&film, pictures::FILMSTRIP_FRAMES)
                         .map_err(|e| e.context(format!("--svg {}", out.path.display())))?
@@ -477,15 +616,15 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
                     world.bodies(),
                     title,
                     format!("{}, dt = {} s", method.id(), fmt_short(dt)),
-                    dt * recorded.stride as f64,
+                    dt * run.stride as f64,
                 );
                 replay.runs.push(crate::replay::ReplayRun {
                     label: format!("this engine ({}, dt = {} s)", method.id(), fmt_short(dt)),
                     short: "engine".into(),
-                    times: recorded.times.clone(),
-                    states: recorded.states.clone(),
-                    energies: Some(recorded.energies.clone()),
-                    events: crate::replay::ReplayEvent::from_records(&scene, &recorded.events),
+                    times: samples.times.clone(),
+                    states: samples.states.clone(),
+                    energies: Some(samples.energies.clone()),
+                    events: crate::replay::ReplayEvent::from_records(&scene, &run.events),
                 });
                 replay.runs.extend(references.iter().cloned());
                 replay
@@ -498,7 +637,17 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         };
         files.push((out, bytes));
     }
-    write_all(&files, &recorded)?;
+    let trace = trace.map(|(out, file)| (out, file.into_staged()));
+    write_all(trace, &files, (run.samples, run.stride))?;
+    if args.verbose {
+        match crate::bench::memory::own_peak_kib() {
+            Ok(kib) => println!(
+                "peak memory: {:.0} MB (this process's peak resident set, getrusage)",
+                kib as f64 * 1024.0 / 1e6
+            ),
+            Err(e) => println!("peak memory: not measured ({e})"),
+        }
+    }
     tracing::info!("simulate done in {:.3} s", started.elapsed().as_secs_f64());
     Ok(())
 }
@@ -575,6 +724,7 @@ pub fn replay_of(
             &[engine],
             (dt, steps, stride),
             world.states(),
+            true,
             false,
         ) {
             Ok(c) => comparisons.push(c),
@@ -592,16 +742,16 @@ pub fn replay_of(
         world.bodies(),
         title,
         format!("{}, dt = {} s", method.id(), fmt_short(dt)),
-        dt * recorded.stride as f64,
+        dt * recorded.run.stride as f64,
     );
     replay.notes = notes;
     replay.runs.push(crate::replay::ReplayRun {
         label: format!("this engine ({}, dt = {} s)", method.id(), fmt_short(dt)),
         short: "engine".into(),
-        times: recorded.times,
-        states: recorded.states,
-        energies: Some(recorded.energies),
-        events: crate::replay::ReplayEvent::from_records(scene, &recorded.events),
+        times: recorded.samples.times,
+        states: recorded.samples.states,
+        energies: Some(recorded.samples.energies),
+        events: crate::replay::ReplayEvent::from_records(scene, &recorded.run.events),
     });
     for c in comparisons {
         let (_, runs) = c.report()?;
@@ -635,7 +785,13 @@ pub fn fmt_short(v: f64) -> String {
     }
 }
 
-fn film_of(scene: &Scene, world: &World, recorded: &Recorded, method: Method, dt: f64) -> Film {
+fn film_of(
+    scene: &Scene,
+    world: &World,
+    (samples, events): (&Samples, &[EventRecord]),
+    method: Method,
+    dt: f64,
+) -> Film {
     let name = scene_name(scene);
     let mut film = Film::new(
         scene,
@@ -643,8 +799,8 @@ fn film_of(scene: &Scene, world: &World, recorded: &Recorded, method: Method, dt
         name,
         format!("{}, dt = {} s", method.id(), fmt_short(dt)),
     );
-    recorded.fill(&mut film);
-    film.mark_events(scene, &recorded.events);
+    samples.fill(&mut film);
+    film.mark_events(scene, events);
     film
 }
 
@@ -659,9 +815,9 @@ fn duration_text(seconds: f64) -> String {
 
 /// What the run did: steps, events, final states, energy (10 significant
 /// digits; the CSV has every digit).
-fn summary(scene: &Scene, world: &World, rec: &Recorded, seconds: f64) -> String {
+fn summary(scene: &Scene, world: &World, rec: &Run, seconds: f64) -> String {
     let mut out = String::new();
-    let end = rec.times.last().copied().unwrap_or(0.0);
+    let end = rec.end_time;
     let ended_by = match (rec.stopped_by_event, rec.events.last()) {
         (true, Some(e)) => format!(" (ended by the {} event)", e.name),
         _ if rec.stopped_by_budget => " (stopped by --budget: the outputs cover this part)".into(),
@@ -726,11 +882,12 @@ fn summary(scene: &Scene, world: &World, rec: &Recorded, seconds: f64) -> String
         }
         out.push('\n');
     }
-    if let (Some(e0), Some(e1)) = (rec.energies.first(), rec.energies.last()) {
+    if rec.samples > 0 {
+        let (e0, e1) = (rec.first_energy, rec.last_energy);
         // Each energy is finite (the world reports a non-finite one as a
         // blow-up); their difference may still overflow.
         let change = (e1 - e0) / e0.abs();
-        let relative = if *e0 != 0.0 && change.is_finite() {
+        let relative = if e0 != 0.0 && change.is_finite() {
             format!(" (relative change {change:.3e})")
         } else {
             String::new()
@@ -738,8 +895,8 @@ fn summary(scene: &Scene, world: &World, rec: &Recorded, seconds: f64) -> String
         let _ = writeln!(
             out,
             "energy: {} J at t = 0, {} J at the end{relative}",
-            fmt_num(*e0),
-            fmt_num(*e1)
+            fmt_num(e0),
+            fmt_num(e1)
         );
     }
     out
@@ -752,31 +909,6 @@ fn event_body(scene: &Scene, name: &str) -> Option<usize> {
         EventEntry::Apex { body } if name == "apex" => scene.body_id(body),
         _ => None,
     })
-}
-
-/// A CSV field: quoted when it holds a comma, a quote or a line break.
-fn csv_field(text: &str) -> String {
-    if text.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", text.replace('"', "\"\""))
-    } else {
-        text.to_owned()
-    }
-}
-
-/// The trace as CSV: one row per sample and body.
-pub fn world_csv(names: &[&str], rec: &Recorded) -> String {
-    let mut out = String::from("t,body,x,y,angle,vx,vy,omega,energy\n");
-    let names: Vec<String> = names.iter().map(|n| csv_field(n)).collect();
-    for ((t, states), energy) in rec.times.iter().zip(&rec.states).zip(&rec.energies) {
-        for (name, s) in names.iter().zip(states) {
-            let _ = writeln!(
-                out,
-                "{t:?},{name},{:?},{:?},{:?},{:?},{:?},{:?},{energy:?}",
-                s.position.x, s.position.y, s.angle, s.velocity.x, s.velocity.y, s.angular_velocity
-            );
-        }
-    }
-    out
 }
 
 #[cfg(test)]
@@ -796,13 +928,6 @@ mod tests {
         assert_eq!(parse_method("rk4"), Ok("rk4".into()));
         let err = parse_method("rk5").unwrap_err();
         assert!(err.contains("dormand_prince"), "{err}");
-    }
-
-    #[test]
-    fn csv_fields_are_quoted_only_when_needed() {
-        assert_eq!(csv_field("box"), "box");
-        assert_eq!(csv_field("a,b"), "\"a,b\"");
-        assert_eq!(csv_field("say \"hi\""), "\"say \"\"hi\"\"\"");
     }
 
     #[test]
@@ -827,13 +952,90 @@ mod tests {
             |_, w, _| whole += u64::from(w),
         )
         .unwrap();
-        assert_eq!(rec.steps, 1000);
-        assert_eq!(rec.stride, 100);
-        assert_eq!(rec.times.len(), 11);
-        assert_eq!(*rec.times.last().unwrap(), 1.0);
+        assert_eq!(rec.run.steps, 1000);
+        assert_eq!(rec.run.stride, 100);
+        assert_eq!(rec.samples.times.len(), 11);
+        assert_eq!(rec.run.samples, 11);
+        assert_eq!(samples_for(1000, 100), 11);
+        assert_eq!(*rec.samples.times.last().unwrap(), 1.0);
+        assert_eq!(rec.run.end_time, 1.0);
         assert_eq!(whole, 1000);
-        let csv = world_csv(&["p"], &rec);
+        let mut csv = Vec::from(trace::HEADER);
+        let rows = trace::TraceRows::new(&["p"]);
+        for ((t, states), e) in rec
+            .samples
+            .times
+            .iter()
+            .zip(&rec.samples.states)
+            .zip(&rec.samples.energies)
+        {
+            rows.write(&mut csv, *t, states, *e).unwrap();
+        }
+        let csv = String::from_utf8(csv).unwrap();
         assert_eq!(csv.lines().count(), 12);
         assert!(csv.lines().nth(11).unwrap().starts_with("1.0,p,"), "{csv}");
+    }
+
+    #[test]
+    fn a_streamed_run_notes_its_energies_without_keeping_samples() {
+        // A free particle under gravity from rest: its energy is constant
+        // up to rounding, so first, last and highest agree with the
+        // recorded samples' to the bit (the same values, taken once).
+        let scene = Scene::parse_str(
+            "inline.toml",
+            "[simulation]\ndt = 0.01\nduration = 1.0\ngravity = [0.0, -9.81]\n[[bodies]]\nname = \"p\"\nmass = 1.0\nposition = [0.0, 5.0]\n",
+        )
+        .unwrap();
+        let limits = RunLimits {
+            max_samples: 7,
+            ..RunLimits::default()
+        };
+        let ticker = || Ticker::new(indicatif::ProgressBar::hidden(), 1);
+        let mut world = scene.build_world(None).unwrap();
+        let rec = record(&mut world, 1.0, 0.01, &limits, ticker(), |_, _, _| {}).unwrap();
+        let mut world = scene.build_world(None).unwrap();
+        let mut seen = 0;
+        let run = stream(
+            &mut world,
+            1.0,
+            0.01,
+            &limits,
+            ticker(),
+            |_, _, _| {},
+            |_, _| {
+                seen += 1;
+                Ok(())
+            },
+        )
+        .unwrap();
+        let e = &rec.samples.energies;
+        assert_eq!(run.samples, e.len() as u64);
+        assert_eq!(seen, e.len());
+        assert_eq!(run.first_energy, e[0]);
+        assert_eq!(run.last_energy, *e.last().unwrap());
+        assert_eq!(
+            run.highest_energy,
+            e[1..].iter().copied().fold(f64::NEG_INFINITY, f64::max)
+        );
+        assert_eq!(run.end_time, *rec.samples.times.last().unwrap());
+        // An error of the sample's consumer (a full disk) ends the run.
+        let mut world = scene.build_world(None).unwrap();
+        let failed = stream(
+            &mut world,
+            1.0,
+            0.01,
+            &limits,
+            ticker(),
+            |_, _, _| {},
+            |w, _| {
+                if w.time() > 0.5 {
+                    bail!("disk full")
+                } else {
+                    Ok(())
+                }
+            },
+        );
+        assert!(failed.unwrap_err().to_string().contains("disk full"));
+        assert!(world.time() < 0.6, "the run went on after the error");
     }
 }

@@ -62,15 +62,36 @@ fn a_bench_row_carries_the_build_and_the_spread() {
 
 #[test]
 fn the_peak_memory_is_the_simulate_runs() {
-    // container_1000: 1003 bodies for 10 s at 60 Hz, every sample of every
-    // body kept (simulate's default with no output asked): 601 samples of
-    // 1003 states of at least six f64 (48 bytes) are 28.9 MB, which the
-    // peak of that process must exceed.
-    let peak = harness::bench::memory::measure(Path::new(BIN), "container_1000").unwrap();
-    assert_eq!(peak.bodies, 1003);
-    assert_eq!(peak.steps, 600);
+    use harness::bench::memory::{Measured, measure, peak_of};
+    // container_1000: 1003 bodies for 10 s at 60 Hz with `--svg`, whose
+    // filmstrip is drawn from every sample of every body, kept in memory:
+    // 601 samples of 1003 states of at least six f64 (48 bytes) are
+    // 28.9 MB, which the peak of that process must exceed.
+    let dir = tempfile::tempdir().unwrap();
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/container_1000.toml");
+    let args = [
+        "simulate".into(),
+        scene.into_os_string(),
+        "--svg".into(),
+        dir.path().join("out.svg").into_os_string(),
+    ];
+    let peak = peak_of(Path::new(BIN), &args).unwrap();
     assert!(peak.peak_mb >= 1003.0 * 601.0 * 48.0 / 1e6, "{peak:?}");
     // A bound is flagged as one: a reading not above the test process's
     // own peak may be that peak (see `memory`).
     assert_eq!(peak.exact, peak.peak_mb > peak.harness_mb, "{peak:?}");
+    // A row of the benchmark: the scene's bodies, the steps of `--until`,
+    // the command as run.
+    let run = Measured {
+        scene: "container_1000",
+        until: Some(1.0),
+        trace: None,
+    };
+    let row = measure(Path::new(BIN), &run).unwrap();
+    assert_eq!(row.bodies, 1003);
+    assert_eq!(row.steps, 60);
+    assert_eq!(
+        row.command,
+        "harness simulate scenes/container_1000.toml --until 1"
+    );
 }

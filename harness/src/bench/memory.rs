@@ -1,5 +1,5 @@
 //! Peak memory of the large scenes: `harness simulate <scene>` (no output
-//! asked, the command's defaults) run as a child process of this harness
+//! asked, or `--trace`; [`RUNS`]) run as a child process of this harness
 //! binary, its peak resident set size read from the kernel's resource
 //! usage of that one child (`wait4`'s `ru_maxrss`, in KiB on Linux), so
 //! no other process is counted. A caveat of Linux's accounting: a child's
@@ -15,21 +15,83 @@
 
 use anyhow::{Context, Result, bail};
 use serde::Serialize;
+use std::ffi::OsString;
 use std::path::Path;
 use std::process::{Command, Stdio};
 
-/// The scenes measured: the largest of the benchmark and of the scenes
-/// folder, at their own duration.
-pub const SCENES: &[&str] = &["bench/large_pyramid", "container_1000", "container_10k"];
+/// One measured command: a scene (relative to the scenes folder) and the
+/// options after it.
+#[derive(Debug, Clone, Copy)]
+pub struct Measured {
+    /// Scene file, relative to the scenes folder, without `.toml`.
+    pub scene: &'static str,
+    /// `--until` (s), or `None` for the scene's own duration.
+    pub until: Option<f64>,
+    /// Whether the run writes its trace (`--trace`, into a temporary
+    /// folder), with `--max-samples` when given.
+    pub trace: Option<Option<u64>>,
+}
 
-/// One scene's peak memory.
+/// 100 steps of `container_10k` (dt = 1/60 s).
+const STEPS_100: f64 = 1.6666666666666667;
+
+/// The runs measured: the largest scenes of the benchmark and of the
+/// scenes folder at their own duration, no output asked; `container_1000`
+/// for ten times its duration (6000 steps, its pile at rest from about
+/// step 600 on); and `container_10k` at 100 and 1000 steps, without and
+/// with `--trace` (every step at 100; every 10th at 1000, `--max-samples
+/// 101`, so that both traces hold the same rows, about 150 MB each). At
+/// 100 steps its bodies still fall, at 1000 they lie in a pile whose
+/// contacts the soft step holds (its constraint records), so those two
+/// peaks differ by the pile's contact state, not by the steps;
+/// `container_1000`'s two rows, both of a pile at rest, show the peak
+/// independent of the number of steps.
+pub const RUNS: &[Measured] = &[
+    Measured {
+        scene: "bench/large_pyramid",
+        until: None,
+        trace: None,
+    },
+    Measured {
+        scene: "container_1000",
+        until: None,
+        trace: None,
+    },
+    Measured {
+        scene: "container_1000",
+        until: Some(100.0),
+        trace: None,
+    },
+    Measured {
+        scene: "container_10k",
+        until: Some(STEPS_100),
+        trace: None,
+    },
+    Measured {
+        scene: "container_10k",
+        until: None,
+        trace: None,
+    },
+    Measured {
+        scene: "container_10k",
+        until: Some(STEPS_100),
+        trace: Some(None),
+    },
+    Measured {
+        scene: "container_10k",
+        until: None,
+        trace: Some(Some(101)),
+    },
+];
+
+/// One run's peak memory.
 #[derive(Debug, Clone, Serialize)]
 pub struct PeakMemory {
     /// Scene file, relative to the scenes folder.
     pub scene: String,
     /// Bodies of the scene.
     pub bodies: usize,
-    /// Steps of its run (its duration over its step).
+    /// Steps of its run.
     pub steps: u64,
     /// Peak resident set size of the `simulate` process (MB, 10⁶ bytes),
     /// or, when `exact` is false, an upper bound of it (the harness's own
@@ -44,48 +106,90 @@ pub struct PeakMemory {
     pub command: String,
 }
 
-/// Measures every scene of [`SCENES`]; `Ok(None)` where the platform gives
+/// Measures every run of [`RUNS`]; `Ok(None)` where the platform gives
 /// no per-child peak (not Linux).
 pub fn measure_all() -> Result<Option<Vec<PeakMemory>>> {
     if !cfg!(target_os = "linux") {
         return Ok(None);
     }
     let exe = std::env::current_exe().context("locating the harness binary")?;
-    SCENES
-        .iter()
-        .map(|s| measure(&exe, s))
+    RUNS.iter()
+        .map(|run| measure(&exe, run))
         .collect::<Result<_>>()
         .map(Some)
 }
 
-/// Peak memory of `exe simulate` (the harness binary `exe`) on scene `id`
-/// (relative to the scenes folder).
-pub fn measure(exe: &Path, id: &str) -> Result<PeakMemory> {
-    let scene = crate::scenes::load(id)?;
-    let path = crate::scenes::path_of(id);
+/// Peak memory of `exe simulate` (the harness binary `exe`) on `run`.
+pub fn measure(exe: &Path, run: &Measured) -> Result<PeakMemory> {
+    let scene = crate::scenes::load(run.scene)?;
+    let path = crate::scenes::path_of(run.scene);
+    let mut args: Vec<OsString> = vec!["simulate".into(), path.into()];
+    let mut shown = format!("harness simulate scenes/{}.toml", run.scene);
+    let until = run.until.unwrap_or(scene.duration());
+    if let Some(until) = run.until {
+        args.extend(["--until".into(), until.to_string().into()]);
+        shown.push_str(&format!(" --until {until}"));
+    }
+    // The trace goes to a file of the system's temporary folder, removed
+    // after the run.
+    let trace = std::env::temp_dir().join(format!("harness-memory-{}.csv", std::process::id()));
+    if let Some(max_samples) = run.trace {
+        args.extend(["--trace".into(), trace.clone().into()]);
+        shown.push_str(" --trace out.csv");
+        if let Some(n) = max_samples {
+            args.extend(["--max-samples".into(), n.to_string().into()]);
+            shown.push_str(&format!(" --max-samples {n}"));
+        }
+    }
+    let peak = peak_of(exe, &args);
+    let _ = std::fs::remove_file(&trace);
+    let peak = peak?;
+    Ok(PeakMemory {
+        scene: run.scene.to_string(),
+        bodies: scene.bodies().len(),
+        steps: engine::step_count(until, scene.dt()).unwrap_or(0),
+        peak_mb: peak.peak_mb,
+        exact: peak.exact,
+        harness_mb: peak.harness_mb,
+        command: shown,
+    })
+}
+
+/// The peak memory of one child process.
+#[derive(Debug, Clone, Copy)]
+pub struct ChildPeak {
+    /// Its peak resident set size (MB, 10⁶ bytes), or an upper bound of it
+    /// when `exact` is false.
+    pub peak_mb: f64,
+    /// Whether `peak_mb` is above this process's own peak, hence the
+    /// child's (see the module documentation).
+    pub exact: bool,
+    /// This process's own peak after the child (MB).
+    pub harness_mb: f64,
+}
+
+/// Runs `exe args` (stdout discarded, stderr shown) and reads its peak
+/// resident set size; an exit status other than 0 is an error.
+pub fn peak_of(exe: &Path, args: &[OsString]) -> Result<ChildPeak> {
+    let shown = || {
+        let words: Vec<_> = args.iter().map(|a| a.to_string_lossy()).collect();
+        format!("{} {}", exe.display(), words.join(" "))
+    };
     let child = Command::new(exe)
-        .arg("simulate")
-        .arg(&path)
+        .args(args)
         .stdout(Stdio::null())
         .stderr(Stdio::inherit())
         .spawn()
-        .with_context(|| format!("running {} simulate {}", exe.display(), path.display()))?;
+        .with_context(|| format!("running {}", shown()))?;
     let (status, max_rss_kib) = wait_with_peak(child)?;
     let own_kib = own_peak_kib()?;
     if status != 0 {
-        bail!(
-            "harness simulate {} exited with status {status}",
-            path.display()
-        );
+        bail!("{} exited with status {status}", shown());
     }
-    Ok(PeakMemory {
-        scene: id.to_string(),
-        bodies: scene.bodies().len(),
-        steps: engine::step_count(scene.duration(), scene.dt()).unwrap_or(0),
+    Ok(ChildPeak {
         peak_mb: max_rss_kib as f64 * 1024.0 / 1e6,
         exact: max_rss_kib > own_kib,
         harness_mb: own_kib as f64 * 1024.0 / 1e6,
-        command: format!("harness simulate scenes/{id}.toml"),
     })
 }
 
@@ -93,7 +197,7 @@ pub fn measure(exe: &Path, id: &str) -> Result<PeakMemory> {
 /// reading includes (see the module documentation). It only grows, so read
 /// after the child it bounds the value the child started with.
 #[cfg(target_os = "linux")]
-fn own_peak_kib() -> Result<i64> {
+pub fn own_peak_kib() -> Result<i64> {
     // SAFETY: an all-zero `rusage` is a valid value of the plain C struct.
     let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
     // SAFETY: a live local of the right type.
@@ -104,7 +208,7 @@ fn own_peak_kib() -> Result<i64> {
 }
 
 #[cfg(not(target_os = "linux"))]
-fn own_peak_kib() -> Result<i64> {
+pub fn own_peak_kib() -> Result<i64> {
     bail!("peak memory is read on Linux only")
 }
 

@@ -57,8 +57,8 @@ pub fn run_selected(
         let peaks = memory::measure_all()?;
         for p in peaks.iter().flatten() {
             println!(
-                "memory {:<20} {:>6} bodies, {:>5} steps: peak {}{:.0} MB",
-                p.scene,
+                "memory {} ({} bodies, {} steps): peak {}{:.0} MB",
+                p.command,
                 p.bodies,
                 p.steps,
                 if p.exact { "" } else { "at most " },

@@ -130,8 +130,8 @@ fn draw_case(id: &str) -> Result<Drawn> {
     )
     .with_context(|| format!("running case scene '{id}'"))?;
     let mut film = Film::new(&scene, world.bodies(), title, subtitle);
-    recorded.fill(&mut film);
-    film.mark_events(&scene, &recorded.events);
+    recorded.samples.fill(&mut film);
+    film.mark_events(&scene, &recorded.run.events);
     let svg = svg::filmstrip(&film, FILMSTRIP_FRAMES)?;
     let gif = gif::animation(&film, &GifOptions::default())?;
     Ok(Drawn {
@@ -144,7 +144,7 @@ fn draw_case(id: &str) -> Result<Drawn> {
             "{} samples up to t = {} s{}.",
             film.times.len(),
             super::sig(film.times.last().copied().unwrap_or(0.0)),
-            if recorded.stopped_by_event {
+            if recorded.run.stopped_by_event {
                 " (ended by the landing event)"
             } else {
                 ""

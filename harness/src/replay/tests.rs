@@ -27,10 +27,10 @@ fn replay_of(scene: &Scene) -> Replay {
     replay.runs.push(ReplayRun {
         label: "this engine (rk4)".into(),
         short: "engine".into(),
-        times: rec.times,
-        states: rec.states,
-        energies: Some(rec.energies),
-        events: ReplayEvent::from_records(scene, &rec.events),
+        times: rec.samples.times,
+        states: rec.samples.states,
+        energies: Some(rec.samples.energies),
+        events: ReplayEvent::from_records(scene, &rec.run.events),
     });
     replay
 }

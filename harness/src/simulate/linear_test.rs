@@ -10,7 +10,7 @@
 //! that is an error of the run, not a number written.
 
 use super::outputs::{outputs, write_all};
-use super::{Recorded, SimulateArgs, duration_text};
+use super::{SimulateArgs, duration_text};
 use crate::pictures;
 use crate::progress::{Budget, Ticker};
 use crate::report::fmt_num;
@@ -112,12 +112,7 @@ pub(super) fn run_linear_test(
         };
         files.push((out, bytes));
     }
-    let recorded = Recorded {
-        times: run.t.clone(),
-        stride: run.stride,
-        ..Recorded::default()
-    };
-    write_all(&files, &recorded)
+    write_all(None, &files, (run.t.len() as u64, run.stride))
 }
 
 /// A sampled scalar run.

@@ -7,8 +7,10 @@
 //! a FIFO or a device node (`/dev/full`, `/dev/null`) would replace the
 //! node by a regular file. Such paths are refused with the reason.
 
-use super::{Recorded, SimulateArgs};
+use super::SimulateArgs;
 use anyhow::{Context, Result, anyhow, bail};
+use std::fs::File;
+use std::io::{BufWriter, Write as _};
 use std::path::{Path, PathBuf};
 
 /// Refuses an existing `path` that is not a regular file (a symbolic link,
@@ -53,30 +55,111 @@ fn special_kind(file_type: &std::fs::FileType) -> &'static str {
 }
 
 /// Writes `bytes` to `path` through a temporary file in the same folder
-/// renamed into place, so that a failure never leaves half a file (nor
-/// destroys the previous one), nor SIGINT or SIGTERM ([`crate::interrupt`]).
+/// renamed into place ([`StagedFile`]), so that a failure never leaves
+/// half a file (nor destroys the previous one), nor SIGINT or SIGTERM
+/// ([`crate::interrupt`]).
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let name = path
-        .file_name()
-        .ok_or_else(|| anyhow!("{}: not a file path", path.display()))?;
-    let tmp = dir.join(format!(
-        ".{}.{}.tmp",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
-    refuse_special(path)?;
     // A signal waits until the file is renamed into place (or removed):
-    // an interrupted run leaves neither the temporary file nor half a file.
+    // the write is not raced by the signal thread's removals (a report's
+    // staging folder emptied while a file is created in it).
     let _hold = crate::interrupt::hold();
-    std::fs::write(&tmp, bytes).with_context(|| format!("writing {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        anyhow!(e).context(format!("writing {}", path.display()))
-    })
+    let mut file = StagedFile::create(path)?;
+    file.writer()
+        .write_all(bytes)
+        .with_context(|| format!("writing {}", file.tmp.display()))?;
+    file.finish()
+}
+
+/// A file written as a run goes (the `--trace` CSV, streamed), or at once
+/// ([`write_atomically`]): its bytes go to a temporary file in the
+/// destination folder (`.NAME.PID.tmp`), renamed into place by
+/// [`StagedFile::finish`] only. Until then the destination is untouched:
+/// dropped unfinished (a failed run, an error), the temporary file is
+/// removed, and a SIGINT or SIGTERM removes it too (it is registered with
+/// [`crate::interrupt::remove_on_signal`]); its creation and the rename
+/// run under [`crate::interrupt::hold`], so a signal finds the output
+/// whole or absent. Between them a signal is not held off (a streamed
+/// trace lasts the run).
+pub struct StagedFile {
+    path: PathBuf,
+    tmp: PathBuf,
+    /// `None` once finished.
+    file: Option<BufWriter<File>>,
+}
+
+impl StagedFile {
+    /// Creates the temporary file of `path` (refused when `path` exists and
+    /// is not a regular file, [`refuse_special`]).
+    pub fn create(path: &Path) -> Result<Self> {
+        let dir = match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        let name = path
+            .file_name()
+            .ok_or_else(|| anyhow!("{}: not a file path", path.display()))?;
+        let tmp = dir.join(format!(
+            ".{}.{}.tmp",
+            name.to_string_lossy(),
+            std::process::id()
+        ));
+        refuse_special(path)?;
+        // Registered and created under the hold: a signal finds it
+        // registered once it exists, never a file left behind.
+        let _hold = crate::interrupt::hold();
+        crate::interrupt::remove_on_signal(&tmp);
+        let file = match File::create(&tmp) {
+            Ok(file) => file,
+            Err(e) => {
+                crate::interrupt::forget(&tmp);
+                return Err(anyhow!(e).context(format!("writing {}", tmp.display())));
+            }
+        };
+        Ok(Self {
+            path: path.to_path_buf(),
+            tmp,
+            file: Some(BufWriter::new(file)),
+        })
+    }
+
+    /// Where the bytes go until [`StagedFile::finish`].
+    pub fn writer(&mut self) -> &mut BufWriter<File> {
+        self.file
+            .as_mut()
+            .expect("a staged file is written only before it is finished")
+    }
+
+    /// The temporary file's path.
+    pub fn temporary(&self) -> &Path {
+        &self.tmp
+    }
+
+    /// Flushes the bytes and renames the temporary file into place.
+    pub fn finish(mut self) -> Result<()> {
+        let file = self.file.take().expect("finished once");
+        file.into_inner()
+            .map_err(|e| anyhow!(e.into_error()))
+            .and_then(|f| f.sync_all().map_err(|e| anyhow!(e)))
+            .with_context(|| format!("writing {}", self.tmp.display()))?;
+        // The destination may have become a link or a FIFO during the run.
+        refuse_special(&self.path)?;
+        let _hold = crate::interrupt::hold();
+        std::fs::rename(&self.tmp, &self.path)
+            .map_err(|e| anyhow!(e).context(format!("writing {}", self.path.display())))?;
+        crate::interrupt::forget(&self.tmp);
+        Ok(())
+    }
+}
+
+impl Drop for StagedFile {
+    /// Unfinished, or the rename failed: the temporary file goes.
+    fn drop(&mut self) {
+        if self.tmp.exists() {
+            drop(self.file.take());
+            let _ = std::fs::remove_file(&self.tmp);
+        }
+        crate::interrupt::forget(&self.tmp);
+    }
 }
 
 /// One requested output: its option name and path.
@@ -187,23 +270,43 @@ fn check_extension(out: &Output<'_>) -> Result<()> {
     )
 }
 
-pub(super) fn write_all(files: &[(&Output<'_>, Vec<u8>)], recorded: &Recorded) -> Result<()> {
+/// Writes each of `files` (built in memory: pictures, replays) to its path
+/// and renames `trace` (streamed during the run: `samples` samples, every
+/// `stride`-th step) into place, in the order asked, saying what was
+/// written.
+pub(super) fn write_all(
+    trace: Option<(&Output<'_>, StagedFile)>,
+    files: &[(&Output<'_>, Vec<u8>)],
+    (samples, stride): (u64, u64),
+) -> Result<()> {
+    if let Some((out, file)) = trace {
+        file.finish()
+            .with_context(|| format!("{} {}", out.option, out.path.display()))?;
+        println!(
+            "wrote {} ({})",
+            out.path.display(),
+            samples_text(samples, stride)
+        );
+    }
     for (out, bytes) in files {
         write_atomically(out.path, bytes)
             .with_context(|| format!("{} {}", out.option, out.path.display()))?;
-        let what = match out.option {
-            "--trace" => format!(
-                "{} samples{}",
-                recorded.times.len(),
-                if recorded.stride > 1 {
-                    format!(", every {}th step", recorded.stride)
-                } else {
-                    String::new()
-                }
-            ),
-            _ => format!("{:.1} kB", bytes.len() as f64 / 1024.0),
+        let what = if out.option == "--trace" {
+            // A `[linear_test]` trace, built in memory.
+            samples_text(samples, stride)
+        } else {
+            format!("{:.1} kB", bytes.len() as f64 / 1024.0)
         };
         println!("wrote {} ({what})", out.path.display());
     }
     Ok(())
+}
+
+/// "`samples` samples, every `stride`th step" (the stride said only above 1).
+fn samples_text(samples: u64, stride: u64) -> String {
+    if stride > 1 {
+        format!("{samples} samples, every {stride}th step")
+    } else {
+        format!("{samples} samples")
+    }
 }

@@ -12,6 +12,14 @@
 //! compared modulo a turn (the many-body adapters read principal values).
 //! `--verbose` prints each engine's configuration. With `--html`, the
 //! references' runs go into the replay beside the engine's.
+//!
+//! Memory: the many-body adapters (Box2D, rapier's soft-step scenes) step
+//! alongside the engine and keep no state per step (with `--html`, their
+//! run at the replay's samples only), so the comparison's memory does not
+//! grow with the run. Rapier's single-body and exact-contact adapters run
+//! after the engine from its states at every whole step: those are kept,
+//! at most [`MAX_COMPARED_STATES`] of them (steps × bodies; a longer run
+//! is refused before it starts), on the small scenes these adapters take.
 
 pub(crate) mod adapters;
 
@@ -63,7 +71,8 @@ struct Reference {
     worst: [Worst; 6],
     /// Whole steps compared.
     compared: u64,
-    /// Its states at every `stride`-th step, for the replay.
+    /// Its states at every `stride`-th step, for the replay (only its
+    /// first when no replay is asked: `keep_runs`).
     replay: ReplayRun,
     /// Why it stopped before the engine did.
     failure: Option<String>,
@@ -77,6 +86,9 @@ pub(in crate::simulate) struct Comparison {
     /// references that run after it).
     engine: Vec<Vec<BodyState>>,
     keep_engine: bool,
+    /// Whether the references' runs are kept for the replay (`--html`):
+    /// without it a reference keeps no state per step.
+    keep_runs: bool,
     /// Whole steps the engine has taken so far.
     steps: u64,
     stride: u64,
@@ -101,7 +113,7 @@ fn wrap_angle(a: f64) -> f64 {
 impl Comparison {
     /// Sets up every engine of `with` for `scene`, to run `steps` steps of
     /// `dt` (s) from `initial`, keeping every `stride`-th state for the
-    /// replay. Refuses a scene an engine cannot represent; of several
+    /// replay when `keep_runs` (none otherwise). Refuses a scene an engine cannot represent; of several
     /// engines, runs those that can and names the others with their reason
     /// (refuses only when none can).
     pub(in crate::simulate) fn prepare(
@@ -109,6 +121,7 @@ impl Comparison {
         with: &[CompareWith],
         (dt, steps, stride): (f64, u64, u64),
         initial: &[BodyState],
+        keep_runs: bool,
         verbose: bool,
     ) -> Result<Self> {
         let mut references = Vec::new();
@@ -191,6 +204,7 @@ impl Comparison {
                 Vec::new()
             },
             keep_engine,
+            keep_runs,
             steps: 0,
             stride: stride.max(1),
             dt,
@@ -220,7 +234,7 @@ impl Comparison {
             self.engine.push(states.to_vec());
         }
         let t = world.time();
-        let (stride, moving) = (self.stride, &self.moving);
+        let (stride, moving, keep_runs) = (self.stride, &self.moving, self.keep_runs);
         for r in &mut self.references {
             let Adapter::Many(reference) = &mut r.prepared.adapter else {
                 continue;
@@ -238,7 +252,7 @@ impl Comparison {
             let theirs = merged(states, &r.scratch);
             compare_step(&mut r.worst, moving, t, states, &theirs);
             r.compared = i;
-            if i.is_multiple_of(stride) {
+            if keep_runs && i.is_multiple_of(stride) {
                 r.replay.times.push(t);
                 r.replay.states.push(theirs);
             }
@@ -282,7 +296,7 @@ impl Comparison {
             for (k, (ours, theirs)) in self.engine.iter().zip(&run).enumerate().skip(1) {
                 let t = k as f64 * dt;
                 compare_step(&mut r.worst, &self.moving, t, ours, theirs);
-                if (k as u64).is_multiple_of(self.stride) {
+                if self.keep_runs && (k as u64).is_multiple_of(self.stride) {
                     r.replay.times.push(t);
                     r.replay.states.push(theirs.clone());
                 }
