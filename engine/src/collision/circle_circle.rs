@@ -87,56 +87,11 @@ pub fn collide_circle_circle(
 }
 
 #[cfg(test)]
-pub(crate) mod old_reference {
-    use super::*;
-
-    /// The exact model's former circle–circle distance, kept only as the
-    /// reference the shared one is compared with.
-    pub fn distance_circle_circle(
-        a: &Circle,
-        pose_a: &Isometry2<f64>,
-        b: &Circle,
-        pose_b: &Isometry2<f64>,
-    ) -> Proximity {
-        let (ca, cb) = (pose_a.translation.vector, pose_b.translation.vector);
-        let d = cb - ca;
-        let len = d.norm();
-        let normal = if len > 0.0 { d / len } else { Vector2::x() };
-        Proximity {
-            distance: len - a.radius - b.radius,
-            normal,
-            point_a: ca + a.radius * normal,
-            point_b: cb - b.radius * normal,
-        }
-    }
-}
-
-#[cfg(test)]
 mod tests {
     use super::*;
 
     fn at(x: f64, y: f64) -> Isometry2<f64> {
         Isometry2::new(Vector2::new(x, y), 0.7)
-    }
-
-    #[test]
-    fn shared_circle_circle_equals_the_former_exact_one_bit_for_bit() {
-        // The same operations in the same order, in a frame parallel to the
-        // world's: 20 000 random pairs must agree to the last bit (only
-        // concentric circles differ: their normal is now +y, was +x).
-        let mut rng = crate::collision::test_rng::Rng::new(191);
-        for _ in 0..20_000 {
-            let a = Circle::new(rng.range(0.05, 1.0)).unwrap();
-            let b = Circle::new(rng.range(0.05, 1.0)).unwrap();
-            let pa = at(rng.range(-10.0, 10.0), rng.range(-10.0, 10.0));
-            let pb = Isometry2::new(
-                pa.translation.vector + Vector2::new(rng.range(-2.5, 2.5), rng.range(-2.5, 2.5)),
-                rng.range(-3.0, 3.0),
-            );
-            let new = distance_circle_circle(&a, &pa, &b, &pb);
-            let old = old_reference::distance_circle_circle(&a, &pa, &b, &pb);
-            assert_eq!(new, old);
-        }
     }
 
     #[test]

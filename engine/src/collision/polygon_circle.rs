@@ -1,17 +1,19 @@
-//! Convex polygon against circle: exact (seed §7.2 treats polygons; a
-//! circle is the polygon's limit and gets its own closed form).
+//! Convex polygon against circle, written once for both contact models
+//! (seed §7.2 treats polygons; a circle is the polygon's limit and gets its
+//! own closed form). [`polygon_circle_local`] works in the polygon's frame
+//! and is Box2D v3's `b2CollidePolygonAndCircle`; the soft step turns its
+//! result into a speculative point (`soft_step/manifold.rs`), the exact
+//! model into a world [`Proximity`] and the feature it persists on.
 //!
-//! In the polygon's frame, with circle centre c and radius r (m), and for
-//! each edge i (vertices v_i, v_{i+1}, outward unit normal n_i) the
-//! separation `s_i = n_i · (c − v_i)`:
-//! - if every `s_i ≤ 0` the centre is inside; the nearest edge is the one of
-//!   largest `s_i`, the normal is its `n_i` and the depth is `r − max s_i`
-//!   (the circle must move out by the distance of its centre to the boundary
-//!   plus its radius);
-//! - otherwise the centre is outside and the closest point q of the
-//!   polygon is the nearest point over its edge segments (interior of an
-//!   edge or a vertex); the normal is `(c − q)/|c − q|` and the signed
-//!   distance `|c − q| − r`.
+//! With circle centre c and radius r (m), and for each edge i (vertices
+//! v_i, v_{i+1}, outward unit normal n_i) the separation
+//! `s_i = n_i · (c − v_i)`:
+//! - the edge of largest `s_i` is the reference; if the centre is inside
+//!   (max `s_i ≤ ε`) or its foot falls within that edge, the normal is
+//!   `n_i` and the signed distance `s_i − r`;
+//! - otherwise the centre is beyond one of that edge's ends and the
+//!   vertex is the closest point q of the polygon: the normal is
+//!   `(c − q)/|c − q|` and the signed distance `|c − q| − r`.
 
 use super::manifold::{LocalProximity, Manifold, Proximity};
 use crate::shape::{Circle, ConvexPolygon};
@@ -182,82 +184,8 @@ pub fn collide_polygon_circle(
 }
 
 #[cfg(test)]
-pub(crate) mod old_reference {
-    use super::*;
-
-    /// The exact model's former polygon–circle distance (all edges' closest
-    /// points), kept only as the reference the shared one is compared with.
-    pub(crate) fn closest_polygon_circle(
-        polygon: &ConvexPolygon,
-        pose_a: &Isometry2<f64>,
-        circle: &Circle,
-        pose_b: &Isometry2<f64>,
-    ) -> (Proximity, PolygonFeature) {
-        let v = polygon.vertices();
-        let n = v.len();
-        let c = pose_a
-            .inverse_transform_point(&Point2::from(pose_b.translation.vector))
-            .coords;
-        let (mut best_edge, mut best_s) = (0, f64::NEG_INFINITY);
-        for i in 0..n {
-            let s = edge_normal(v[i], v[(i + 1) % n]).dot(&(c - v[i]));
-            if s > best_s {
-                (best_edge, best_s) = (i, s);
-            }
-        }
-        let (distance, normal, on_polygon, feature) = if best_s <= 0.0 {
-            // Centre inside (or on the boundary): push out through the nearest
-            // edge; its foot lies on that edge.
-            let normal = edge_normal(v[best_edge], v[(best_edge + 1) % n]);
-            (
-                best_s - circle.radius,
-                normal,
-                c - best_s * normal,
-                PolygonFeature::Edge(best_edge),
-            )
-        } else {
-            let feature_of = |i: usize, t: f64| {
-                if t <= 0.0 {
-                    PolygonFeature::Vertex(i)
-                } else if t >= 1.0 {
-                    PolygonFeature::Vertex((i + 1) % n)
-                } else {
-                    PolygonFeature::Edge(i)
-                }
-            };
-            let (mut q, t) = closest_on_segment_at(c, v[0], v[1]);
-            let mut feature = feature_of(0, t);
-            for i in 1..n {
-                let (qi, t) = closest_on_segment_at(c, v[i], v[(i + 1) % n]);
-                if (c - qi).norm_squared() < (c - q).norm_squared() {
-                    q = qi;
-                    feature = feature_of(i, t);
-                }
-            }
-            let d = c - q;
-            let len = d.norm();
-            // len > 0 since the centre is strictly outside.
-            (len - circle.radius, d / len, q, feature)
-        };
-        let rotation = pose_a.rotation;
-        let normal = rotation * normal;
-        let point_a = pose_a.transform_point(&Point2::from(on_polygon)).coords;
-        (
-            Proximity {
-                distance,
-                normal,
-                point_a,
-                point_b: pose_b.translation.vector - circle.radius * normal,
-            },
-            feature,
-        )
-    }
-}
-
-#[cfg(test)]
 mod tests {
     use super::*;
-    use crate::collision::test_rng::Rng;
     use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, SQRT_2};
 
     fn unit_box() -> ConvexPolygon {
@@ -266,70 +194,6 @@ mod tests {
 
     fn at(x: f64, y: f64) -> Isometry2<f64> {
         Isometry2::translation(x, y)
-    }
-
-    #[test]
-    fn shared_polygon_circle_agrees_with_the_former_exact_one() {
-        // 20 000 random pairs (polygons of 3–8 hull points in a 2 m square,
-        // radii 0.05–1 m, circle centres within 2.5 m, poses up to 10 m from
-        // the origin). Inside the polygon and in a vertex's region both run
-        // the same operations (bit for bit); in an edge's region outside,
-        // the former one took the foot q = v1 + t e and |c − q|, the shared
-        // one the edge normal's dot product (Box2D's), so they differ by
-        // round-off: each is a chain of at most eight roundings of
-        // quantities bounded by S = the largest coordinate, vertex distance,
-        // radius or translation in play, each within ½ ulp, so
-        // |Δ distance|, |Δ point| ≤ 2 · 8 · ε S (the bound below). The
-        // normals are d/|d| and n: |Δ normal| |d| ≤ the same bound, with
-        // |d| = the centre's distance to the polygon. The feature may
-        // differ only where the centre is on the line between two regions
-        // (u = 0, to round-off), and the points then agree to the bound.
-        let mut rng = Rng::new(1919);
-        let (mut compared, mut identical, mut worst) = (0, 0, 0.0_f64);
-        while compared < 20_000 {
-            let n = rng.int(3, 9);
-            let pts: Vec<Vector2<f64>> = (0..n)
-                .map(|_| Vector2::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)))
-                .collect();
-            let Ok(polygon) = ConvexPolygon::convex_hull(&pts) else {
-                continue;
-            };
-            let polygon = polygon.centered();
-            let circle = Circle::new(rng.range(0.05, 1.0)).unwrap();
-            let base = Vector2::new(rng.range(-10.0, 10.0), rng.range(-10.0, 10.0));
-            let pose_a = Isometry2::new(base, rng.range(-3.0, 3.0));
-            let offset = Vector2::new(rng.range(-2.5, 2.5), rng.range(-2.5, 2.5));
-            let pose_b = Isometry2::new(base + offset, rng.range(-3.0, 3.0));
-            let (new, new_feature) = closest_polygon_circle(&polygon, &pose_a, &circle, &pose_b);
-            let (old, old_feature) =
-                old_reference::closest_polygon_circle(&polygon, &pose_a, &circle, &pose_b);
-            compared += 1;
-            if new == old && new_feature == old_feature {
-                identical += 1;
-                continue;
-            }
-            let scale = polygon
-                .vertices()
-                .iter()
-                .map(|v| v.norm())
-                .chain([circle.radius, base.norm(), (base + offset).norm()])
-                .fold(0.0, f64::max);
-            let bound = 16.0 * f64::EPSILON * scale;
-            let to_polygon = (old.distance + circle.radius).max(f64::MIN_POSITIVE);
-            let gap = (new.distance - old.distance)
-                .abs()
-                .max((new.point_a - old.point_a).norm())
-                .max((new.normal - old.normal).norm() * to_polygon);
-            worst = worst.max(gap / (f64::EPSILON * scale));
-            assert!(gap <= bound, "{gap:e} > {bound:e}: {new:?} vs {old:?}");
-            let radial = (new.point_b - old.point_b).norm();
-            assert!(
-                radial <= bound * (1.0 + circle.radius / to_polygon),
-                "{radial:e}"
-            );
-        }
-        println!("{identical} of {compared} bit for bit; worst {worst:.2} ε·S");
-        assert!(identical > compared / 2, "only {identical} identical");
     }
 
     #[test]

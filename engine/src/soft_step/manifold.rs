@@ -21,7 +21,9 @@
 //!
 //! A polygon against a circle takes the edge of least penetration, or the
 //! nearest vertex when the centre lies beyond it; two circles meet along
-//! the line of centres.
+//! the line of centres. Both are written once for both contact models in
+//! `collision/` (`polygon_circle_local`, `circle_circle_local`); this file
+//! makes their speculative one-point manifolds.
 //!
 //! Every point is at the middle of the overlap, so it is the same whichever
 //! shape is called A; the normal points from A to B; lengths are in m.
@@ -408,108 +410,6 @@ fn segment_distance(
     }
 }
 
-/// The soft step's former circle pairs, kept only as the reference the
-/// shared ones are compared with.
-#[cfg(test)]
-mod old_reference {
-    use super::*;
-
-    /// Two circles of radii `ra`, `rb` (m), B's centre at `pb` in A's frame.
-    pub(super) fn collide_circles(
-        ra: f64,
-        rb: f64,
-        pb: Vector2<f64>,
-        speculative: f64,
-    ) -> LocalManifold {
-        let distance = pb.norm();
-        let separation = distance - ra - rb;
-        if separation > speculative {
-            return LocalManifold::default();
-        }
-        // Concentric circles have no line of centres: push along A's y axis.
-        let normal = if distance > 0.0 {
-            pb / distance
-        } else {
-            Vector2::y()
-        };
-        let ca = normal * ra;
-        let cb = pb - normal * rb;
-        LocalManifold {
-            normal,
-            count: 1,
-            points: [
-                LocalPoint {
-                    point: 0.5 * (ca + cb),
-                    separation,
-                    id: 0,
-                },
-                LocalPoint::default(),
-            ],
-        }
-    }
-
-    /// Polygon A against a circle of radius `rb` centred at `center` (A's
-    /// frame).
-    pub(super) fn collide_polygon_circle(
-        poly: &Polygon,
-        rb: f64,
-        center: Vector2<f64>,
-        speculative: f64,
-    ) -> LocalManifold {
-        let n = poly.vertices.len();
-        let (mut best, mut separation) = (0, f64::NEG_INFINITY);
-        for i in 0..n {
-            let s = poly.normals[i].dot(&(center - poly.vertices[i]));
-            if s > separation {
-                separation = s;
-                best = i;
-            }
-        }
-        if separation > rb + speculative {
-            return LocalManifold::default();
-        }
-        let v1 = poly.vertices[best];
-        let v2 = poly.vertices[(best + 1) % n];
-        let u1 = (center - v1).dot(&(v2 - v1));
-        let u2 = (center - v2).dot(&(v1 - v2));
-        let vertex_point = |v: Vector2<f64>| {
-            let d = center - v;
-            let distance = d.norm();
-            let normal = d / distance;
-            let separation = distance - rb;
-            let cb = center - rb * normal;
-            (normal, separation, 0.5 * (v + cb))
-        };
-        // The centre is beyond a vertex (and outside the polygon, so the
-        // direction to it is defined): the vertex is the closest feature.
-        let (normal, separation, point) = if u1 < 0.0 && separation > f64::EPSILON {
-            vertex_point(v1)
-        } else if u2 < 0.0 && separation > f64::EPSILON {
-            vertex_point(v2)
-        } else {
-            let normal = poly.normals[best];
-            let ca = center - (center - v1).dot(&normal) * normal;
-            let cb = center - rb * normal;
-            (normal, separation - rb, 0.5 * (ca + cb))
-        };
-        if separation > speculative {
-            return LocalManifold::default();
-        }
-        LocalManifold {
-            normal,
-            count: 1,
-            points: [
-                LocalPoint {
-                    point,
-                    separation,
-                    id: 0,
-                },
-                LocalPoint::default(),
-            ],
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -522,62 +422,6 @@ mod tests {
 
     fn unit_box() -> Shape {
         Shape::rectangle(1.0, 1.0).unwrap()
-    }
-
-    /// A random convex polygon (3 to 8 hull points in a 2 m square,
-    /// re-centred) or `None` when the hull is degenerate.
-    fn random_polygon(rng: &mut Rng) -> Option<Shape> {
-        let n = rng.int(3, 9);
-        let pts: Vec<Vector2<f64>> = (0..n)
-            .map(|_| Vector2::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)))
-            .collect();
-        ConvexPolygon::convex_hull(&pts)
-            .ok()
-            .map(|p| Shape::Polygon(p).centered())
-    }
-
-    #[test]
-    fn circle_pairs_written_once_equal_the_former_soft_step_ones_bit_for_bit() {
-        // The shared functions run the same operations in the same order as
-        // the soft step's former ones, so nothing may differ, not even by an
-        // ulp: 20 000 random pairs, overlapping, within the speculative
-        // distance and beyond it.
-        let mut rng = Rng::new(19);
-        let mut scratch = Scratch::default();
-        let (mut touching, mut compared) = (0, 0);
-        while compared < 20_000 {
-            let circle = Shape::Circle(Circle::new(rng.range(0.05, 1.0)).unwrap());
-            let Some(polygon) = random_polygon(&mut rng) else {
-                continue;
-            };
-            let b = Shape::Circle(Circle::new(rng.range(0.05, 1.0)).unwrap());
-            let a = if compared % 2 == 0 { polygon } else { circle };
-            let xf = Isometry2::new(
-                Vector2::new(rng.range(-2.0, 2.0), rng.range(-2.0, 2.0)),
-                rng.range(-3.0, 3.0),
-            );
-            let speculative = rng.range(0.0, 0.5);
-            let new = collide(&solver(&a), &solver(&b), &xf, speculative, &mut scratch);
-            let rb = match &b {
-                Shape::Circle(c) => c.radius,
-                _ => unreachable!(),
-            };
-            let old = match solver(&a) {
-                SolverShape::Polygon(p) => old_reference::collide_polygon_circle(
-                    &p,
-                    rb,
-                    xf.translation.vector,
-                    speculative,
-                ),
-                SolverShape::Circle { radius } => {
-                    old_reference::collide_circles(radius, rb, xf.translation.vector, speculative)
-                }
-            };
-            assert_eq!(new, old, "{a:?} {b:?} {xf:?}");
-            touching += usize::from(new.count > 0);
-            compared += 1;
-        }
-        assert!(touching > 5_000, "only {touching} pairs with a manifold");
     }
 
     #[test]
