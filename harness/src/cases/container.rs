@@ -329,3 +329,37 @@ pub fn run() -> Result<CaseReport> {
     ));
     Ok(report)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use engine::BodyDef;
+
+    fn state(vx: f64, omega: f64) -> BodyState {
+        BodyState {
+            position: Vector2::zeros(),
+            angle: 0.0,
+            velocity: Vector2::new(vx, 0.0),
+            angular_velocity: omega,
+        }
+    }
+
+    #[test]
+    fn a_circle_rolling_steadily_is_told_from_slipping_accelerating_and_non_circles() {
+        let (r, v_rest) = (0.4, 0.05);
+        let disc = BodyDef::rigid("disc", 1.0, Shape::circle(r).unwrap());
+        let (disc, _) = Body::from_def(&disc).unwrap();
+        // Rolling to the right at 0.5 m/s: ω = −v / r, the same a second ago.
+        let rolling = state(0.5, -0.5 / r);
+        assert!(rolls_steadily(&disc, &rolling, &rolling, v_rest));
+        // Its rim's slowest point at 0.1 m/s: slipping, not rolling.
+        let slipping = state(0.5, -0.4 / r);
+        assert!(!rolls_steadily(&disc, &slipping, &slipping, v_rest));
+        // Rolling, but 0.1 m/s faster than a second ago (down a slope).
+        assert!(!rolls_steadily(&disc, &rolling, &state(0.4, -0.4 / r), v_rest));
+        // A box moving the same way is never a roller.
+        let square = BodyDef::rigid("box", 1.0, Shape::rectangle(0.8, 0.8).unwrap());
+        let (square, _) = Body::from_def(&square).unwrap();
+        assert!(!rolls_steadily(&square, &rolling, &rolling, v_rest));
+    }
+}
