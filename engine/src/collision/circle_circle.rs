@@ -2,15 +2,47 @@
 //!
 //! With centres c_a, c_b (m) and radii r_a, r_b (m), the signed distance is
 //! `|c_b − c_a| − r_a − r_b` and the normal is `(c_b − c_a)/|c_b − c_a|`.
-//! Concentric circles have no preferred direction; the normal is then +x.
+//! Concentric circles have no preferred direction; the normal is then A's
+//! +y (the world's +y for the exact model, which takes the world's axes).
 //! A circle's orientation does not matter: its centre is its body's
 //! position.
 
-use super::manifold::{Manifold, Proximity};
+use super::manifold::{LocalProximity, Manifold, Proximity};
 use crate::shape::Circle;
 use nalgebra::{Isometry2, Vector2};
 
-/// Exact signed distance between two circles (m), with witness points.
+/// Two circles of radii `ra`, `rb` (m), B's centre at `pb` in A's frame,
+/// written once for both contact models: the signed distance |pb| − ra − rb
+/// along the line of centres; concentric circles have no line of centres
+/// and are pushed along A's y axis. `None` when the distance exceeds
+/// `beyond` (m).
+pub(crate) fn circle_circle_local(
+    ra: f64,
+    rb: f64,
+    pb: Vector2<f64>,
+    beyond: f64,
+) -> Option<LocalProximity> {
+    let length = pb.norm();
+    let distance = length - ra - rb;
+    if distance > beyond {
+        return None;
+    }
+    let normal = if length > 0.0 {
+        pb / length
+    } else {
+        Vector2::y()
+    };
+    Some(LocalProximity {
+        distance,
+        normal,
+        point_a: normal * ra,
+        point_b: pb - normal * rb,
+    })
+}
+
+/// Exact signed distance between two circles (m), with witness points:
+/// [`circle_circle_local`] in a frame parallel to the world's at A's centre
+/// (a circle has no orientation to matter).
 pub fn distance_circle_circle(
     a: &Circle,
     pose_a: &Isometry2<f64>,
@@ -18,11 +50,12 @@ pub fn distance_circle_circle(
     pose_b: &Isometry2<f64>,
 ) -> Proximity {
     let (ca, cb) = (pose_a.translation.vector, pose_b.translation.vector);
-    let d = cb - ca;
-    let len = d.norm();
-    let normal = if len > 0.0 { d / len } else { Vector2::x() };
+    let Some(local) = circle_circle_local(a.radius, b.radius, cb - ca, f64::INFINITY) else {
+        unreachable!("no distance exceeds an infinite bound")
+    };
+    let normal = local.normal;
     Proximity {
-        distance: len - a.radius - b.radius,
+        distance: local.distance,
         normal,
         point_a: ca + a.radius * normal,
         point_b: cb - b.radius * normal,
@@ -87,12 +120,12 @@ mod tests {
     }
 
     #[test]
-    fn touching_circles_touch_and_concentric_circles_push_along_x() {
+    fn touching_circles_touch_and_concentric_circles_push_along_y() {
         let (a, b) = (Circle::new(1.0).unwrap(), Circle::new(1.0).unwrap());
         let m = collide_circle_circle(&a, &at(0.0, 0.0), &b, &at(2.0, 0.0)).unwrap();
         assert_eq!(m.points()[0].depth, 0.0);
         let c = collide_circle_circle(&a, &at(1.0, 1.0), &b, &at(1.0, 1.0)).unwrap();
-        assert_eq!(c.normal, Vector2::x());
+        assert_eq!(c.normal, Vector2::y());
         assert_eq!(c.points()[0].depth, 2.0);
     }
 

@@ -93,6 +93,23 @@ impl Manifold {
     }
 }
 
+/// The closest points of two shapes in the frame of the first (A), as the
+/// pair functions written once for both contact models compute them: each
+/// model turns it into its own manifold (the exact model's [`Proximity`] in
+/// the world frame, the soft step's speculative point midway between the
+/// surfaces).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct LocalProximity {
+    /// Signed distance (m): > 0 apart, < 0 overlapping.
+    pub distance: f64,
+    /// Unit normal from A to B, A's frame.
+    pub normal: Vector2<f64>,
+    /// The point of A's surface nearest B (deepest in B when overlapping), A's frame (m).
+    pub point_a: Vector2<f64>,
+    /// The point of B's surface nearest A, A's frame (m).
+    pub point_b: Vector2<f64>,
+}
+
 /// The signed distance between two shapes and where it is attained.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Proximity {

@@ -1,19 +1,21 @@
-//! Convex polygon against circle: exact (seed §7.2 treats polygons; a
-//! circle is the polygon's limit and gets its own closed form).
+//! Convex polygon against circle, written once for both contact models
+//! (seed §7.2 treats polygons; a circle is the polygon's limit and gets its
+//! own closed form). [`polygon_circle_local`] works in the polygon's frame
+//! and is Box2D v3's `b2CollidePolygonAndCircle`; the soft step turns its
+//! result into a speculative point (`soft_step/manifold.rs`), the exact
+//! model into a world [`Proximity`] and the feature it persists on.
 //!
-//! In the polygon's frame, with circle centre c and radius r (m), and for
-//! each edge i (vertices v_i, v_{i+1}, outward unit normal n_i) the
-//! separation `s_i = n_i · (c − v_i)`:
-//! - if every `s_i ≤ 0` the centre is inside; the nearest edge is the one of
-//!   largest `s_i`, the normal is its `n_i` and the depth is `r − max s_i`
-//!   (the circle must move out by the distance of its centre to the boundary
-//!   plus its radius);
-//! - otherwise the centre is outside and the closest point q of the
-//!   polygon is the nearest point over its edge segments (interior of an
-//!   edge or a vertex); the normal is `(c − q)/|c − q|` and the signed
-//!   distance `|c − q| − r`.
+//! With circle centre c and radius r (m), and for each edge i (vertices
+//! v_i, v_{i+1}, outward unit normal n_i) the separation
+//! `s_i = n_i · (c − v_i)`:
+//! - the edge of largest `s_i` is the reference; if the centre is inside
+//!   (max `s_i ≤ ε`) or its foot falls within that edge, the normal is
+//!   `n_i` and the signed distance `s_i − r`;
+//! - otherwise the centre is beyond one of that edge's ends and the
+//!   vertex is the closest point q of the polygon: the normal is
+//!   `(c − q)/|c − q|` and the signed distance `|c − q| − r`.
 
-use super::manifold::{Manifold, Proximity};
+use super::manifold::{LocalProximity, Manifold, Proximity};
 use crate::shape::{Circle, ConvexPolygon};
 use nalgebra::{Isometry2, Point2, Vector2};
 
@@ -61,7 +63,73 @@ pub(crate) enum PolygonFeature {
     Vertex(usize),
 }
 
-/// [`distance_polygon_circle`] and the polygon's feature it is attained at.
+/// The contact of a convex polygon (A) and a circle of `radius` (m) centred
+/// at `center` (A's frame), written once for both contact models (Box2D
+/// v3's `b2CollidePolygonAndCircle`): the edge i of largest separation
+/// `s_i = n_i · (c − v_i)` (`normal_of(i)` gives n_i); when the centre is
+/// outside (s_i > ε) and beyond one of that edge's ends, that vertex is the
+/// closest feature (for a convex polygon the closest point of an outside
+/// centre lies on the edge of largest separation or one of its ends: any
+/// other edge's normal is further from the direction to the centre), else
+/// the edge. `None` as soon as the separation exceeds `beyond` (m).
+pub(crate) fn polygon_circle_local(
+    vertices: &[Vector2<f64>],
+    normal_of: impl Fn(usize) -> Vector2<f64>,
+    radius: f64,
+    center: Vector2<f64>,
+    beyond: f64,
+) -> Option<(LocalProximity, PolygonFeature)> {
+    let n = vertices.len();
+    let (mut best, mut separation) = (0, f64::NEG_INFINITY);
+    for (i, v) in vertices.iter().enumerate() {
+        let s = normal_of(i).dot(&(center - v));
+        if s > separation {
+            separation = s;
+            best = i;
+        }
+    }
+    if separation > radius + beyond {
+        return None;
+    }
+    let next = (best + 1) % n;
+    let (v1, v2) = (vertices[best], vertices[next]);
+    let u1 = (center - v1).dot(&(v2 - v1));
+    let u2 = (center - v2).dot(&(v1 - v2));
+    let vertex = |v: Vector2<f64>| {
+        let d = center - v;
+        let distance = d.norm();
+        let normal = d / distance;
+        LocalProximity {
+            distance: distance - radius,
+            normal,
+            point_a: v,
+            point_b: center - radius * normal,
+        }
+    };
+    // The centre is beyond a vertex (and outside the polygon, so the
+    // direction to it is defined): the vertex is the closest feature.
+    let (contact, feature) = if u1 < 0.0 && separation > f64::EPSILON {
+        (vertex(v1), PolygonFeature::Vertex(best))
+    } else if u2 < 0.0 && separation > f64::EPSILON {
+        (vertex(v2), PolygonFeature::Vertex(next))
+    } else {
+        let normal = normal_of(best);
+        let contact = LocalProximity {
+            distance: separation - radius,
+            normal,
+            point_a: center - (center - v1).dot(&normal) * normal,
+            point_b: center - radius * normal,
+        };
+        (contact, PolygonFeature::Edge(best))
+    };
+    if contact.distance > beyond {
+        return None;
+    }
+    Some((contact, feature))
+}
+
+/// [`distance_polygon_circle`] and the polygon's feature it is attained at:
+/// [`polygon_circle_local`] in the polygon's frame, turned to the world.
 pub(crate) fn closest_polygon_circle(
     polygon: &ConvexPolygon,
     pose_a: &Isometry2<f64>,
@@ -73,55 +141,18 @@ pub(crate) fn closest_polygon_circle(
     let c = pose_a
         .inverse_transform_point(&Point2::from(pose_b.translation.vector))
         .coords;
-    let (mut best_edge, mut best_s) = (0, f64::NEG_INFINITY);
-    for i in 0..n {
-        let s = edge_normal(v[i], v[(i + 1) % n]).dot(&(c - v[i]));
-        if s > best_s {
-            (best_edge, best_s) = (i, s);
-        }
-    }
-    let (distance, normal, on_polygon, feature) = if best_s <= 0.0 {
-        // Centre inside (or on the boundary): push out through the nearest
-        // edge; its foot lies on that edge.
-        let normal = edge_normal(v[best_edge], v[(best_edge + 1) % n]);
-        (
-            best_s - circle.radius,
-            normal,
-            c - best_s * normal,
-            PolygonFeature::Edge(best_edge),
-        )
-    } else {
-        let feature_of = |i: usize, t: f64| {
-            if t <= 0.0 {
-                PolygonFeature::Vertex(i)
-            } else if t >= 1.0 {
-                PolygonFeature::Vertex((i + 1) % n)
-            } else {
-                PolygonFeature::Edge(i)
-            }
-        };
-        let (mut q, t) = closest_on_segment_at(c, v[0], v[1]);
-        let mut feature = feature_of(0, t);
-        for i in 1..n {
-            let (qi, t) = closest_on_segment_at(c, v[i], v[(i + 1) % n]);
-            if (c - qi).norm_squared() < (c - q).norm_squared() {
-                q = qi;
-                feature = feature_of(i, t);
-            }
-        }
-        let d = c - q;
-        let len = d.norm();
-        // len > 0 since the centre is strictly outside.
-        (len - circle.radius, d / len, q, feature)
+    let normal_of = |i: usize| edge_normal(v[i], v[(i + 1) % n]);
+    let Some((local, feature)) =
+        polygon_circle_local(v, normal_of, circle.radius, c, f64::INFINITY)
+    else {
+        unreachable!("no separation exceeds an infinite bound")
     };
-    let rotation = pose_a.rotation;
-    let normal = rotation * normal;
-    let point_a = pose_a.transform_point(&Point2::from(on_polygon)).coords;
+    let normal = pose_a.rotation * local.normal;
     (
         Proximity {
-            distance,
+            distance: local.distance,
             normal,
-            point_a,
+            point_a: pose_a.transform_point(&Point2::from(local.point_a)).coords,
             point_b: pose_b.translation.vector - circle.radius * normal,
         },
         feature,

@@ -21,12 +21,17 @@
 //!
 //! A polygon against a circle takes the edge of least penetration, or the
 //! nearest vertex when the centre lies beyond it; two circles meet along
-//! the line of centres.
+//! the line of centres. Both are written once for both contact models in
+//! `collision/` (`polygon_circle_local`, `circle_circle_local`); this file
+//! makes their speculative one-point manifolds.
 //!
 //! Every point is at the middle of the overlap, so it is the same whichever
 //! shape is called A; the normal points from A to B; lengths are in m.
 
 use super::geometry::{Polygon, SolverShape};
+use crate::collision::circle_circle::circle_circle_local;
+use crate::collision::manifold::LocalProximity;
+use crate::collision::polygon_circle::polygon_circle_local;
 use nalgebra::{Isometry2, Vector2};
 
 /// Read from `engine/src/tunables.rs` (unit, value and source there).
@@ -85,10 +90,14 @@ pub(crate) fn collide(
             collide_polygons(pa, pb, xf, speculative, scratch)
         }
         (SolverShape::Polygon(p), SolverShape::Circle { radius }) => {
-            collide_polygon_circle(p, *radius, xf.translation.vector, speculative)
+            let normal_of = |i: usize| p.normals[i];
+            let center = xf.translation.vector;
+            polygon_circle_local(&p.vertices, normal_of, *radius, center, speculative)
+                .map_or_else(LocalManifold::default, |(contact, _)| one_point(contact))
         }
         (SolverShape::Circle { radius: ra }, SolverShape::Circle { radius: rb }) => {
-            collide_circles(*ra, *rb, xf.translation.vector, speculative)
+            circle_circle_local(*ra, *rb, xf.translation.vector, speculative)
+                .map_or_else(LocalManifold::default, one_point)
         }
         (SolverShape::Circle { .. }, SolverShape::Polygon(_)) => {
             unreachable!("pairs are ordered polygon first")
@@ -96,89 +105,17 @@ pub(crate) fn collide(
     }
 }
 
-/// Two circles of radii `ra`, `rb` (m), B's centre at `pb` in A's frame.
-fn collide_circles(ra: f64, rb: f64, pb: Vector2<f64>, speculative: f64) -> LocalManifold {
-    let distance = pb.norm();
-    let separation = distance - ra - rb;
-    if separation > speculative {
-        return LocalManifold::default();
-    }
-    // Concentric circles have no line of centres: push along A's y axis.
-    let normal = if distance > 0.0 {
-        pb / distance
-    } else {
-        Vector2::y()
-    };
-    let ca = normal * ra;
-    let cb = pb - normal * rb;
+/// The one-point manifold of a circle pair's [`LocalProximity`]: the point
+/// midway between the surfaces, feature id 0 (one point, nothing to tell
+/// apart, as Box2D's circle manifolds).
+fn one_point(contact: LocalProximity) -> LocalManifold {
     LocalManifold {
-        normal,
+        normal: contact.normal,
         count: 1,
         points: [
             LocalPoint {
-                point: 0.5 * (ca + cb),
-                separation,
-                id: 0,
-            },
-            LocalPoint::default(),
-        ],
-    }
-}
-
-/// Polygon A against a circle of radius `rb` centred at `center` (A's
-/// frame).
-fn collide_polygon_circle(
-    poly: &Polygon,
-    rb: f64,
-    center: Vector2<f64>,
-    speculative: f64,
-) -> LocalManifold {
-    let n = poly.vertices.len();
-    let (mut best, mut separation) = (0, f64::NEG_INFINITY);
-    for i in 0..n {
-        let s = poly.normals[i].dot(&(center - poly.vertices[i]));
-        if s > separation {
-            separation = s;
-            best = i;
-        }
-    }
-    if separation > rb + speculative {
-        return LocalManifold::default();
-    }
-    let v1 = poly.vertices[best];
-    let v2 = poly.vertices[(best + 1) % n];
-    let u1 = (center - v1).dot(&(v2 - v1));
-    let u2 = (center - v2).dot(&(v1 - v2));
-    let vertex_point = |v: Vector2<f64>| {
-        let d = center - v;
-        let distance = d.norm();
-        let normal = d / distance;
-        let separation = distance - rb;
-        let cb = center - rb * normal;
-        (normal, separation, 0.5 * (v + cb))
-    };
-    // The centre is beyond a vertex (and outside the polygon, so the
-    // direction to it is defined): the vertex is the closest feature.
-    let (normal, separation, point) = if u1 < 0.0 && separation > f64::EPSILON {
-        vertex_point(v1)
-    } else if u2 < 0.0 && separation > f64::EPSILON {
-        vertex_point(v2)
-    } else {
-        let normal = poly.normals[best];
-        let ca = center - (center - v1).dot(&normal) * normal;
-        let cb = center - rb * normal;
-        (normal, separation - rb, 0.5 * (ca + cb))
-    };
-    if separation > speculative {
-        return LocalManifold::default();
-    }
-    LocalManifold {
-        normal,
-        count: 1,
-        points: [
-            LocalPoint {
-                point,
-                separation,
+                point: 0.5 * (contact.point_a + contact.point_b),
+                separation: contact.distance,
                 id: 0,
             },
             LocalPoint::default(),
