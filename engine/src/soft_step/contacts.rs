@@ -341,7 +341,9 @@ fn recycle(
 
 /// Stores a freshly computed manifold (in collider A's frame) in world
 /// terms, anchors from the bodies' centres of mass, carrying over the
-/// impulses of points with the same feature id.
+/// impulses of points with the same feature id. Inlined, as
+/// [`update_contact`].
+#[inline(always)]
 fn store_manifold(
     contact: &mut Contact,
     local: &LocalManifold,

@@ -29,6 +29,9 @@ use crate::collision::Aabb;
 use crate::world_core::WorldCore;
 use nalgebra::{Isometry2, Translation2, UnitComplex, Vector2};
 
+/// A pose a sweep put a body back to: position (m), angle (rad).
+pub(super) type Impact = (Vector2<f64>, f64);
+
 /// What [`finalize_body`] reads.
 #[derive(Clone, Copy)]
 struct FinalizeInputs<'a> {
@@ -43,6 +46,26 @@ struct FinalizeInputs<'a> {
     dt: f64,
 }
 
+impl<'a> FinalizeInputs<'a> {
+    fn new(
+        (settings, solver, colliders): (&'a SoftStepSettings, &'a [SolverBody], &'a [Collider]),
+        (shape_data, broad): (&'a [ShapeData], &'a BroadPhase),
+        core: &'a WorldCore,
+        dt: f64,
+    ) -> Self {
+        Self {
+            settings,
+            solver,
+            colliders,
+            shape_data,
+            broad,
+            bodies: &core.bodies,
+            states: &core.states,
+            dt,
+        }
+    }
+}
+
 /// Body `id`'s part of the stage: its sleep timer, and for a body with
 /// colliders its end pose, swept back to the first impact with a static
 /// shape when it moved fast, its rotation set to that pose's. Returns the
@@ -54,7 +77,7 @@ fn finalize_body(
     id: usize,
     sim: &mut BodySim,
     inputs: &FinalizeInputs<'_>,
-) -> Option<(Isometry2<f64>, Option<(Vector2<f64>, f64)>)> {
+) -> Option<(Isometry2<f64>, Option<Impact>)> {
     let settings = inputs.settings;
     let dt = inputs.dt;
     let r = inputs.solver[id + 1];
@@ -177,16 +200,12 @@ impl SoftStep {
                 }
                 continue;
             }
-            let inputs = FinalizeInputs {
-                settings: &self.settings,
-                solver: &self.bodies,
-                colliders: &self.colliders,
-                shape_data: &self.shape_data,
-                broad: &self.broad,
-                bodies: &core.bodies,
-                states: &core.states,
+            let inputs = FinalizeInputs::new(
+                (&self.settings, &self.bodies, &self.colliders),
+                (&self.shape_data, &self.broad),
+                core,
                 dt,
-            };
+            );
             let Some((pose, impact)) = finalize_body(id, &mut self.sims[id], &inputs) else {
                 continue;
             };
@@ -212,16 +231,12 @@ impl SoftStep {
         self.impacts.resize(n, None);
         let empty = Aabb::new(Vector2::zeros(), Vector2::zeros());
         self.collider_boxes.resize(self.colliders.len(), empty);
-        let inputs = FinalizeInputs {
-            settings: &self.settings,
-            solver: &self.bodies,
-            colliders: &self.colliders,
-            shape_data: &self.shape_data,
-            broad: &self.broad,
-            bodies: &core.bodies,
-            states: &core.states,
+        let inputs = FinalizeInputs::new(
+            (&self.settings, &self.bodies, &self.colliders),
+            (&self.shape_data, &self.broad),
+            core,
             dt,
-        };
+        );
         let speculative = self.settings.speculative_distance;
         let sims = SharedSlice::new(&mut self.sims);
         let impacts = SharedSlice::new(&mut self.impacts);

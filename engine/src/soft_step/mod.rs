@@ -217,7 +217,7 @@ pub struct SoftStep {
     /// Per body, the pose a sweep put it back to (the continuous stage's
     /// threads').
     #[cfg_attr(feature = "serde", serde(skip))]
-    impacts: Vec<Option<(Vector2<f64>, f64)>>,
+    impacts: Vec<Option<finalize::Impact>>,
 }
 
 impl SoftStep {
