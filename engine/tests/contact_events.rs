@@ -456,7 +456,7 @@ fn hooks_events_and_sleep_give_the_same_bits_on_every_thread_count() {
     impl ContactHooks for Refuse {
         fn pre_solve(&mut self, c: &PreSolveContact) -> bool {
             self.0.lock().unwrap().push((c.a, c.b));
-            (c.a.body + c.b.body) % 5 != 0
+            !(c.a.body + c.b.body).is_multiple_of(5)
         }
     }
     let run = |threads: usize| {
@@ -466,8 +466,7 @@ fn hooks_events_and_sleep_give_the_same_bits_on_every_thread_count() {
             ..SoftStepSettings::default()
         };
         let mut world =
-            World::with_model(Method::SemiImplicitEuler, ContactModel::SoftStep(settings))
-                .unwrap();
+            World::with_model(Method::SemiImplicitEuler, ContactModel::SoftStep(settings)).unwrap();
         world.set_gravity(Vector2::new(0.0, -10.0)).unwrap();
         ground(&mut world);
         for k in 0..24 {
