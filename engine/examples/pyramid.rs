@@ -3,7 +3,7 @@
 //! offset by half a box).
 //!
 //! ```sh
-//! cargo run --release -p etalon2d --example pyramid -- 20 600
+//! cargo run --release -p etalon2d --example pyramid -- 20 600 [threads]
 //! ```
 
 use etalon2d::{BodyDef, ContactModel, Method, Shape, SoftStepSettings, World};
@@ -14,9 +14,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let base: usize = args.next().map_or(Ok(20), |a| a.parse())?;
     let steps: usize = args.next().map_or(Ok(600), |a| a.parse())?;
+    let threads: usize = args.next().map_or(Ok(1), |a| a.parse())?;
     let mut world = World::with_model(
         Method::SemiImplicitEuler,
-        ContactModel::SoftStep(SoftStepSettings::default()),
+        ContactModel::SoftStep(SoftStepSettings {
+            threads,
+            ..SoftStepSettings::default()
+        }),
     )?;
     world.set_gravity(Vector2::new(0.0, -10.0))?;
     world.add_body(BodyDef::fixed(

@@ -2,13 +2,15 @@
 //! engines side by side (Box2D's protocol as in `harness bench`: step 0
 //! untimed, then the timed steps; the engines alternate, the minimum over
 //! the repeats), and prints ms per step and (with `all`) this engine's time per phase
-//! from a separate profiled run.
+//! from a separate profiled run (`phases`: this engine alone, then its
+//! phases). This engine runs on `threads` threads (default 1), the
+//! others on one.
 //! For instruction counts, run the `ours` mode under callgrind with
 //! `--collect-atstart=no --toggle-collect=*timed_steps*`: only the timed
 //! steps are counted.
 //!
 //! ```text
-//! cargo run --release -p harness --example scene_timing -- bench/tumbler [steps repeats all|ours [watched body]]
+//! cargo run --release -p harness --example scene_timing -- bench/tumbler [steps repeats all|ours|phases [watched body|- [threads]]]
 //! ```
 
 use harness::bench::convert::many_body_scene;
@@ -33,10 +35,13 @@ fn main() -> anyhow::Result<()> {
     let scene = harness::scenes::load(file)?;
     let steps: usize = args.get(1).map_or(Ok(120), |a| a.parse())?;
     let repeats: usize = args.get(2).map_or(Ok(3), |a| a.parse())?;
-    let all = args.get(3).map(String::as_str) != Some("ours");
+    let mode = args.get(3).map_or("all", String::as_str);
+    let all = mode == "all";
+    let phases = all || mode == "phases";
+    let threads: usize = args.get(5).map_or(Ok(1), |a| a.parse())?;
     // A body to watch (the bench's top box): its sink and sideways drift
     // after this engine's run are printed.
-    let watched = match args.get(4) {
+    let watched = match args.get(4).filter(|name| *name != "-") {
         Some(name) => Some(
             scene
                 .body_id(name)
@@ -51,7 +56,7 @@ fn main() -> anyhow::Result<()> {
     for _ in 0..repeats {
         for (e, best) in best.iter_mut().enumerate().take(engines) {
             let mut engine: Box<dyn ManyBodyEngine> = match e {
-                0 => Box::new(SoftStepEngine::new(&scene, false)?),
+                0 => Box::new(SoftStepEngine::with_threads(&scene, false, threads)?),
                 1 => Box::new(RapierManyWorld::new(&neutral)?),
                 _ => Box::new(Box2dWorld::new(&neutral)?),
             };
@@ -75,16 +80,17 @@ fn main() -> anyhow::Result<()> {
         }
     }
     for e in 0..engines {
+        let on = if e == 0 { threads } else { 1 };
         println!(
-            "{file}: {:<8} {:.3} ms/step (min of {repeats})",
+            "{file}: {:<8} {:.3} ms/step (min of {repeats}, {on} thread(s))",
             names[e], best[e]
         );
     }
-    if !all {
+    if !phases {
         return Ok(());
     }
     // This engine's phases, in a separate profiled run.
-    let mut engine = SoftStepEngine::new(&scene, true)?;
+    let mut engine = SoftStepEngine::with_threads(&scene, true, threads)?;
     engine.step()?;
     timed_steps(&mut engine, steps);
     let p = engine.world().profile();

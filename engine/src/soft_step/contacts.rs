@@ -106,7 +106,7 @@ pub(crate) struct Side<'a> {
     pub body: Isometry2<f64>,
 }
 
-/// Touching changes found by [`ContactSet::update`], for the islands.
+/// Touching changes found by the collide stage ([`ContactSet::record_change`]), for the islands.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum TouchChange {
     Began(usize),
@@ -119,8 +119,6 @@ pub(crate) enum TouchChange {
 pub(crate) struct ContactSet {
     pub contacts: Vec<Contact>,
     pairs: FxHashMap<(BodyId, BodyId), usize>,
-    #[cfg_attr(feature = "serde", serde(skip))]
-    scratch: Scratch,
     /// Reused list of touching changes of the last update.
     #[cfg_attr(feature = "serde", serde(skip))]
     pub changes: Vec<TouchChange>,
@@ -203,69 +201,19 @@ impl ContactSet {
         }
     }
 
-    /// Recomputes contact `index`'s manifold at the colliders' poses,
-    /// keeping the impulses of points whose feature ids persist, or recycles
-    /// it (see the module docs). `max_extent` (m) bounds the distance of the
-    /// colliders' points from their origins. Records a [`TouchChange`] when
-    /// touching began or ended.
-    pub(crate) fn update(
-        &mut self,
-        index: usize,
-        (a, b): (Side<'_>, Side<'_>),
-        max_extent: f64,
-        speculative: f64,
-        recycle_distance: f64,
-    ) {
-        let contact = &mut self.contacts[index];
-        let was_touching = contact.touching;
-        let relative = a.collider.inv_mul(&b.collider);
-        if let Some(computed) = contact.computed
-            && recycle(
-                contact,
-                computed,
-                &relative,
-                (&a.body, &b.body),
-                max_extent,
-                speculative,
-                recycle_distance,
-            )
-        {
-            if contact.sensor {
-                self.set_touching(index, was_touching);
-            }
-            return;
-        }
-        let local = manifold::collide(a.shape, b.shape, &relative, speculative, &mut self.scratch);
-        store_manifold(contact, &local, &a.collider, (&a.body, &b.body));
-        contact.computed = Some(Computed {
-            relative,
-            rotation_a: a.body.rotation,
-            rotation_b: b.body.rotation,
-        });
-        self.set_touching(index, was_touching);
-    }
-
-    /// Sets contact `index`'s touching flag from its manifold (any point
-    /// for a solved pair, an overlapping one for a sensor pair), recording
-    /// the change from `was_touching`.
-    fn set_touching(&mut self, index: usize, was_touching: bool) {
-        let contact = &mut self.contacts[index];
-        contact.touching = if contact.sensor {
-            contact.points[..contact.count]
-                .iter()
-                .any(|p| p.separation <= 0.0)
-        } else {
-            contact.count > 0
-        };
-        if contact.touching && !was_touching {
+    /// Records contact `index`'s [`TouchChange`] after an update that found
+    /// it `was_touching` before.
+    pub(crate) fn record_change(&mut self, index: usize, was_touching: bool) {
+        let touching = self.contacts[index].touching;
+        if touching && !was_touching {
             self.changes.push(TouchChange::Began(index));
-        } else if !contact.touching && was_touching {
+        } else if !touching && was_touching {
             self.changes.push(TouchChange::Ended(index));
         }
     }
 
     /// Disables contact `index` for this step (the pre-solve hook said
-    /// so), right after its [`ContactSet::update`]: no points, not
+    /// so), right after its update ([`update_contact`]): no points, not
     /// touching, its touching change corrected (a beginning undone, or an
     /// end recorded).
     pub(crate) fn disable(&mut self, index: usize) {
@@ -284,10 +232,70 @@ impl ContactSet {
     }
 }
 
+/// Recomputes `contact`'s manifold at the colliders' poses, keeping the
+/// impulses of points whose feature ids persist, or recycles it (see the
+/// module docs), and sets its touching flag; `scratch` is the caller's
+/// (one per thread). The distances (m): `max_extent` bounds the distance
+/// of the colliders' points from their origins, then the speculative and
+/// the recycle distance. Returns whether the contact was touching before,
+/// for [`ContactSet::record_change`]. Touches nothing but `contact` and
+/// `scratch`, so contacts can be updated on several threads. Inlined into
+/// the collide stage's loop (a call per contact, its sides passed by
+/// value, cost some 90 instructions a contact).
+#[inline(always)]
+pub(crate) fn update_contact(
+    contact: &mut Contact,
+    (a, b): (Side<'_>, Side<'_>),
+    (max_extent, speculative, recycle_distance): (f64, f64, f64),
+    scratch: &mut Scratch,
+) -> bool {
+    let was_touching = contact.touching;
+    let relative = a.collider.inv_mul(&b.collider);
+    if let Some(computed) = contact.computed
+        && recycle(
+            contact,
+            computed,
+            &relative,
+            (&a.body, &b.body),
+            max_extent,
+            speculative,
+            recycle_distance,
+        )
+    {
+        if contact.sensor {
+            set_touching(contact);
+        }
+        return was_touching;
+    }
+    let local = manifold::collide(a.shape, b.shape, &relative, speculative, scratch);
+    store_manifold(contact, &local, &a.collider, (&a.body, &b.body));
+    contact.computed = Some(Computed {
+        relative,
+        rotation_a: a.body.rotation,
+        rotation_b: b.body.rotation,
+    });
+    set_touching(contact);
+    was_touching
+}
+
+/// Sets `contact`'s touching flag from its manifold: any point for a
+/// solved pair, an overlapping one for a sensor pair.
+fn set_touching(contact: &mut Contact) {
+    contact.touching = if contact.sensor {
+        contact.points[..contact.count]
+            .iter()
+            .any(|p| p.separation <= 0.0)
+    } else {
+        contact.count > 0
+    };
+}
+
 /// Keeps the manifold when the pair's relative pose moved by less than the
 /// recycle distance (a bound on any point's displacement: the translation
 /// plus the largest extent times the sine of the turn), updating its
-/// separations from the motion. Returns whether it did.
+/// separations from the motion. Returns whether it did. Inlined into the
+/// collide stage's loop, as [`update_contact`].
+#[inline(always)]
 fn recycle(
     contact: &mut Contact,
     computed: Computed,
@@ -333,7 +341,9 @@ fn recycle(
 
 /// Stores a freshly computed manifold (in collider A's frame) in world
 /// terms, anchors from the bodies' centres of mass, carrying over the
-/// impulses of points with the same feature id.
+/// impulses of points with the same feature id. Inlined, as
+/// [`update_contact`].
+#[inline(always)]
 fn store_manifold(
     contact: &mut Contact,
     local: &LocalManifold,
@@ -400,7 +410,13 @@ pub(crate) mod tests {
             collider: pose,
             body: pose,
         };
-        set.update(0, (side(a, pa), side(b, pb)), 0.71, 0.02, recycle);
+        let was_touching = update_contact(
+            &mut set.contacts[0],
+            (side(a, pa), side(b, pb)),
+            (0.71, 0.02, recycle),
+            &mut Scratch::default(),
+        );
+        set.record_change(0, was_touching);
     }
 
     #[test]

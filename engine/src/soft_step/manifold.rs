@@ -78,6 +78,10 @@ fn perp_left(v: Vector2<f64>) -> Vector2<f64> {
 /// The manifold of `a` and `b`, where `xf` maps B's frame into A's, with
 /// points kept while their separation is at most `speculative` (m).
 /// Polygon–circle pairs take the polygon as A: the caller orders them.
+/// Inlined into the collide stage's loop (`contacts.rs`'s
+/// `update_contact`): a call there puts the pair's poses in memory on
+/// every contact, the recycled ones included.
+#[inline(always)]
 pub(crate) fn collide(
     a: &SolverShape,
     b: &SolverShape,

@@ -11,7 +11,7 @@
 //! 1. **pairs**: the broad phase (`broad_phase.rs`) queries the bodies whose
 //!    bounding box left its enlarged box; each new overlapping pair becomes
 //!    a persistent contact (`contacts.rs`);
-//! 2. **collide**: every contact of an awake body gets its manifold at the
+//! 2. **collide** (`collide.rs`): every contact of an awake body gets its manifold at the
 //!    current poses (`manifold.rs`: up to two points with feature ids,
 //!    speculative points within [`SoftStepSettings::speculative_distance`]),
 //!    each point keeping the impulses of last step's point with the same id;
@@ -37,16 +37,17 @@
 //! 5. **restitution**: points that approached faster than the threshold
 //!    bounce with their restitution (overflow, then records);
 //! 6. **store**: impulses back into the contacts, states into the world;
-//! 7. **continuous**: bounding boxes into the broad phase, fast bodies
-//!    swept against static ones (`continuous.rs`);
+//! 7. **continuous** (`finalize.rs`): bounding boxes into the broad phase,
+//!    fast bodies swept against static ones (`continuous.rs`);
 //! 8. **sleep** (when on): islands at rest fall asleep (`islands.rs`;
 //!    jointed bodies share an island).
 //!
-//! With [`SoftStepSettings::threads`] above one, prepare, the substeps'
-//! integration and passes (each colour's records split among the threads),
-//! restitution and the store run on a pool of threads (`pool.rs`,
-//! `parallel.rs`), with the serial stages' bits (docs/soft_step.md,
-//! "Threads").
+//! With [`SoftStepSettings::threads`] above one, the manifolds of collide
+//! (`collide.rs`), prepare, the substeps' integration and passes (each
+//! colour's records split among the threads), restitution, the store and
+//! the per-body part of continuous (`finalize.rs`) run on a pool of
+//! threads (`pool.rs`, `parallel.rs`), with the serial stages' bits
+//! (docs/soft_step.md, "Threads").
 //!
 //! Events (landing, apex) are located inside each substep by linear
 //! interpolation, exact for positions (they move linearly in a substep;
@@ -63,6 +64,7 @@
 
 mod bodies;
 mod broad_phase;
+mod collide;
 mod colouring;
 pub mod contact_events;
 mod contact_solver;
@@ -70,6 +72,7 @@ mod contacts;
 mod continuous;
 mod control;
 mod events;
+mod finalize;
 mod geometry;
 mod integrate;
 mod islands;
@@ -136,9 +139,9 @@ use broad_phase::BroadPhase;
 use colouring::Colouring;
 use contact_events::Hooks;
 use contact_solver::ContactConstraint;
-use contacts::{ContactSet, Side, TouchChange};
+use contacts::ContactSet;
 use geometry::Collider;
-use nalgebra::{Isometry2, Translation2, UnitComplex, Vector2};
+use nalgebra::{Isometry2, Translation2, Vector2};
 use shape_data::{PairMaterial, ShapeData};
 use wide_solver::{WideConstraint, WideExtra};
 
@@ -210,6 +213,20 @@ pub struct SoftStep {
     /// The threads of the parallel stages (none for one thread).
     #[cfg_attr(feature = "serde", serde(skip))]
     pool: pool::PoolCell,
+    /// The collide stage's buffers, one per thread.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    scratches: Vec<manifold::Scratch>,
+    /// Per contact, what the collide stage's threads found (`collide.rs`).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    collided: Vec<collide::Collided>,
+    /// Per collider, its box at the end of the step (the continuous
+    /// stage's, `finalize.rs`).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    collider_boxes: Vec<crate::collision::Aabb>,
+    /// Per body, the pose a sweep put it back to (the continuous stage's
+    /// threads').
+    #[cfg_attr(feature = "serde", serde(skip))]
+    impacts: Vec<Option<finalize::Impact>>,
 }
 
 impl SoftStep {
@@ -243,6 +260,10 @@ impl SoftStep {
             touching_pairs: Vec::new(),
             resting: Vec::new(),
             pool: pool::PoolCell::default(),
+            scratches: Vec::new(),
+            collided: Vec::new(),
+            collider_boxes: Vec::new(),
+            impacts: Vec::new(),
         };
         for id in 0..core.bodies.len() {
             model.body_added(core, id);
@@ -380,7 +401,7 @@ impl SoftStep {
         core.profiler.stop(Phase::Pairs, started);
 
         let started = core.profiler.start();
-        self.collide(core);
+        self.collide(&core.states, pool.as_deref());
         core.profiler.stop(Phase::Collide, started);
 
         let started = core.profiler.start();
@@ -492,7 +513,7 @@ impl SoftStep {
         core.profiler.stop(Phase::Store, started);
 
         let started = core.profiler.start();
-        self.finalize_bodies(core, dt);
+        self.finalize_bodies(core, dt, pool.as_deref());
         core.profiler.stop(Phase::Continuous, started);
 
         if settings.sleeping {
@@ -562,108 +583,6 @@ impl SoftStep {
         });
     }
 
-    /// Stage 2: manifolds; destroys the contacts whose fat boxes parted.
-    #[inline(never)]
-    fn collide(&mut self, core: &WorldCore) {
-        let settings = self.settings;
-        self.contacts.changes.clear();
-        let mut i = 0;
-        while i < self.contacts.contacts.len() {
-            let (a, b, body_a, body_b, touching) = {
-                let c = &self.contacts.contacts[i];
-                (c.a, c.b, c.body_a, c.body_b, c.touching)
-            };
-            let (sa, sb) = (&self.sims[body_a], &self.sims[body_b]);
-            if !sa.moving() && !sb.moving() {
-                // Both asleep (or one static): nothing moved.
-                i += 1;
-                continue;
-            }
-            if !self.broad.fat_overlap(a, b) {
-                if touching {
-                    self.contact_ended(i);
-                    if settings.sleeping && !self.contacts.contacts[i].sensor {
-                        self.islands.unlink(body_a);
-                    }
-                }
-                self.contacts.destroy(i);
-                continue;
-            }
-            let body_pose = |id: BodyId, sim: &BodySim| {
-                Isometry2::from_parts(Translation2::from(core.states[id].position), sim.rotation)
-            };
-            let (pose_a, pose_b) = (body_pose(body_a, sa), body_pose(body_b, sb));
-            let (ca, cb) = (&self.colliders[a], &self.colliders[b]);
-            let extent = |c: &Collider, s: &BodySim| {
-                if s.kind == BodyKind::Static {
-                    0.0
-                } else {
-                    c.max_extent
-                }
-            };
-            let max_extent = extent(ca, sa).max(extent(cb, sb));
-            let side_a = Side {
-                shape: &ca.shape,
-                collider: ca.pose(&pose_a),
-                body: pose_a,
-            };
-            let side_b = Side {
-                shape: &cb.shape,
-                collider: cb.pose(&pose_b),
-                body: pose_b,
-            };
-            self.contacts.update(
-                i,
-                (side_a, side_b),
-                max_extent,
-                settings.speculative_distance,
-                settings.recycle_distance,
-            );
-            let contact = &self.contacts.contacts[i];
-            if contact.touching
-                && !contact.sensor
-                && let Some(hooks) = self.hooks.0.as_mut()
-            {
-                let view = report::pre_solve_view(contact, (&self.colliders, &self.shape_data));
-                if !hooks.pre_solve(&view) {
-                    self.contacts.disable(i);
-                }
-            }
-            let contact = &self.contacts.contacts[i];
-            // A body touching an awake moving one cannot sleep through it
-            // (a sensor does not wake what it detects).
-            if contact.touching && !contact.sensor && (sa.asleep || sb.asleep) {
-                self.wake_body(body_a);
-                self.wake_body(body_b);
-            }
-            i += 1;
-        }
-        if settings.sleeping {
-            for k in 0..self.contacts.changes.len() {
-                let change = self.contacts.changes[k];
-                let index = match change {
-                    TouchChange::Began(index) | TouchChange::Ended(index) => index,
-                };
-                if self.contacts.contacts[index].sensor {
-                    continue;
-                }
-                match change {
-                    TouchChange::Began(index) => {
-                        let c = &self.contacts.contacts[index];
-                        let (a, b) = (c.body_a, c.body_b);
-                        self.wake_body(a);
-                        self.wake_body(b);
-                        self.islands.link(a, b);
-                    }
-                    TouchChange::Ended(index) => {
-                        let a = self.contacts.contacts[index].body_a;
-                        self.islands.unlink(a);
-                    }
-                }
-            }
-        }
-    }
-
     /// Stage 6: the solver's motion into the world's states, with the
     /// non-finite guard naming the body.
     #[inline(never)]
@@ -697,105 +616,6 @@ impl SoftStep {
             }
         }
         Ok(())
-    }
-
-    /// Stage 7: bounding boxes into the broad phase, fast bodies swept
-    /// against static ones, sleep timers.
-    #[inline(never)]
-    fn finalize_bodies(&mut self, core: &mut WorldCore, dt: f64) {
-        let settings = self.settings;
-        for id in 0..self.sims.len() {
-            let sim = &self.sims[id];
-            if !sim.moving() {
-                continue;
-            }
-            let r = self.bodies[id + 1];
-            if settings.sleeping {
-                let speed = r.v.norm() + sim.max_extent * r.w.abs();
-                let sim = &mut self.sims[id];
-                if sim.kind == BodyKind::Dynamic && speed < settings.sleep_threshold {
-                    sim.sleep_time += dt;
-                } else {
-                    sim.sleep_time = 0.0;
-                }
-            }
-            let sim = &self.sims[id];
-            if sim.colliders.is_empty() {
-                // No shape, but its joints' anchors turn with it.
-                if r.dtheta != 0.0 {
-                    self.sims[id].rotation = UnitComplex::new(core.states[id].angle);
-                }
-                continue;
-            }
-            // The end pose's rotation, kept unless an impact moves the body.
-            let mut rotation = UnitComplex::new(core.states[id].angle);
-            let motion = r.dp.norm() + sim.max_extent * r.dtheta.abs();
-            // Only static shapes are swept against: none, nothing to do.
-            if settings.continuous
-                && sim.kind == BodyKind::Dynamic
-                && self.broad.has_static()
-                && motion > continuous::FAST_FRACTION * sim.min_extent
-            {
-                let s = core.states[id];
-                let sweep = continuous::Sweep {
-                    start: (s.position - r.dp, s.angle - r.dtheta),
-                    end: (s.position, s.angle),
-                    dt,
-                };
-                let start = Isometry2::new(sweep.start.0, sweep.start.1);
-                let end = Isometry2::from_parts(Translation2::from(sweep.end.0), rotation);
-                let swept = sim
-                    .colliders
-                    .clone()
-                    .map(|c| {
-                        let collider = &self.colliders[c];
-                        collider
-                            .shape
-                            .aabb_at(&collider.pose(&start))
-                            .merged(&collider.shape.aabb_at(&collider.pose(&end)))
-                    })
-                    .reduce(|a, b| a.merged(&b))
-                    .expect("a body with colliders");
-                let (colliders, data) = (&self.colliders, &self.shape_data);
-                let own = self.sims[id].colliders.clone();
-                let blocks = |other: usize| {
-                    let d = &data[other];
-                    let stops = !d.sensor
-                        && own
-                            .clone()
-                            .any(|c| !data[c].sensor && data[c].filter.should_collide(&d.filter));
-                    stops.then_some(colliders[other].body)
-                };
-                if let Some(toi) = continuous::first_impact(
-                    &core.bodies[id],
-                    &sweep,
-                    start,
-                    &swept,
-                    &self.broad,
-                    &core.bodies,
-                    &core.states,
-                    blocks,
-                ) {
-                    let f = toi / dt;
-                    let state = &mut core.states[id];
-                    state.position = sweep.start.0 + f * (sweep.end.0 - sweep.start.0);
-                    state.angle = sweep.start.1 + f * (sweep.end.1 - sweep.start.1);
-                    rotation = UnitComplex::new(state.angle);
-                }
-            }
-            let s = &core.states[id];
-            self.sims[id].rotation = rotation;
-            let pose = Isometry2::from_parts(Translation2::from(s.position), rotation);
-            for c in self.sims[id].colliders.clone() {
-                let collider = &self.colliders[c];
-                let aabb = collider
-                    .shape
-                    .aabb_at(&collider.pose(&pose))
-                    .loosened(settings.speculative_distance);
-                self.broad
-                    .update(c, &aabb, collider.aabb_margin(settings.aabb_margin));
-            }
-        }
     }
 
     /// Body `id` was removed (it is now an inert static body without a

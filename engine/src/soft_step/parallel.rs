@@ -14,8 +14,9 @@
 //! - **Restitution and store**: restitution as a pass; the impulses back
 //!   into the contacts, constraints split among the threads (each writes
 //!   its own contacts).
-//! - **Write states**: bodies split among the threads; a non-finite state
-//!   is reported for the lowest body id, as the serial loop does.
+//!
+//! The collide and continuous stages split their per-contact and per-body
+//! work the same way, in their own files (`collide.rs`, `finalize.rs`).
 
 use super::SoftStep;
 use super::colouring::{COLOURS, Colouring, Slot};
