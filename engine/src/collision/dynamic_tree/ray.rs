@@ -424,7 +424,7 @@ mod tests {
             assert_eq!(min_of(walk::<2>(&tree, &boxes, o, d, true)), nearest);
             assert_eq!(min_of(walk::<0>(&tree, &boxes, o, d, true)), nearest);
             let all = |mut seen: Vec<(u32, f64)>| {
-                seen.sort_by(|a, b| a.0.cmp(&b.0));
+                seen.sort_by_key(|s| s.0);
                 seen
             };
             let full = all(walk::<64>(&tree, &boxes, o, d, false));
