@@ -43,9 +43,6 @@ pub(crate) fn ray_cast(
     let v = &proxy.vertices;
     let n = v.len();
     let r = proxy.radius;
-    if contains(proxy, origin) {
-        return None;
-    }
     let mut best: Option<ProxyRayHit> = None;
     if n >= 2 {
         best = flat_entry(proxy, origin, dir, max_t);
@@ -66,6 +63,13 @@ pub(crate) fn ray_cast(
                 _ => {}
             }
         }
+    }
+    // A ray starting inside (or on) the proxy reports nothing. Tested last,
+    // and only when there is an entry to discard: the answer is the same
+    // as testing first, and most candidates a ray's box test passes are
+    // missed.
+    if best.is_some() && contains(proxy, origin) {
+        return None;
     }
     best
 }

@@ -13,9 +13,15 @@ use crate::filter::QueryFilter;
 use crate::shape::Shape;
 use crate::world::World;
 use nalgebra::{Isometry2, Vector2};
+use smallvec::SmallVec;
 
-/// Checks that both components of a point or vector are finite.
+/// Checks that both components of a point or vector are finite. The
+/// error's text is written only on failure: a query allocates nothing
+/// when its input is good.
 fn require_finite_vector(what: &str, v: Vector2<f64>) -> Result<Vector2<f64>> {
+    if v.x.is_finite() && v.y.is_finite() {
+        return Ok(v);
+    }
     require_finite(format!("{what} (x)"), v.x)?;
     require_finite(format!("{what} (y)"), v.y)?;
     Ok(v)
@@ -52,8 +58,9 @@ fn unit_direction(direction: Vector2<f64>) -> Result<Vector2<f64>> {
     Ok(direction / length)
 }
 
-/// The proxies of a query shape's convex pieces at `pose`.
-fn query_proxies(shape: &Shape, pose: &Isometry2<f64>) -> Vec<ConvexProxy> {
+/// The proxies of a query shape's convex pieces at `pose` (one, inline,
+/// for a circle or a polygon: no allocation).
+fn query_proxies(shape: &Shape, pose: &Isometry2<f64>) -> SmallVec<[ConvexProxy; 1]> {
     (0..piece_count(shape))
         .map(|k| {
             let (placement, convex) = piece(shape, k).expect("k < piece count");
@@ -168,15 +175,13 @@ impl World {
         let end = Aabb::new(start.min + translation, start.max + translation);
         let swept = start.merged(&end);
         let source = self.source(filter);
-        let mut candidates = Vec::new();
-        source.overlapping(&swept, |s| candidates.push(s));
         let mut best: Option<ShapeCastHit> = None;
-        for s in candidates {
+        source.overlapping(&swept, |s| {
             let target = source.proxy(s);
             for m in &moving {
-                if overlap(m, &target) {
-                    continue;
-                }
+                // A piece overlapping (or touching) at the start is skipped:
+                // `shape_cast` reports nothing then (its ray starts inside
+                // the Minkowski difference).
                 if let Some(hit) = shape_cast(m, &target, translation) {
                     let better = best.is_none_or(|b| (hit.fraction, s) < (b.fraction, b.shape));
                     if better {
@@ -189,7 +194,7 @@ impl World {
                     }
                 }
             }
-        }
+        });
         Ok(best)
     }
 

@@ -30,7 +30,7 @@ const HALF_WIDTH: f64 = 100.0;
 /// Rays per repeat.
 pub const RAYS: usize = 10_000;
 /// Ray length (m).
-const RAY_LENGTH: f64 = 20.0;
+pub const RAY_LENGTH: f64 = 20.0;
 
 /// One engine's time per ray.
 #[derive(Debug, Clone)]
@@ -95,36 +95,82 @@ fn rays() -> Vec<(Vector2<f64>, Vector2<f64>)> {
         .collect()
 }
 
+/// The benchmark's world in the three engines (each stepped once, so
+/// that every broad phase holds the shapes) and its rays: the workload of
+/// [`measure`], also run alone by `examples/ray_timing.rs` (callgrind).
+pub struct Workload {
+    /// This engine's world (soft step).
+    pub ours: World,
+    /// rapier2d-f64's.
+    pub rapier: RapierManyWorld,
+    /// Box2D's.
+    pub box2d: Box2dWorld,
+    /// The rays: (origin, unit direction), m.
+    pub rays: Vec<(Vector2<f64>, Vector2<f64>)>,
+}
+
+impl Workload {
+    /// Builds the worlds and the rays.
+    pub fn new() -> Result<Self> {
+        let bodies = bodies();
+        let mut ours = World::with_model(
+            Method::SemiImplicitEuler,
+            ContactModel::SoftStep(SoftStepSettings::default()),
+        )?;
+        let mut scene = ManyBodyScene {
+            gravity: [0.0, 0.0],
+            dt: 1.0 / 60.0,
+            substeps: 4,
+            bodies: Vec::new(),
+            joints: Vec::new(),
+        };
+        for (k, (shape, position, angle)) in bodies.iter().enumerate() {
+            let mut def = BodyDef::fixed(&format!("b{k}"), *position, Some(shape.clone()));
+            def.state.angle = *angle;
+            ours.add_body(def)?;
+            let mut body = SceneBody::fixed(shape.clone(), [position.x, position.y]);
+            body.angle = *angle;
+            scene.bodies.push(body);
+        }
+        let mut rapier = RapierManyWorld::new(&scene).context("rapier world")?;
+        let mut box2d = Box2dWorld::new(&scene).context("Box2D world")?;
+        ours.step(scene.dt)?;
+        rapier.step().context("rapier step")?;
+        box2d.step().context("Box2D step")?;
+        Ok(Workload {
+            ours,
+            rapier,
+            box2d,
+            rays: rays(),
+        })
+    }
+
+    /// Casts every ray once in engine `e` (0 this engine, 1 rapier, 2
+    /// Box2D), closest hit within the ray length; returns the rays that
+    /// hit.
+    pub fn cast_all(&self, e: usize) -> Result<usize> {
+        let mut found = 0;
+        for (o, d) in &self.rays {
+            let hit = match e {
+                0 => self
+                    .ours
+                    .cast_ray(*o, *d, RAY_LENGTH, QueryFilter::DEFAULT)?
+                    .map(|h| h.distance),
+                1 => self.rapier.cast_ray([o.x, o.y], [d.x, d.y], RAY_LENGTH),
+                _ => self
+                    .box2d
+                    .cast_ray_closest([o.x, o.y], [RAY_LENGTH * d.x, RAY_LENGTH * d.y])
+                    .context("Box2D ray")?,
+            };
+            found += usize::from(std::hint::black_box(hit).is_some());
+        }
+        Ok(found)
+    }
+}
+
 /// Times the three engines on the same world and rays, `repeats` times.
 pub fn measure(repeats: usize) -> Result<Vec<QueryTiming>> {
-    let bodies = bodies();
-    let rays = rays();
-    let mut ours = World::with_model(
-        Method::SemiImplicitEuler,
-        ContactModel::SoftStep(SoftStepSettings::default()),
-    )?;
-    let mut scene = ManyBodyScene {
-        gravity: [0.0, 0.0],
-        dt: 1.0 / 60.0,
-        substeps: 4,
-        bodies: Vec::new(),
-        joints: Vec::new(),
-    };
-    for (k, (shape, position, angle)) in bodies.iter().enumerate() {
-        let mut def = BodyDef::fixed(&format!("b{k}"), *position, Some(shape.clone()));
-        def.state.angle = *angle;
-        ours.add_body(def)?;
-        let mut body = SceneBody::fixed(shape.clone(), [position.x, position.y]);
-        body.angle = *angle;
-        scene.bodies.push(body);
-    }
-    let mut rapier = RapierManyWorld::new(&scene).context("rapier world")?;
-    let mut box2d = Box2dWorld::new(&scene).context("Box2D world")?;
-    // One step each, so that every broad phase holds the shapes.
-    ours.step(scene.dt)?;
-    rapier.step().context("rapier step")?;
-    box2d.step().context("Box2D step")?;
-
+    let workload = Workload::new()?;
     let names = [
         "this engine (World::cast_ray)",
         "rapier2d-f64 0.36 (QueryPipeline::cast_ray)",
@@ -134,22 +180,9 @@ pub fn measure(repeats: usize) -> Result<Vec<QueryTiming>> {
     let mut hits = [0usize; 3];
     for _ in 0..repeats.max(1) {
         for (e, time) in times.iter_mut().enumerate() {
-            let mut found = 0;
             let clock = Instant::now();
-            for (o, d) in &rays {
-                let hit = match e {
-                    0 => ours
-                        .cast_ray(*o, *d, RAY_LENGTH, QueryFilter::DEFAULT)?
-                        .map(|h| h.distance),
-                    1 => rapier.cast_ray([o.x, o.y], [d.x, d.y], RAY_LENGTH),
-                    _ => box2d
-                        .cast_ray_closest([o.x, o.y], [RAY_LENGTH * d.x, RAY_LENGTH * d.y])
-                        .context("Box2D ray")?,
-                };
-                found += usize::from(std::hint::black_box(hit).is_some());
-            }
-            time.push(clock.elapsed().as_secs_f64() * 1e9 / rays.len() as f64);
-            hits[e] = found;
+            hits[e] = workload.cast_all(e)?;
+            time.push(clock.elapsed().as_secs_f64() * 1e9 / workload.rays.len() as f64);
         }
     }
     Ok(names
