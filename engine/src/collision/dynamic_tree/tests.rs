@@ -613,3 +613,36 @@ fn moved_pairs_are_the_brute_force_pairs_with_a_moved_proxy_each_once() {
         assert_eq!(found, expected, "round {round}");
     }
 }
+
+#[test]
+fn a_full_rebuild_lays_the_internal_nodes_out_in_preorder() {
+    // Every proxy enlarged: the rebuild regroups the whole tree, and its
+    // internal nodes, visited in preorder (left child first), must take
+    // ascending indices, so that a subtree's nodes lie together in memory.
+    // Twice, because the second rebuild reuses the nodes the first laid out.
+    let mut rng = Rng::new(7);
+    let boxes: Vec<Aabb> = (0..300).map(|_| random_box(&mut rng, 50.0, 2.0)).collect();
+    let (mut tree, ids) = build(&boxes);
+    for round in 1..=2 {
+        for (id, b) in ids.iter().zip(&boxes) {
+            tree.enlarge_proxy(*id, b.loosened(1e-3 * round as f64));
+        }
+        tree.rebuild();
+        tree.validate().unwrap();
+        let mut preorder = Vec::new();
+        let mut walk = vec![tree.root];
+        while let Some(i) = walk.pop() {
+            let node = &tree.nodes[i as usize];
+            if !node.is_leaf() {
+                preorder.push(i);
+                walk.push(node.children[1]);
+                walk.push(node.children[0]);
+            }
+        }
+        assert_eq!(preorder.len(), boxes.len() - 1);
+        assert!(
+            preorder.windows(2).all(|w| w[0] < w[1]),
+            "round {round}: internal nodes in preorder {preorder:?}"
+        );
+    }
+}
