@@ -105,12 +105,14 @@ impl World {
             ContactModel::Exact(settings) => {
                 self.refuse_joints_leaving_soft_step()?;
                 self.refuse_controls_leaving_soft_step()?;
+                // Every body is checked before the model changes, so a
+                // refusal leaves the world as it was.
+                for body in &self.core.bodies {
+                    ExactModel::check_body(body, true)?;
+                }
                 if let Dynamics::SoftStep(_) = self.model {
                     self.model =
                         Dynamics::Exact(Box::new(ExactModel::new(Method::SemiImplicitEuler)?));
-                }
-                for body in &self.core.bodies {
-                    ExactModel::check_body(body)?;
                 }
                 let Dynamics::Exact(exact) = &mut self.model else {
                     unreachable!("the exact model was just installed");

@@ -315,3 +315,55 @@ fn a_world_of_static_bodies_runs_with_implicit_euler() {
         Vector2::new(1.0, 2.0)
     );
 }
+
+/// A compound body (a concave outline cut into parts) under the exact
+/// model: without contacts its shape only gives its mass properties, so it
+/// falls as any body (x = ½ g t², RK4 exact on a quadratic to round-off);
+/// turning the exact model's contacts on refuses it, naming the body, and
+/// leaves the world as it was (still the soft step, the body kept).
+#[test]
+fn a_compound_runs_without_contacts_and_is_refused_when_exact_contacts_come_on() {
+    use etalon2d::{Compound, CompoundPart, ContactModel, ContactSettings, SoftStepSettings};
+    let compound = || {
+        Shape::Compound(
+            Compound::new(vec![
+                CompoundPart::new(Vector2::zeros(), 0.0, Shape::rectangle(1.0, 0.2).unwrap()),
+                CompoundPart::new(Vector2::new(0.4, 0.3), 0.0, Shape::rectangle(0.2, 0.4).unwrap()),
+            ])
+            .unwrap(),
+        )
+    };
+    let mut world = World::new(Method::Rk4).unwrap();
+    let body = world
+        .add_body(BodyDef::rigid("l", 1.0, compound()))
+        .expect("a compound without contacts integrates");
+    world
+        .add_force(Gravity {
+            g: Vector2::new(0.0, -10.0),
+        })
+        .unwrap();
+    for _ in 0..100 {
+        world.step(0.01).unwrap();
+    }
+    let y = world.states()[body].position.y;
+    // ½ g t² at t = 1 s; 100 RK4 steps of a constant acceleration are
+    // exact up to the round-off of 100 additions (≈ 100 ε · 5 m).
+    assert!((y + 5.0).abs() < 1e-12, "y = {y}");
+    let refused = world.set_contact_model(ContactModel::Exact(ContactSettings::default()));
+    let message = refused.expect_err("the exact model does not collide compounds").to_string();
+    assert!(message.contains("'l'"), "{message}");
+
+    let mut soft = World::with_model(
+        Method::SemiImplicitEuler,
+        ContactModel::SoftStep(SoftStepSettings::default()),
+    )
+    .unwrap();
+    soft.add_body(BodyDef::rigid("l", 1.0, compound())).unwrap();
+    let refused = soft.set_contact_model(ContactModel::Exact(ContactSettings::default()));
+    assert!(refused.is_err());
+    assert!(
+        matches!(soft.contact_model(), Some(ContactModel::SoftStep(_))),
+        "a refused switch leaves the soft step in place"
+    );
+    assert_eq!(soft.bodies().len(), 1);
+}

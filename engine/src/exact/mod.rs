@@ -128,8 +128,11 @@ impl ExactModel {
         })
     }
 
-    /// Refuses a body this model cannot simulate.
-    pub(crate) fn check_body(body: &Body) -> Result<()> {
+    /// Refuses a body this model cannot simulate. A compound shape is
+    /// refused only when `contacts` are on (the model collides single
+    /// polygons and circles); without contacts a shape only gives the body
+    /// its mass properties, and any shape integrates.
+    pub(crate) fn check_body(body: &Body, contacts: bool) -> Result<()> {
         let refuse = |what: String, reason| Err(EngineError::Unsupported { what, reason });
         if body.kind == BodyKind::Kinematic {
             return refuse(
@@ -138,7 +141,7 @@ impl ExactModel {
                  use the soft_step contact model",
             );
         }
-        if let Some(crate::shape::Shape::Compound(_)) = body.shape {
+        if let (true, Some(crate::shape::Shape::Compound(_))) = (contacts, &body.shape) {
             return refuse(
                 format!("the compound shape of body '{}'", body.name),
                 "the exact contact model collides single polygons and circles; \

@@ -16,7 +16,7 @@ use nalgebra::Vector2;
 
 impl ContactModelStep for ExactModel {
     fn check_body(&self, body: &Body) -> Result<()> {
-        ExactModel::check_body(body)
+        ExactModel::check_body(body, self.contacts_enabled())
     }
 
     fn body_added(&mut self, _core: &WorldCore, _id: BodyId) {
