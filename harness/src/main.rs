@@ -317,34 +317,70 @@ fn default_out(full: bool, quick: bool) -> Option<PathBuf> {
     })
 }
 
-/// Runs `cases` in parallel over the cores (rayon's pool, one thread per
-/// core), each whole on one thread; returns their records in the order of
-/// `cases`, their charts saved into `dir` when there is one. A case's rows
-/// depend on nothing but the case (no state is shared between cases), so
-/// they are the bits of a serial run; only the timing notes some cases
-/// write (ms per step) see the other threads' load. The first error in the
-/// order of `cases` is the one reported.
+/// Runs `cases` in parallel over the cores, each whole on one thread;
+/// returns their records in the order of `cases`, their charts saved into
+/// `dir` when there is one. A case's rows depend on nothing but the case
+/// (no state is shared between cases), so they are the bits of a serial
+/// run; only the timing notes some cases write (ms per step) see the other
+/// threads' load. The first error in the order of `cases` is the one
+/// reported.
+///
+/// The workers are plain threads taking the next case in turn, not rayon's
+/// global pool: that pool has one thread ([`references::serial_rayon`], so
+/// rapier2d, built with `parallel`, steps serially and gives the bits of a
+/// serial run), and a case run on it would run the cases one at a time.
+/// Each case runs inside a one-thread rayon pool of its own, so whatever
+/// it runs through rayon (rapier2d) stays serial and waits on no other
+/// case.
 fn run_cases(cases: &[&'static Case], dir: Option<&Path>) -> Result<Vec<CaseRecord>> {
-    use rayon::prelude::*;
+    use std::sync::Mutex;
+    use std::sync::atomic::{AtomicUsize, Ordering};
     let progress = harness::progress::bar(cases.len() as u64, "cases");
-    let records: Vec<Result<CaseRecord>> = cases
-        .par_iter()
-        .map(|case| {
-            let started = Instant::now();
-            let record = (case.run)()
-                .and_then(|report| report.record(case.id, dir))
-                .with_context(|| format!("case {}", case.id));
-            tracing::info!(
-                "case {} in {:.2} s",
-                case.id,
-                started.elapsed().as_secs_f64()
-            );
-            progress.inc(1);
-            record
-        })
-        .collect();
+    let next = AtomicUsize::new(0);
+    let records: Vec<Mutex<Option<Result<CaseRecord>>>> =
+        cases.iter().map(|_| Mutex::new(None)).collect();
+    let run_one = |case: &'static Case| -> Result<CaseRecord> {
+        let started = Instant::now();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .context("starting a one-thread pool for a case")?;
+        let record = pool
+            .install(|| (case.run)())
+            .and_then(|report| report.record(case.id, dir))
+            .with_context(|| format!("case {}", case.id));
+        tracing::info!(
+            "case {} in {:.2} s",
+            case.id,
+            started.elapsed().as_secs_f64()
+        );
+        progress.inc(1);
+        record
+    };
+    let workers = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .min(cases.len().max(1));
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            scope.spawn(|| {
+                loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    let Some(case) = cases.get(i) else { break };
+                    let record = run_one(case);
+                    *records[i].lock().unwrap_or_else(|e| e.into_inner()) = Some(record);
+                }
+            });
+        }
+    });
     progress.finish_and_clear();
-    records.into_iter().collect()
+    records
+        .into_iter()
+        .map(|slot| {
+            slot.into_inner()
+                .unwrap_or_else(|e| e.into_inner())
+                .unwrap_or_else(|| Err(anyhow::anyhow!("a case did not run")))
+        })
+        .collect()
 }
 
 /// Runs the studies into `dir` (serially: their sweeps are timed) and
