@@ -328,7 +328,11 @@ fn a_compound_runs_without_contacts_and_is_refused_when_exact_contacts_come_on()
         Shape::Compound(
             Compound::new(vec![
                 CompoundPart::new(Vector2::zeros(), 0.0, Shape::rectangle(1.0, 0.2).unwrap()),
-                CompoundPart::new(Vector2::new(0.4, 0.3), 0.0, Shape::rectangle(0.2, 0.4).unwrap()),
+                CompoundPart::new(
+                    Vector2::new(0.4, 0.3),
+                    0.0,
+                    Shape::rectangle(0.2, 0.4).unwrap(),
+                ),
             ])
             .unwrap(),
         )
@@ -350,7 +354,9 @@ fn a_compound_runs_without_contacts_and_is_refused_when_exact_contacts_come_on()
     // exact up to the round-off of 100 additions (≈ 100 ε · 5 m).
     assert!((y + 5.0).abs() < 1e-12, "y = {y}");
     let refused = world.set_contact_model(ContactModel::Exact(ContactSettings::default()));
-    let message = refused.expect_err("the exact model does not collide compounds").to_string();
+    let message = refused
+        .expect_err("the exact model does not collide compounds")
+        .to_string();
     assert!(message.contains("'l'"), "{message}");
 
     let mut soft = World::with_model(
