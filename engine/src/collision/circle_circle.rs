@@ -41,7 +41,7 @@ pub(crate) fn circle_circle_local(
 }
 
 /// Exact signed distance between two circles (m), with witness points:
-/// [`circle_circle_local`] in a frame parallel to the world's at A's centre
+/// `circle_circle_local` in a frame parallel to the world's at A's centre
 /// (a circle has no orientation to matter).
 pub fn distance_circle_circle(
     a: &Circle,

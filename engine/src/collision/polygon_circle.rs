@@ -1,6 +1,6 @@
 //! Convex polygon against circle, written once for both contact models
 //! (seed §7.2 treats polygons; a circle is the polygon's limit and gets its
-//! own closed form). [`polygon_circle_local`] works in the polygon's frame
+//! own closed form). `polygon_circle_local` works in the polygon's frame
 //! and is Box2D v3's `b2CollidePolygonAndCircle`; the soft step turns its
 //! result into a speculative point (`soft_step/manifold.rs`), the exact
 //! model into a world [`Proximity`] and the feature it persists on.
@@ -129,7 +129,7 @@ pub(crate) fn polygon_circle_local(
 }
 
 /// [`distance_polygon_circle`] and the polygon's feature it is attained at:
-/// [`polygon_circle_local`] in the polygon's frame, turned to the world.
+/// `polygon_circle_local` in the polygon's frame, turned to the world.
 pub(crate) fn closest_polygon_circle(
     polygon: &ConvexPolygon,
     pose_a: &Isometry2<f64>,

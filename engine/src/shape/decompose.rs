@@ -24,8 +24,8 @@
 //!    fewest convex parts any partition by diagonals can have (Hertel and
 //!    Mehlhorn, 1983); an L has 2, a five-pointed star 5 or 6.
 //!
-//! Every sign is [`turn`], the predicate [`ConvexPolygon::new`] uses, on the
-//! vertices rescaled by a power of two ([`rescaled`], exact): a turn within
+//! Every sign is `turn`, the predicate [`ConvexPolygon::new`] uses, on the
+//! vertices rescaled by a power of two (`rescaled`, exact): a turn within
 //! its rounding bound counts as straight, so an ear or a merge is only made
 //! when its corners are convex beyond doubt, and every part passes
 //! [`ConvexPolygon::new`]. Near-degenerate outlines (edges within rounding
@@ -166,7 +166,7 @@ pub fn convex_parts(vertices: &[Vector2<f64>]) -> Result<Vec<ConvexPolygon>, Out
 }
 
 /// Checks that `vertices` outline a simple polygon counter-clockwise and
-/// returns them rescaled by a power of two (exact; see [`rescaled`]).
+/// returns them rescaled by a power of two (exact; see `rescaled`).
 pub fn check_outline(vertices: &[Vector2<f64>]) -> Result<Vec<Vector2<f64>>, OutlineError> {
     let n = vertices.len();
     if n < 3 {
