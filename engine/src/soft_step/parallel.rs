@@ -3,14 +3,17 @@
 //! its serial stage in `mod.rs`, `integrate.rs` and `prepare.rs`.
 //!
 //! - **Substep** (one job per substep): integrate velocities (bodies split
-//!   among the threads), then each pass (warm start, solve, relax): the
-//!   joints and the overflow on thread 0, then colour after colour, each
-//!   colour's records split among the threads with a barrier between
-//!   colours; integrate positions between solve and relax. Within a colour
+//!   among the threads), then each pass (warm start, solve, relax) in the
+//!   serial pass's order: the scalar joints on thread 0, the revolute
+//!   joints' colours, the contacts' overflow on thread 0, the contacts'
+//!   colours; each colour's records split among the threads with a
+//!   barrier after each colour (and one after thread 0's work, when it had
+//!   any); integrate positions between solve and relax. Within a colour
 //!   no two constraints share a dynamic body ([`super::colouring`]), and a
 //!   record's static or kinematic bodies are never written back
-//!   ([`super::wide_solver::FIXED`]), so the threads write disjoint bodies
-//!   and the order in which they do so does not change a bit.
+//!   ([`super::wide_solver::FIXED`], in the joints' records too), so the
+//!   threads write disjoint bodies and the order in which they do so does
+//!   not change a bit.
 //! - **Restitution and store**: restitution as a pass; the impulses back
 //!   into the contacts, constraints split among the threads (each writes
 //!   its own contacts).
@@ -22,6 +25,7 @@ use super::SoftStep;
 use super::colouring::{COLOURS, Colouring, Slot};
 use super::contact_solver;
 use super::integrate::{integrate_position, integrate_velocity};
+use super::joints::wide_revolute;
 use super::pool::{Pool, SharedSlice, Worker};
 use super::wide_solver::{self, Bodies};
 use crate::world_core::WorldCore;
@@ -54,8 +58,17 @@ impl SoftStep {
         let colouring = &self.colouring;
         let bodies = Bodies::new(&mut self.bodies);
         let wide = SharedSlice::new(&mut self.wide);
-        let joints = SharedSlice::new(std::slice::from_mut(&mut self.joints));
+        // What thread 0 solves alone before the colours; whether there is
+        // any decides the barriers, the same way on every thread.
+        let overflow_empty = self.constraints.is_empty();
         let overflow = SharedSlice::new(std::slice::from_mut(&mut self.constraints));
+        let (mut scalar_joints, wide_joints) = self.joints.split_for_threads();
+        let scalar_empty = scalar_joints.is_empty();
+        let scalar_joints = SharedSlice::new(std::slice::from_mut(&mut scalar_joints));
+        let joint_colouring = wide_joints.colouring;
+        let joint_colours = !wide_joints.records.is_empty();
+        let joint_records = SharedSlice::new(wide_joints.records);
+        let joint_axial = SharedSlice::new(wide_joints.axial);
         pool.run(&|w: &Worker<'_>| {
             if !velocities_done {
                 for id in w.share(sims.len()) {
@@ -66,31 +79,63 @@ impl SoftStep {
                 w.sync();
             }
             for pass in [Pass::WarmStart, Pass::Solve, Pass::Relax] {
-                if w.index == 0 {
-                    // SAFETY: the other threads wait at the next barrier.
-                    let (all, joints, overflow) = unsafe {
-                        (
-                            bodies.slice(0..bodies.len()),
-                            joints.get_mut(0),
-                            overflow.get_mut(0),
-                        )
-                    };
-                    match pass {
-                        Pass::WarmStart => {
-                            joints.warm_start(all);
-                            contact_solver::warm_start(overflow, all);
-                        }
-                        Pass::Solve => {
-                            joints.solve(all, h, true);
-                            contact_solver::solve(overflow, all, inv_h, true);
-                        }
-                        Pass::Relax => {
-                            joints.solve(all, h, false);
-                            contact_solver::solve(overflow, all, inv_h, false);
+                // The serial order of a pass: the scalar joints, the joint
+                // colours, the contacts' overflow, the contact colours.
+                // Whether thread 0 wrote bodies since the last barrier.
+                let mut unsynced = false;
+                if !scalar_empty {
+                    if w.index == 0 {
+                        // SAFETY: the other threads wait at the next barrier.
+                        let (all, joints) =
+                            unsafe { (bodies.slice(0..bodies.len()), scalar_joints.get_mut(0)) };
+                        match pass {
+                            Pass::WarmStart => joints.warm_start(all),
+                            Pass::Solve => joints.solve(all, h, true),
+                            Pass::Relax => joints.solve(all, h, false),
                         }
                     }
+                    unsynced = true;
                 }
-                w.sync();
+                if joint_colours {
+                    if unsynced {
+                        w.sync();
+                    }
+                    each_colour_share(w, joint_colouring, |mine| {
+                        // SAFETY: the threads' shares of a colour are
+                        // disjoint and their joints share no moved body
+                        // (a body they do not move carries `FIXED`).
+                        let (records, axial) =
+                            unsafe { (joint_records.slice(mine.clone()), joint_axial.slice(mine)) };
+                        match pass {
+                            Pass::WarmStart => {
+                                wide_revolute::warm_start_shared(records, axial, bodies);
+                            }
+                            Pass::Solve => {
+                                wide_revolute::solve_shared(records, axial, bodies, inv_h);
+                            }
+                            Pass::Relax => {
+                                wide_revolute::relax_shared(records, axial, bodies, inv_h);
+                            }
+                        }
+                    });
+                    unsynced = false;
+                }
+                if !overflow_empty {
+                    if w.index == 0 {
+                        // SAFETY: the other threads wait at the next barrier.
+                        let (all, overflow) =
+                            unsafe { (bodies.slice(0..bodies.len()), overflow.get_mut(0)) };
+                        match pass {
+                            Pass::WarmStart => contact_solver::warm_start(overflow, all),
+                            Pass::Solve => contact_solver::solve(overflow, all, inv_h, true),
+                            Pass::Relax => contact_solver::solve(overflow, all, inv_h, false),
+                        }
+                    }
+                    unsynced = true;
+                }
+                if unsynced {
+                    w.sync();
+                }
                 each_colour_share(w, colouring, |mine| {
                     // SAFETY: the threads' shares of a colour are disjoint;
                     // see the module docs for the bodies.

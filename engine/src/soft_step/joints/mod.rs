@@ -136,7 +136,7 @@ mod set;
 mod target;
 mod weld;
 mod wheel;
-mod wide_revolute;
+pub(crate) mod wide_revolute;
 
 pub use distance::Distance;
 pub use motor_joint::MotorJoint;

@@ -576,20 +576,7 @@ impl JointSet {
     /// joints, then the records.
     #[inline(never)]
     pub(crate) fn warm_start(&self, bodies: &mut [SolverBody]) {
-        for (id, f) in &self.scalar {
-            let sim = &self.sims[*id as usize];
-            let (mut a, mut b) = (bodies[f.a], bodies[f.b]);
-            match &sim.rows {
-                JointRows::Revolute(r) => r.warm_start(f, &mut a, &mut b),
-                JointRows::Prismatic(p) => p.warm_start(f, &mut a, &mut b),
-                JointRows::Distance(d) => d.warm_start(f, &mut a, &mut b),
-                JointRows::Weld(w) => w.warm_start(f, &mut a, &mut b),
-                JointRows::Target(t) => t.warm_start(f, &mut a, &mut b),
-                JointRows::Wheel(w) => w.warm_start(f, &mut a, &mut b),
-                JointRows::Motor(m) => m.warm_start(f, &mut a, &mut b),
-            }
-            store(bodies, f, &a, &b);
-        }
+        warm_start_scalar(&self.scalar, &self.sims, bodies);
         wide_revolute::warm_start(&self.wide, &self.axial, bodies);
     }
 
@@ -599,27 +586,30 @@ impl JointSet {
     /// substeps of `h` (s).
     #[inline(never)]
     pub(crate) fn solve(&mut self, bodies: &mut [SolverBody], h: f64, use_bias: bool) {
+        solve_scalar(&self.scalar, &mut self.sims, bodies, h, use_bias);
         let inv_h = 1.0 / h;
-        for (id, f) in &self.scalar {
-            let sim = &mut self.sims[*id as usize];
-            let (mut a, mut b) = (bodies[f.a], bodies[f.b]);
-            let pair = (&mut a, &mut b);
-            match &mut sim.rows {
-                JointRows::Revolute(r) => r.solve(f, pair, (h, inv_h), use_bias),
-                JointRows::Prismatic(p) => p.solve(f, pair, (h, inv_h), use_bias),
-                JointRows::Distance(d) => d.solve(f, pair, inv_h, use_bias),
-                JointRows::Weld(w) => w.solve(f, pair, use_bias),
-                JointRows::Target(t) => t.solve(f, pair, h),
-                JointRows::Wheel(w) => w.solve(f, pair, (h, inv_h), use_bias),
-                JointRows::Motor(m) => m.solve(f, pair, h),
-            }
-            store(bodies, f, &a, &b);
-        }
         if use_bias {
             wide_revolute::solve(&mut self.wide, &mut self.axial, bodies, inv_h);
         } else {
             wide_revolute::relax(&mut self.wide, &mut self.axial, bodies, inv_h);
         }
+    }
+
+    /// The passes' data split for the threads (`soft_step::parallel`): the
+    /// scalar joints (solved on one thread, first), and the records with
+    /// their colouring (each colour's records split among the threads).
+    pub(crate) fn split_for_threads(&mut self) -> (ScalarJoints<'_>, WideJoints<'_>) {
+        (
+            ScalarJoints {
+                list: &self.scalar,
+                sims: &mut self.sims,
+            },
+            WideJoints {
+                colouring: &self.colouring,
+                records: &mut self.wide,
+                axial: &mut self.axial,
+            },
+        )
     }
 
     /// Joint `id` now, from the bodies' `states`.
@@ -808,6 +798,81 @@ impl JointSet {
             let dynamic = |id: BodyId| sims[id].kind == BodyKind::Dynamic;
             (!info.removed && dynamic(a) && dynamic(b)).then_some((a, b))
         })
+    }
+}
+
+/// The joints solved one at a time in a pass, and their solver records.
+pub(crate) struct ScalarJoints<'a> {
+    list: &'a [(u32, JointFrame)],
+    sims: &'a mut [JointSim],
+}
+
+impl ScalarJoints<'_> {
+    /// Whether there are none this step.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.list.is_empty()
+    }
+
+    /// Their warm start ([`JointSet::warm_start`]'s first part).
+    pub(crate) fn warm_start(&self, bodies: &mut [SolverBody]) {
+        warm_start_scalar(self.list, self.sims, bodies);
+    }
+
+    /// Their pass ([`JointSet::solve`]'s first part).
+    pub(crate) fn solve(&mut self, bodies: &mut [SolverBody], h: f64, use_bias: bool) {
+        solve_scalar(self.list, self.sims, bodies, h, use_bias);
+    }
+}
+
+/// The revolute joints in lanes: their records, colour after colour.
+pub(crate) struct WideJoints<'a> {
+    pub colouring: &'a Colouring,
+    pub records: &'a mut [WideRevolute],
+    pub axial: &'a mut [WideAxial],
+}
+
+/// Applies the accumulated impulses of the joints of `list` (in order).
+fn warm_start_scalar(list: &[(u32, JointFrame)], sims: &[JointSim], bodies: &mut [SolverBody]) {
+    for (id, f) in list {
+        let sim = &sims[*id as usize];
+        let (mut a, mut b) = (bodies[f.a], bodies[f.b]);
+        match &sim.rows {
+            JointRows::Revolute(r) => r.warm_start(f, &mut a, &mut b),
+            JointRows::Prismatic(p) => p.warm_start(f, &mut a, &mut b),
+            JointRows::Distance(d) => d.warm_start(f, &mut a, &mut b),
+            JointRows::Weld(w) => w.warm_start(f, &mut a, &mut b),
+            JointRows::Target(t) => t.warm_start(f, &mut a, &mut b),
+            JointRows::Wheel(w) => w.warm_start(f, &mut a, &mut b),
+            JointRows::Motor(m) => m.warm_start(f, &mut a, &mut b),
+        }
+        store(bodies, f, &a, &b);
+    }
+}
+
+/// One pass of sequential impulses over the joints of `list` (in order),
+/// with the rigid rows' bias or without, for substeps of `h` (s).
+fn solve_scalar(
+    list: &[(u32, JointFrame)],
+    sims: &mut [JointSim],
+    bodies: &mut [SolverBody],
+    h: f64,
+    use_bias: bool,
+) {
+    let inv_h = 1.0 / h;
+    for (id, f) in list {
+        let sim = &mut sims[*id as usize];
+        let (mut a, mut b) = (bodies[f.a], bodies[f.b]);
+        let pair = (&mut a, &mut b);
+        match &mut sim.rows {
+            JointRows::Revolute(r) => r.solve(f, pair, (h, inv_h), use_bias),
+            JointRows::Prismatic(p) => p.solve(f, pair, (h, inv_h), use_bias),
+            JointRows::Distance(d) => d.solve(f, pair, inv_h, use_bias),
+            JointRows::Weld(w) => w.solve(f, pair, use_bias),
+            JointRows::Target(t) => t.solve(f, pair, h),
+            JointRows::Wheel(w) => w.solve(f, pair, (h, inv_h), use_bias),
+            JointRows::Motor(m) => m.solve(f, pair, h),
+        }
+        store(bodies, f, &a, &b);
     }
 }
 

@@ -28,12 +28,13 @@ use super::revolute::RevoluteRows;
 use super::wrap_angle;
 use crate::soft_step::bodies::SolverBody;
 use crate::soft_step::lanes::{F64x8, LANES, Lanes, dispatch};
-use crate::soft_step::wide_solver::{WideBody, gather, gather_motion, scatter};
+use crate::soft_step::wide_solver::{Bodies, FIXED, WideBody, gather, gather_motion, scatter};
 
 /// Four revolute joints' point rows: what every pass reads.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct WideRevolute {
-    /// Solver indices of the bodies (0: the static dummy or the world).
+    /// Solver indices of the bodies (0: the static dummy or the world),
+    /// with the `FIXED` bit for a body the lane does not move.
     pub a: [u32; LANES],
     pub b: [u32; LANES],
     /// Whether a lane's joint has a spring, a motor or limits (then the
@@ -112,9 +113,25 @@ pub(crate) fn set_lane(
     (frame, rows): (&JointFrame, &RevoluteRows),
     h: f64,
 ) {
-    let index = |i: usize| u32::try_from(i).expect("fewer than 2³² bodies");
-    w.a[l] = index(frame.a);
-    w.b[l] = index(frame.b);
+    let index = |i: usize| {
+        u32::try_from(i)
+            .ok()
+            .filter(|&i| i < FIXED)
+            .expect("fewer than 2³¹ bodies")
+    };
+    // A body with zero inverse mass and inertia (the world, the static
+    // dummy, a kinematic body) is read but never written back: the lanes'
+    // `FIXED` bit, as the contacts', so that the threads solving one colour
+    // write disjoint bodies (several joints of a colour may share it).
+    let fixed = |inv_mass: f64, inv_inertia: f64| {
+        if inv_mass == 0.0 && inv_inertia == 0.0 {
+            FIXED
+        } else {
+            0
+        }
+    };
+    w.a[l] = index(frame.a) | fixed(frame.ma, frame.ia);
+    w.b[l] = index(frame.b) | fixed(frame.mb, frame.ib);
     w.ma.set_lane(l, frame.ma);
     w.ia.set_lane(l, frame.ia);
     w.mb.set_lane(l, frame.mb);
@@ -253,18 +270,20 @@ fn apply_angular<L: Lanes>(
 }
 
 /// Applies every joint's accumulated impulses.
-#[inline(never)]
 pub(crate) fn warm_start(records: &[WideRevolute], axial: &[WideAxial], bodies: &mut [SolverBody]) {
-    dispatch!(warm_start_with, warm_start_avx512, warm_start_avx, (records: &[WideRevolute], axial: &[WideAxial], bodies: &mut [SolverBody]));
+    warm_start_shared(records, axial, Bodies::new(bodies));
+}
+
+/// [`warm_start`] of `records` on bodies shared with other threads, which
+/// write none of the bodies these records move (the records of one colour,
+/// split among the threads).
+#[inline(never)]
+pub(crate) fn warm_start_shared(records: &[WideRevolute], axial: &[WideAxial], bodies: Bodies<'_>) {
+    dispatch!(warm_start_with, warm_start_avx512, warm_start_avx, (records: &[WideRevolute], axial: &[WideAxial], bodies: Bodies<'_>));
 }
 
 #[inline(always)]
-fn warm_start_with<L: Lanes>(
-    records: &[WideRevolute],
-    axial: &[WideAxial],
-    bodies: &mut [SolverBody],
-) {
-    let bodies = super::super::wide_solver::Bodies::new(bodies);
+fn warm_start_with<L: Lanes>(records: &[WideRevolute], axial: &[WideAxial], bodies: Bodies<'_>) {
     for (w, x) in records.iter().zip(axial) {
         for g in 0..L::GROUPS {
             let (mut a, mut b) = (gather::<L>(bodies, &w.a, g), gather::<L>(bodies, &w.b, g));
@@ -290,42 +309,62 @@ fn warm_start_with<L: Lanes>(
 }
 
 /// The solve pass, with the rigid rows' soft bias, for substeps of 1/`inv_h`.
-#[inline(never)]
 pub(crate) fn solve(
     records: &mut [WideRevolute],
     axial: &mut [WideAxial],
     bodies: &mut [SolverBody],
     inv_h: f64,
 ) {
-    dispatch!(solve_with, solve_avx512, solve_avx, (records: &mut [WideRevolute], axial: &mut [WideAxial], bodies: &mut [SolverBody], inv_h: f64));
+    solve_shared(records, axial, Bodies::new(bodies), inv_h);
+}
+
+/// [`solve`] on shared bodies (as [`warm_start_shared`]).
+#[inline(never)]
+pub(crate) fn solve_shared(
+    records: &mut [WideRevolute],
+    axial: &mut [WideAxial],
+    bodies: Bodies<'_>,
+    inv_h: f64,
+) {
+    dispatch!(solve_with, solve_avx512, solve_avx, (records: &mut [WideRevolute], axial: &mut [WideAxial], bodies: Bodies<'_>, inv_h: f64));
 }
 
 #[inline(always)]
 fn solve_with<L: Lanes>(
     records: &mut [WideRevolute],
     axial: &mut [WideAxial],
-    bodies: &mut [SolverBody],
+    bodies: Bodies<'_>,
     inv_h: f64,
 ) {
     pass::<L, true>(records, axial, bodies, inv_h);
 }
 
 /// The relax pass: rigid rows without bias.
-#[inline(never)]
 pub(crate) fn relax(
     records: &mut [WideRevolute],
     axial: &mut [WideAxial],
     bodies: &mut [SolverBody],
     inv_h: f64,
 ) {
-    dispatch!(relax_with, relax_avx512, relax_avx, (records: &mut [WideRevolute], axial: &mut [WideAxial], bodies: &mut [SolverBody], inv_h: f64));
+    relax_shared(records, axial, Bodies::new(bodies), inv_h);
+}
+
+/// [`relax`] on shared bodies (as [`warm_start_shared`]).
+#[inline(never)]
+pub(crate) fn relax_shared(
+    records: &mut [WideRevolute],
+    axial: &mut [WideAxial],
+    bodies: Bodies<'_>,
+    inv_h: f64,
+) {
+    dispatch!(relax_with, relax_avx512, relax_avx, (records: &mut [WideRevolute], axial: &mut [WideAxial], bodies: Bodies<'_>, inv_h: f64));
 }
 
 #[inline(always)]
 fn relax_with<L: Lanes>(
     records: &mut [WideRevolute],
     axial: &mut [WideAxial],
-    bodies: &mut [SolverBody],
+    bodies: Bodies<'_>,
     inv_h: f64,
 ) {
     pass::<L, false>(records, axial, bodies, inv_h);
@@ -345,10 +384,9 @@ struct Row<L> {
 fn pass<L: Lanes, const BIAS: bool>(
     records: &mut [WideRevolute],
     axial: &mut [WideAxial],
-    bodies: &mut [SolverBody],
+    bodies: Bodies<'_>,
     inv_h: f64,
 ) {
-    let bodies = super::super::wide_solver::Bodies::new(bodies);
     let inv_h = L::splat(inv_h);
     let (zero, one) = (L::splat(0.0), L::splat(1.0));
     for (w, x) in records.iter_mut().zip(axial.iter_mut()) {
@@ -660,6 +698,7 @@ mod tests {
             bodies: &mut [SolverBody],
             inv_h: f64,
         ) {
+            let bodies = Bodies::new(bodies);
             for _ in 0..3 {
                 warm_start_with::<L>(wide, axial, bodies);
                 solve_with::<L>(wide, axial, bodies, inv_h);
