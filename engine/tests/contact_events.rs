@@ -463,6 +463,8 @@ fn hooks_events_and_sleep_give_the_same_bits_on_every_thread_count() {
         let settings = SoftStepSettings {
             sleeping: true,
             threads,
+            // On the threads however small the pile: what is compared.
+            min_work_per_thread: 0,
             ..SoftStepSettings::default()
         };
         let mut world =

@@ -32,6 +32,8 @@ fn falling_hinges_on(threads: usize) -> World {
     let settings = SoftStepSettings {
         sleeping: true,
         threads,
+        // On the threads however small the scene: what is compared.
+        min_work_per_thread: 0,
         ..SoftStepSettings::default()
     };
     let mut world =

@@ -43,11 +43,13 @@
 //!    jointed bodies share an island).
 //!
 //! With [`SoftStepSettings::threads`] above one, the manifolds of collide
-//! (`collide.rs`), prepare, the substeps' integration and passes (each
-//! colour's records split among the threads), restitution, the store and
-//! the per-body part of continuous (`finalize.rs`) run on a pool of
-//! threads (`pool.rs`, `parallel.rs`), with the serial stages' bits
-//! (docs/soft_step.md, "Threads").
+//! (`collide.rs`), prepare (the contacts' and the revolute joints'
+//! lanes), the substeps' integration and passes (each colour's records,
+//! the contacts' and the joints', split among the threads), restitution,
+//! the store and the per-body part of continuous (`finalize.rs`) run on a
+//! pool of threads (`pool.rs`, `parallel.rs`), with the serial stages'
+//! bits (docs/soft_step.md, "Threads"); a step with less work than
+//! [`SoftStepSettings::min_work_per_thread`] per thread runs on one.
 //!
 //! Events (landing, apex) are located inside each substep by linear
 //! interpolation, exact for positions (they move linearly in a substep;
@@ -399,6 +401,7 @@ impl SoftStep {
         let started = core.profiler.start();
         self.update_pairs();
         core.profiler.stop(Phase::Pairs, started);
+        let pool = pool.filter(|p| self.enough_work_for(p.threads()));
 
         let started = core.profiler.start();
         self.collide(&core.states, pool.as_deref());
@@ -409,7 +412,7 @@ impl SoftStep {
         self.prepare(core, h, pool.as_deref());
         let warm = settings.warm_starting;
         self.joints
-            .prepare(core, (&self.masses, &self.sims), h, warm);
+            .prepare(core, (&self.masses, &self.sims), (h, warm), pool.as_deref());
         core.profiler.stop(Phase::Prepare, started);
 
         // Forces active during this segment (the world split the step at

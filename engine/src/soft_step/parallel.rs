@@ -41,6 +41,15 @@ enum Pass {
 }
 
 impl SoftStep {
+    /// Whether this step has work enough for `threads` threads
+    /// ([`super::SoftStepSettings::min_work_per_thread`]): its contacts,
+    /// joints and bodies, counted after the pairs stage. A function of the
+    /// world's state alone, and both answers give the same bits.
+    pub(super) fn enough_work_for(&self, threads: usize) -> bool {
+        let work = self.contacts.contacts.len() + self.joints.len() + self.sims.len();
+        work >= self.settings.min_work_per_thread.saturating_mul(threads)
+    }
+
     /// One substep on `pool`'s threads: integrate velocities (unless
     /// `velocities_done`: the serial stage ran, force generators act), warm
     /// start, solve, integrate positions, relax.

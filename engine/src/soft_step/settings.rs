@@ -96,14 +96,37 @@ pub struct SoftStepSettings {
     /// reports a hit event ([`super::StepEvents::hits`]). Default 1 m/s
     /// (Box2D's `hitEventThreshold`).
     pub hit_event_threshold: f64,
-    /// Threads (≥ 1) that run the step's stages that scale (pairs,
-    /// collide, prepare, each colour's constraints in the solver passes,
-    /// integration, store), on a pool the model keeps (docs/soft_step.md,
-    /// "Threads"). Every count gives the same bits: the results do not
-    /// depend on it, only the time. Default 1.
+    /// Threads (≥ 1) that run the step's stages that scale (collide,
+    /// prepare, each colour's constraints in the solver passes,
+    /// integration, store, continuous), on a pool the model keeps
+    /// (docs/soft_step.md, "Threads"). Every count gives the same bits: the
+    /// results do not depend on it, only the time. Default 1.
     #[cfg_attr(feature = "serde", serde(default = "one_thread"))]
     pub threads: usize,
+    /// The least work per thread for which a step of several `threads`
+    /// runs its stages on them: the step's contacts, joints and bodies
+    /// (counted after the pairs stage), divided by `threads`. A smaller
+    /// step runs on the calling thread alone, with the same bits: a
+    /// parallel substep meets at a barrier after every colour (about a
+    /// hundred a step), which costs more than the split saves on a small
+    /// scene (`harness bench`, 2 threads against 1: the 56-box pyramid,
+    /// 201 such items, 0.70×; the 211-box one, 801 items, 1.04×).
+    /// 0: always on the threads. Default 256.
+    #[cfg_attr(feature = "serde", serde(default = "default_min_work"))]
+    pub min_work_per_thread: usize,
 }
+
+/// The default [`SoftStepSettings::min_work_per_thread`] (for worlds
+/// written before the setting).
+#[cfg(feature = "serde")]
+fn default_min_work() -> usize {
+    MIN_WORK_PER_THREAD_DEFAULT
+}
+
+/// The default of [`SoftStepSettings::min_work_per_thread`]: between the
+/// 100 items a thread of the 56-box pyramid has on 2 threads (slower than
+/// on one) and the 400 of the 211-box one (as fast).
+pub const MIN_WORK_PER_THREAD_DEFAULT: usize = 256;
 
 /// The default thread count (for worlds written before the setting).
 #[cfg(feature = "serde")]
@@ -137,6 +160,7 @@ impl Default for SoftStepSettings {
             rolling_resistance: tunables::SOFT_ROLLING_RESISTANCE_DEFAULT,
             hit_event_threshold: tunables::SOFT_HIT_EVENT_THRESHOLD_DEFAULT,
             threads: 1,
+            min_work_per_thread: MIN_WORK_PER_THREAD_DEFAULT,
         }
     }
 }

@@ -34,6 +34,8 @@ use crate::error::{EngineError, Result};
 use crate::soft_step::Softness;
 use crate::soft_step::bodies::{BodyMass, BodySim, SolverBody, solver_index};
 use crate::soft_step::colouring::{Colouring, Slot};
+use crate::soft_step::lanes::LANES;
+use crate::soft_step::pool::{Pool, SharedSlice, Worker};
 use crate::world_core::WorldCore;
 use nalgebra::Vector2;
 use smallvec::SmallVec;
@@ -140,6 +142,12 @@ pub(crate) struct JointSet {
     wide: Vec<WideRevolute>,
     #[cfg_attr(feature = "serde", serde(skip))]
     axial: Vec<WideAxial>,
+    /// Scratch of prepare on threads: the joint of each lane
+    /// (`u32::MAX`: padding), and the joints solved one at a time.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    lane_source: Vec<u32>,
+    #[cfg_attr(feature = "serde", serde(skip))]
+    scalar_ids: Vec<u32>,
 }
 
 /// A body's pose and masses as prepare reads them.
@@ -165,6 +173,81 @@ impl Side {
     fn rotate(&self, r: Vector2<f64>) -> Vector2<f64> {
         let (c, s) = self.rotation;
         Vector2::new(c * r.x - s * r.y, s * r.x + c * r.y)
+    }
+}
+
+/// What prepare reads to build a joint's frame and rows (shared by the
+/// threads).
+struct FrameInputs<'a> {
+    masses: &'a [BodyMass],
+    sims: &'a [BodySim],
+    /// The world's body states (poses at the start of the step).
+    states: &'a [BodyState],
+    /// The substep (s).
+    h: f64,
+    /// Whether the impulses are kept (warm starting).
+    warm: bool,
+}
+
+impl FrameInputs<'_> {
+    /// Body `body`'s pose and masses, the world's for `None`.
+    fn side(&self, body: Option<BodyId>) -> Side {
+        let Some(id) = body else {
+            return Side::WORLD;
+        };
+        let m = &self.masses[id];
+        let s = &self.states[id];
+        let q = self.sims[id].rotation;
+        Side {
+            index: solver_index(id, m.kind),
+            inv_mass: m.inv_mass,
+            inv_inertia: m.inv_inertia,
+            position: s.position,
+            angle: s.angle,
+            rotation: (q.re, q.im),
+        }
+    }
+
+    /// The frame of joint (`sim`, `info`) for the step, its rows prepared
+    /// (`caches`: the rigid rows' and the revolute springs' softness).
+    fn prepare_joint(
+        &self,
+        sim: &mut JointSim,
+        info: &JointInfo,
+        (rigid, springs): &mut (SoftnessCache, SoftnessCache),
+    ) -> JointFrame {
+        let (h, warm) = (self.h, self.warm);
+        let (a, b) = (self.side(info.body_a), self.side(info.body_b));
+        let hertz = info.constraint_hertz.min(0.25 / h);
+        let frame = JointFrame {
+            a: a.index,
+            b: b.index,
+            ma: a.inv_mass,
+            ia: a.inv_inertia,
+            mb: b.inv_mass,
+            ib: b.inv_inertia,
+            ra: a.rotate(info.local_a),
+            rb: b.rotate(info.local_b),
+            delta_center: b.position - a.position,
+            angle: wrap_angle(b.angle - a.angle - info.reference_angle),
+            softness: rigid.get(hertz, info.constraint_damping_ratio),
+        };
+        match &mut sim.rows {
+            JointRows::Revolute(r) => {
+                let spring = r
+                    .joint
+                    .spring
+                    .map_or(Softness::RIGID, |s| springs.get(s.hertz, s.damping_ratio));
+                r.prepare(&frame, spring, warm);
+            }
+            JointRows::Prismatic(p) => p.prepare(h, a.rotation, warm),
+            JointRows::Distance(d) => d.prepare(h, warm),
+            JointRows::Weld(w) => w.prepare(&frame, h, warm),
+            JointRows::Target(t) => t.prepare(h, warm),
+            JointRows::Wheel(w) => w.prepare(h, a.rotation, warm),
+            JointRows::Motor(m) => m.prepare(h, a.rotation, warm),
+        }
+        frame
     }
 }
 
@@ -445,62 +528,42 @@ impl JointSet {
     /// ones, [`Self::colour`]), then each gets its frame for a step of
     /// substeps `h` (s) and its rows: a revolute joint with a colour is
     /// written into its lane, every other one joins the scalar list with
-    /// its frame.
+    /// its frame. With `pool`, the records are written on its threads (each
+    /// its share of the records, lane after lane) while thread 0 also
+    /// prepares the scalar joints, in the order added: each joint's rows
+    /// and lane are computed by the same formulas from the same inputs, so
+    /// the bits do not depend on the thread count.
     #[inline(never)]
     pub(crate) fn prepare(
         &mut self,
         core: &WorldCore,
         (masses, sims): (&[BodyMass], &[BodySim]),
-        h: f64,
-        warm: bool,
+        (h, warm): (f64, bool),
+        pool: Option<&Pool>,
     ) {
         self.inv_h = 1.0 / h;
         self.colour(masses);
-        let side = |body: Option<BodyId>| -> Side {
-            let Some(id) = body else {
-                return Side::WORLD;
-            };
-            let m = &masses[id];
-            let s = &core.states[id];
-            let q = sims[id].rotation;
-            Side {
-                index: solver_index(id, m.kind),
-                inv_mass: m.inv_mass,
-                inv_inertia: m.inv_inertia,
-                position: s.position,
-                angle: s.angle,
-                rotation: (q.re, q.im),
-            }
+        let inputs = FrameInputs {
+            masses,
+            sims,
+            states: &core.states,
+            h,
+            warm,
         };
-        // Most joints share their softness: computed once per value.
-        let (mut rigid, mut springs) = (SoftnessCache::new(h), SoftnessCache::new(h));
         self.scalar.clear();
+        if let Some(pool) = pool {
+            self.prepare_on_threads(pool, &inputs);
+            return;
+        }
+        // Most joints share their softness: computed once per value.
+        let mut caches = (SoftnessCache::new(h), SoftnessCache::new(h));
         let mut coloured = 0;
         for (id, (sim, info)) in self.sims.iter_mut().zip(&self.infos).enumerate() {
             if !sim.active {
                 continue;
             }
-            let (a, b) = (side(info.body_a), side(info.body_b));
-            let hertz = info.constraint_hertz.min(0.25 / h);
-            let frame = JointFrame {
-                a: a.index,
-                b: b.index,
-                ma: a.inv_mass,
-                ia: a.inv_inertia,
-                mb: b.inv_mass,
-                ib: b.inv_inertia,
-                ra: a.rotate(info.local_a),
-                rb: b.rotate(info.local_b),
-                delta_center: b.position - a.position,
-                angle: wrap_angle(b.angle - a.angle - info.reference_angle),
-                softness: rigid.get(hertz, info.constraint_damping_ratio),
-            };
-            if let JointRows::Revolute(r) = &mut sim.rows {
-                let spring = r
-                    .joint
-                    .spring
-                    .map_or(Softness::RIGID, |s| springs.get(s.hertz, s.damping_ratio));
-                r.prepare(&frame, spring, warm);
+            let frame = inputs.prepare_joint(sim, info, &mut caches);
+            if let JointRows::Revolute(r) = &sim.rows {
                 let slot = self.colouring.slot(coloured);
                 coloured += 1;
                 if let Slot::Lane { record, lane } = slot {
@@ -513,16 +576,6 @@ impl JointSet {
                     continue;
                 }
             }
-            match &mut sim.rows {
-                // A revolute joint here found no colour: prepared above.
-                JointRows::Revolute(_) => {}
-                JointRows::Prismatic(p) => p.prepare(h, a.rotation, warm),
-                JointRows::Distance(d) => d.prepare(h, warm),
-                JointRows::Weld(w) => w.prepare(&frame, h, warm),
-                JointRows::Target(t) => t.prepare(h, warm),
-                JointRows::Wheel(w) => w.prepare(h, a.rotation, warm),
-                JointRows::Motor(m) => m.prepare(h, a.rotation, warm),
-            }
             self.scalar.push((id as u32, frame));
         }
         for (record, lane) in self.colouring.padding() {
@@ -531,6 +584,74 @@ impl JointSet {
                 lane,
             );
         }
+    }
+
+    /// [`Self::prepare`]'s frames, rows and lanes on `pool`'s threads.
+    fn prepare_on_threads(&mut self, pool: &Pool, inputs: &FrameInputs<'_>) {
+        // Which joint each lane holds, and the joints solved one at a
+        // time, in the order added (a serial pass over the joints, reading
+        // only whether each is active and whether it has a lane).
+        let records = self.wide.len();
+        self.lane_source.clear();
+        self.lane_source.resize(records * LANES, u32::MAX);
+        for (i, &id) in self.coloured.iter().enumerate() {
+            if let Slot::Lane { record, lane } = self.colouring.slot(i) {
+                self.lane_source[record * LANES + lane] = id;
+            }
+        }
+        self.scalar_ids.clear();
+        let mut coloured = 0;
+        for (id, sim) in self.sims.iter().enumerate() {
+            if !sim.active {
+                continue;
+            }
+            if let JointRows::Revolute(_) = sim.rows {
+                let slot = self.colouring.slot(coloured);
+                coloured += 1;
+                if let Slot::Lane { .. } = slot {
+                    continue;
+                }
+            }
+            self.scalar_ids.push(id as u32);
+        }
+        let (infos, source, scalar_ids, h) =
+            (&self.infos, &self.lane_source, &self.scalar_ids, inputs.h);
+        let joints = SharedSlice::new(&mut self.sims);
+        let wide = SharedSlice::new(&mut self.wide);
+        let axial = SharedSlice::new(&mut self.axial);
+        let scalar = SharedSlice::new(std::slice::from_mut(&mut self.scalar));
+        pool.run(&|w: &Worker<'_>| {
+            let mut caches = (SoftnessCache::new(h), SoftnessCache::new(h));
+            if w.index == 0 {
+                // SAFETY: only thread 0 touches the scalar list and these
+                // joints (none of them has a lane).
+                let scalar = unsafe { scalar.get_mut(0) };
+                for &id in scalar_ids {
+                    let sim = unsafe { joints.get_mut(id as usize) };
+                    let frame = inputs.prepare_joint(sim, &infos[id as usize], &mut caches);
+                    scalar.push((id, frame));
+                }
+            }
+            for record in w.share(records) {
+                // SAFETY: each thread its own records, and the joints of
+                // their lanes (a joint has one lane).
+                let (r, x) = unsafe { (wide.get_mut(record), axial.get_mut(record)) };
+                for lane in 0..LANES {
+                    let id = source[record * LANES + lane];
+                    if id == u32::MAX {
+                        // Padding lanes come last in their record.
+                        wide_revolute::set_padding_lane((r, x), lane);
+                        continue;
+                    }
+                    // SAFETY: as above.
+                    let sim = unsafe { joints.get_mut(id as usize) };
+                    let frame = inputs.prepare_joint(sim, &infos[id as usize], &mut caches);
+                    if let JointRows::Revolute(rows) = &sim.rows {
+                        wide_revolute::set_lane((r, x), lane, (&frame, rows), h);
+                    }
+                }
+            }
+        });
     }
 
     /// Marks the joints solved this step (not removed, an awake body) and
