@@ -20,7 +20,7 @@
 //! the soft step.
 
 use super::lanes::{F64x4, F64x8, LANES, Lanes, body_of, group_of};
-use super::wide_solver::{Bodies, FIXED};
+use super::wide_solver::{Bodies, FIXED, INDEX};
 use std::arch::x86_64::{
     __m256d, _CMP_EQ_OQ, _CMP_GT_OQ, _mm256_add_pd, _mm256_blendv_pd, _mm256_cmp_pd, _mm256_div_pd,
     _mm256_load_pd, _mm256_loadu_pd, _mm256_max_pd, _mm256_min_pd, _mm256_movemask_pd,
@@ -207,12 +207,20 @@ impl Lanes for Avx4 {
             }
             // SAFETY: a dynamic body of a lane is this thread's alone (the
             // colouring); no reference to it is alive.
-            let row = unsafe { bodies.get_mut(i as usize) }.head_mut();
+            let row = unsafe { bodies.get_mut((i & INDEX) as usize) }.head_mut();
             // SAFETY: AVX is available (module invariant); `row` is 32
             // writable bytes aligned to 32 (the start of a 64-aligned
             // record).
             unsafe { _mm256_store_pd(row.as_mut_ptr(), rows[l]) };
         }
+    }
+
+    #[inline(always)]
+    fn flagged(index: &[u32; LANES], group: usize, flag: u32) -> AvxMask {
+        let set = |i: u32| f64::from_bits(if i & flag != 0 { u64::MAX } else { 0 });
+        // SAFETY: AVX is available (module invariant); the array is 32
+        // readable bytes (an unaligned load).
+        AvxMask(unsafe { _mm256_loadu_pd(group_of(index, group).map(set).as_ptr()) })
     }
 }
 

@@ -165,9 +165,13 @@ pub struct SoftStep {
     /// written to bytes).
     #[cfg_attr(feature = "serde", serde(skip))]
     hooks: Hooks,
-    /// Whether a constraint of this step has rolling resistance (prepare's;
-    /// the wide passes skip its rows otherwise).
-    rolling: bool,
+    /// Whether a constraint of the step's records has a tangent speed or
+    /// rolling resistance (prepare's, [`wide_solver::is_rare`]; the wide
+    /// passes read those fields only then).
+    rare: bool,
+    /// The two softnesses of the step's contacts (prepare's; the records
+    /// keep which one each lane takes).
+    softness: wide_solver::StepSoftness,
     /// Solver records; index 0 is the static dummy, body `i` is `i + 1`.
     bodies: Vec<SolverBody>,
     broad: BroadPhase,
@@ -240,7 +244,8 @@ impl SoftStep {
             shape_data: Vec::new(),
             events: StepEvents::default(),
             hooks: Hooks::default(),
-            rolling: false,
+            rare: false,
+            softness: [Softness::RIGID; 2],
             bodies: vec![SolverBody::AT_REST],
             broad: BroadPhase::default(),
             contacts: ContactSet::default(),
@@ -452,13 +457,14 @@ impl SoftStep {
                 let started = core.profiler.start();
                 self.joints.warm_start(&mut self.bodies);
                 contact_solver::warm_start(&mut self.constraints, &mut self.bodies);
-                wide_solver::warm_start(&mut self.wide, &mut self.bodies, self.rolling);
+                let rare = self.rare.then_some(&mut self.wide_extra[..]);
+                wide_solver::warm_start(&mut self.wide, rare, &mut self.bodies);
                 core.profiler.stop(Phase::WarmStart, started);
 
                 let started = core.profiler.start();
                 self.joints.solve(&mut self.bodies, h, true);
                 contact_solver::solve(&mut self.constraints, &mut self.bodies, inv_h, true);
-                wide_solver::solve(&mut self.wide, &mut self.bodies, inv_h);
+                wide_solver::solve(&mut self.wide, &mut self.bodies, inv_h, &self.softness);
                 core.profiler.stop(Phase::Solve, started);
 
                 let started = core.profiler.start();
@@ -468,7 +474,8 @@ impl SoftStep {
                 let started = core.profiler.start();
                 self.joints.solve(&mut self.bodies, h, false);
                 contact_solver::solve(&mut self.constraints, &mut self.bodies, inv_h, false);
-                wide_solver::relax(&mut self.wide, &mut self.bodies, inv_h, self.rolling);
+                let rare = self.rare.then_some(&mut self.wide_extra[..]);
+                wide_solver::relax(&mut self.wide, rare, &mut self.bodies, inv_h);
                 core.profiler.stop(Phase::Relax, started);
             }
             self.stats.evaluations += 1;

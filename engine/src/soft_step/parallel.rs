@@ -50,10 +50,11 @@ impl SoftStep {
     ) {
         let controls = core.controls_act.then_some(core.controls.as_slice());
         let sims = &self.sims;
-        let rolling = self.rolling;
+        let (rare, softness) = (self.rare, &self.softness);
         let colouring = &self.colouring;
         let bodies = Bodies::new(&mut self.bodies);
         let wide = SharedSlice::new(&mut self.wide);
+        let extra = SharedSlice::new(&mut self.wide_extra);
         let joints = SharedSlice::new(std::slice::from_mut(&mut self.joints));
         let overflow = SharedSlice::new(std::slice::from_mut(&mut self.constraints));
         pool.run(&|w: &Worker<'_>| {
@@ -94,11 +95,13 @@ impl SoftStep {
                 each_colour_share(w, colouring, |mine| {
                     // SAFETY: the threads' shares of a colour are disjoint;
                     // see the module docs for the bodies.
-                    let records = unsafe { wide.slice(mine) };
+                    let records = unsafe { wide.slice(mine.clone()) };
+                    // SAFETY: as the records (the same share).
+                    let extras = rare.then(|| unsafe { extra.slice(mine) });
                     match pass {
-                        Pass::WarmStart => wide_solver::warm_start_shared(records, bodies, rolling),
-                        Pass::Solve => wide_solver::solve_shared(records, bodies, inv_h),
-                        Pass::Relax => wide_solver::relax_shared(records, bodies, inv_h, rolling),
+                        Pass::WarmStart => wide_solver::warm_start_shared(records, extras, bodies),
+                        Pass::Solve => wide_solver::solve_shared(records, bodies, inv_h, softness),
+                        Pass::Relax => wide_solver::relax_shared(records, extras, bodies, inv_h),
                     }
                 });
                 if let Pass::Solve = pass {
