@@ -255,6 +255,12 @@ pub(crate) trait Lanes:
     /// changed it).
     fn scatter_head(head: [Self; 4], bodies: Bodies<'_>, index: &[u32; LANES], group: usize);
 
+    /// The inverse masses and inverse inertias (`[m, i]` of
+    /// [`super::wide_solver::BodyMasses`]) of the bodies of group `group`
+    /// of a record's lanes (`index`: the record's body indices), transposed
+    /// into two values. (Pure data movement.)
+    fn gather_masses(masses: &[[f64; 2]], index: &[u32; LANES], group: usize) -> [Self; 2];
+
     /// The lanes of group `group` whose index word (of `index`, a record's
     /// body indices) has `flag` set.
     fn flagged(index: &[u32; LANES], group: usize, flag: u32) -> Self::Mask;
@@ -330,6 +336,12 @@ impl Lanes for F64x4 {
             b.v.y = vy[l];
             b.w = w[l];
         }
+    }
+
+    #[inline(always)]
+    fn gather_masses(masses: &[[f64; 2]], index: &[u32; LANES], group: usize) -> [Self; 2] {
+        let m = group_of(index, group).map(|i| masses[(i & INDEX) as usize]);
+        [F64x4::new(m.map(|x| x[0])), F64x4::new(m.map(|x| x[1]))]
     }
 
     #[inline(always)]

@@ -155,6 +155,10 @@ pub struct SoftStep {
     /// The prepare stage's copy of the bodies' masses (see [`BodyMass`]).
     #[cfg_attr(feature = "serde", serde(skip))]
     masses: Vec<BodyMass>,
+    /// The same masses by solver index, as the wide passes gather them
+    /// ([`wide_solver::BodyMasses`]).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    lane_masses: Vec<[f64; 2]>,
     /// One per convex shape; a body's are contiguous.
     colliders: Vec<Collider>,
     /// Each collider's filter, sensor flag and material.
@@ -240,6 +244,7 @@ impl SoftStep {
             settings,
             sims: Vec::new(),
             masses: Vec::new(),
+            lane_masses: Vec::new(),
             colliders: Vec::new(),
             shape_data: Vec::new(),
             events: StepEvents::default(),
@@ -458,13 +463,19 @@ impl SoftStep {
                 self.joints.warm_start(&mut self.bodies);
                 contact_solver::warm_start(&mut self.constraints, &mut self.bodies);
                 let rare = self.rare.then_some(&mut self.wide_extra[..]);
-                wide_solver::warm_start(&mut self.wide, rare, &mut self.bodies);
+                wide_solver::warm_start(&mut self.wide, rare, &mut self.bodies, &self.lane_masses);
                 core.profiler.stop(Phase::WarmStart, started);
 
                 let started = core.profiler.start();
                 self.joints.solve(&mut self.bodies, h, true);
                 contact_solver::solve(&mut self.constraints, &mut self.bodies, inv_h, true);
-                wide_solver::solve(&mut self.wide, &mut self.bodies, inv_h, &self.softness);
+                wide_solver::solve(
+                    &mut self.wide,
+                    &mut self.bodies,
+                    &self.lane_masses,
+                    inv_h,
+                    &self.softness,
+                );
                 core.profiler.stop(Phase::Solve, started);
 
                 let started = core.profiler.start();
@@ -475,7 +486,13 @@ impl SoftStep {
                 self.joints.solve(&mut self.bodies, h, false);
                 contact_solver::solve(&mut self.constraints, &mut self.bodies, inv_h, false);
                 let rare = self.rare.then_some(&mut self.wide_extra[..]);
-                wide_solver::relax(&mut self.wide, rare, &mut self.bodies, inv_h);
+                wide_solver::relax(
+                    &mut self.wide,
+                    rare,
+                    &mut self.bodies,
+                    &self.lane_masses,
+                    inv_h,
+                );
                 core.profiler.stop(Phase::Relax, started);
             }
             self.stats.evaluations += 1;
@@ -504,6 +521,7 @@ impl SoftStep {
                 &mut self.wide,
                 &self.wide_extra,
                 &mut self.bodies,
+                &self.lane_masses,
                 settings.restitution_threshold,
             );
         }

@@ -51,6 +51,12 @@ impl SoftStep {
     pub(super) fn load_bodies(&mut self, core: &WorldCore) {
         self.masses.clear();
         self.masses.extend(self.sims.iter().map(BodyMass::of));
+        // By solver index: the static dummy, then the bodies (a static
+        // body's entry is never gathered: its lanes use the dummy).
+        self.lane_masses.clear();
+        self.lane_masses.push([0.0, 0.0]);
+        self.lane_masses
+            .extend(self.masses.iter().map(|m| [m.inv_mass, m.inv_inertia]));
         for (id, sim) in self.sims.iter().enumerate() {
             let record = &mut self.bodies[id + 1];
             *record = if sim.moving() {

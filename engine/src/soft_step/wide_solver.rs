@@ -6,26 +6,27 @@
 //! with AVX-512, four and four with AVX or SSE2 ([`super::lanes`]).
 //!
 //! Each pass gathers the two bodies of each lane (velocities, motion since
-//! the step began), applies the scalar solver's formulas lane by lane, and
-//! scatters the velocities back. The formulas and their order of operations
-//! are those of [`super::contact_solver`], the reference implementation: a
-//! lane gives the same bits as the scalar code on the same constraint, and
-//! solving a colour here gives what solving its constraints one after the
-//! other would give (tested below).
+//! the step began, inverse masses), applies the scalar solver's formulas
+//! lane by lane, and scatters the velocities back. The formulas and their
+//! order of operations are those of [`super::contact_solver`], the
+//! reference implementation: a lane gives the same bits as the scalar code
+//! on the same constraint, and solving a colour here gives what solving its
+//! constraints one after the other would give (tested below).
 //!
 //! Layout: what the passes read and write every substep is in
-//! [`WideConstraint`] (structure of arrays, 1856 bytes per eight
+//! [`WideConstraint`] (structure of arrays, 1600 bytes per eight
 //! constraints, checked below), and only that: on large scenes the passes
-//! are bound by the traffic of these records through the caches. What is
-//! the same for most constraints is kept out of them: the softness is one
-//! of the step's two ([`StepSoftness`], a bit per lane in the body index),
-//! and what only restitution and the store read, or the passes only in a
-//! step that has tangent speeds or rolling resistance, is in
-//! [`WideExtra`]. A
-//! constraint of one point has a second point with zero mass, and a colour
-//! whose size is not a multiple of eight has padding lanes between the
-//! static dummy body and itself, with zero masses: both give zero impulses
-//! and change nothing.
+//! are bound by the traffic of these records through the caches
+//! (docs/soft_step.md, "Smaller records"). What is the same for many
+//! constraints is kept out of them: the inverse masses are the bodies'
+//! ([`BodyMasses`], gathered per lane), the softness is one of the step's
+//! two ([`StepSoftness`], a bit per lane in the body index), and what only
+//! restitution and the store read, or the passes only in a step that has
+//! tangent speeds or rolling resistance, is in [`WideExtra`]. A constraint
+//! of one point has a second point with zero mass, and a colour whose size
+//! is not a multiple of eight has padding lanes between the static dummy
+//! body and itself, with zero masses: both give zero impulses and change
+//! nothing.
 
 use super::bodies::SolverBody;
 use super::contact_solver::{ConstraintPoint, ContactConstraint};
@@ -38,6 +39,21 @@ use super::pool::SharedSlice;
 /// constraints (no two constraints of a colour share one); see
 /// [`super::pool::SharedSlice`].
 pub(crate) type Bodies<'a> = SharedSlice<'a, SolverBody>;
+
+/// Each body's inverse mass (1/kg) and inverse inertia (1/(kg·m²)), by
+/// solver index (0: the static dummy, zeros): the passes gather them per
+/// lane, as they gather the velocities, instead of keeping four fields of
+/// them in every record (prepare's copy of the masses the constraints were
+/// built with: the same values).
+pub(crate) type BodyMasses<'a> = &'a [[f64; 2]];
+
+/// What a pass reads and writes of the bodies: their solver records and
+/// their masses.
+#[derive(Clone, Copy)]
+struct PassBodies<'a> {
+    rows: Bodies<'a>,
+    masses: BodyMasses<'a>,
+}
 
 /// Set in a lane's body index when that body has zero inverse mass and
 /// inertia (the static dummy, a kinematic body, a padding lane): no
@@ -96,17 +112,13 @@ pub(crate) struct WideConstraint {
     pub normal_x: F64x8,
     pub normal_y: F64x8,
     pub friction: F64x8,
-    pub inv_mass_a: F64x8,
-    pub inv_inertia_a: F64x8,
-    pub inv_mass_b: F64x8,
-    pub inv_inertia_b: F64x8,
     /// Minus each lane's push-out bound (m/s): the bias is at least this.
     pub min_bias: F64x8,
     pub points: [WidePoint; 2],
 }
 
 // The size the module documentation gives.
-const _: () = assert!(std::mem::size_of::<WideConstraint>() == 1856);
+const _: () = assert!(std::mem::size_of::<WideConstraint>() == 1600);
 
 /// What the passes seldom read of eight constraints: restitution and the
 /// store, and, only in a step where some constraint has a tangent speed or
@@ -173,10 +185,6 @@ pub(crate) fn set_lane(
     w.normal_x.set_lane(l, c.normal.x);
     w.normal_y.set_lane(l, c.normal.y);
     w.friction.set_lane(l, c.friction);
-    w.inv_mass_a.set_lane(l, c.inv_mass_a);
-    w.inv_inertia_a.set_lane(l, c.inv_inertia_a);
-    w.inv_mass_b.set_lane(l, c.inv_mass_b);
-    w.inv_inertia_b.set_lane(l, c.inv_inertia_b);
     w.min_bias.set_lane(l, -c.push_out);
     e.restitution.set_lane(l, c.restitution);
     e.tangent_speed.set_lane(l, c.tangent_speed);
@@ -352,13 +360,10 @@ struct Masses<L> {
 
 impl<L: Lanes> Masses<L> {
     #[inline(always)]
-    fn of(c: &WideConstraint, g: usize) -> Self {
-        Masses {
-            a: L::load(&c.inv_mass_a, g),
-            ia: L::load(&c.inv_inertia_a, g),
-            b: L::load(&c.inv_mass_b, g),
-            ib: L::load(&c.inv_inertia_b, g),
-        }
+    fn of(masses: BodyMasses<'_>, c: &WideConstraint, g: usize) -> Self {
+        let [a, ia] = L::gather_masses(masses, &c.a, g);
+        let [b, ib] = L::gather_masses(masses, &c.b, g);
+        Masses { a, ia, b, ib }
     }
 }
 
@@ -415,8 +420,9 @@ pub(crate) fn warm_start(
     constraints: &mut [WideConstraint],
     rare: Option<&mut [WideExtra]>,
     bodies: &mut [SolverBody],
+    masses: BodyMasses<'_>,
 ) {
-    warm_start_shared(constraints, rare, Bodies::new(bodies));
+    warm_start_shared(constraints, rare, Bodies::new(bodies), masses);
 }
 
 /// [`warm_start`] on records shared by the threads of a parallel pass:
@@ -427,15 +433,20 @@ pub(crate) fn warm_start_shared(
     constraints: &mut [WideConstraint],
     rare: Option<&mut [WideExtra]>,
     bodies: Bodies<'_>,
+    masses: BodyMasses<'_>,
 ) {
-    dispatch!(warm_start_with, warm_start_avx512, warm_start_avx, (constraints: &mut [WideConstraint], rare: Option<&mut [WideExtra]>, bodies: Bodies<'_>));
+    let bodies = PassBodies {
+        rows: bodies,
+        masses,
+    };
+    dispatch!(warm_start_with, warm_start_avx512, warm_start_avx, (constraints: &mut [WideConstraint], rare: Option<&mut [WideExtra]>, bodies: PassBodies<'_>));
 }
 
 #[inline(always)]
 fn warm_start_with<L: Lanes>(
     constraints: &mut [WideConstraint],
     rare: Option<&mut [WideExtra]>,
-    bodies: Bodies<'_>,
+    bodies: PassBodies<'_>,
 ) {
     // Group by group, each written out with its number as a constant (a
     // loop over the groups kept values on the stack: 9 % more instructions
@@ -468,10 +479,13 @@ fn warm_start_group<L: Lanes>(
     c: &mut WideConstraint,
     e: Option<&WideExtra>,
     g: usize,
-    bodies: Bodies<'_>,
+    bodies: PassBodies<'_>,
 ) {
-    let (mut a, mut b) = (gather::<L>(bodies, &c.a, g), gather::<L>(bodies, &c.b, g));
-    let m = Masses::of(c, g);
+    let (mut a, mut b) = (
+        gather::<L>(bodies.rows, &c.a, g),
+        gather::<L>(bodies.rows, &c.b, g),
+    );
+    let m = Masses::of(bodies.masses, c, g);
     let (nx, ny) = (L::load(&c.normal_x, g), L::load(&c.normal_y, g));
     let (tx, ty) = (ny, -nx);
     for p in &mut c.points {
@@ -492,8 +506,8 @@ fn warm_start_group<L: Lanes>(
             b.w += m.ib * impulse;
         }
     }
-    scatter(bodies, &c.a, g, &a);
-    scatter(bodies, &c.b, g, &b);
+    scatter(bodies.rows, &c.a, g, &a);
+    scatter(bodies.rows, &c.b, g, &b);
 }
 
 /// The solve pass, with the soft bias (see [`super::contact_solver::solve`]);
@@ -502,10 +516,11 @@ fn warm_start_group<L: Lanes>(
 pub(crate) fn solve(
     constraints: &mut [WideConstraint],
     bodies: &mut [SolverBody],
+    masses: BodyMasses<'_>,
     inv_h: f64,
     softness: &StepSoftness,
 ) {
-    solve_shared(constraints, Bodies::new(bodies), inv_h, softness);
+    solve_shared(constraints, Bodies::new(bodies), masses, inv_h, softness);
 }
 
 /// [`solve`] on shared records (see [`warm_start_shared`]).
@@ -513,16 +528,21 @@ pub(crate) fn solve(
 pub(crate) fn solve_shared(
     constraints: &mut [WideConstraint],
     bodies: Bodies<'_>,
+    masses: BodyMasses<'_>,
     inv_h: f64,
     softness: &StepSoftness,
 ) {
-    dispatch!(solve_with, solve_avx512, solve_avx, (constraints: &mut [WideConstraint], bodies: Bodies<'_>, inv_h: f64, softness: &StepSoftness));
+    let bodies = PassBodies {
+        rows: bodies,
+        masses,
+    };
+    dispatch!(solve_with, solve_avx512, solve_avx, (constraints: &mut [WideConstraint], bodies: PassBodies<'_>, inv_h: f64, softness: &StepSoftness));
 }
 
 #[inline(always)]
 fn solve_with<L: Lanes>(
     constraints: &mut [WideConstraint],
-    bodies: Bodies<'_>,
+    bodies: PassBodies<'_>,
     inv_h: f64,
     softness: &StepSoftness,
 ) {
@@ -551,9 +571,10 @@ pub(crate) fn relax(
     constraints: &mut [WideConstraint],
     rare: Option<&mut [WideExtra]>,
     bodies: &mut [SolverBody],
+    masses: BodyMasses<'_>,
     inv_h: f64,
 ) {
-    relax_shared(constraints, rare, Bodies::new(bodies), inv_h);
+    relax_shared(constraints, rare, Bodies::new(bodies), masses, inv_h);
 }
 
 /// [`relax`] on shared records (see [`warm_start_shared`]).
@@ -562,16 +583,21 @@ pub(crate) fn relax_shared(
     constraints: &mut [WideConstraint],
     rare: Option<&mut [WideExtra]>,
     bodies: Bodies<'_>,
+    masses: BodyMasses<'_>,
     inv_h: f64,
 ) {
-    dispatch!(relax_with, relax_avx512, relax_avx, (constraints: &mut [WideConstraint], rare: Option<&mut [WideExtra]>, bodies: Bodies<'_>, inv_h: f64));
+    let bodies = PassBodies {
+        rows: bodies,
+        masses,
+    };
+    dispatch!(relax_with, relax_avx512, relax_avx, (constraints: &mut [WideConstraint], rare: Option<&mut [WideExtra]>, bodies: PassBodies<'_>, inv_h: f64));
 }
 
 #[inline(always)]
 fn relax_with<L: Lanes>(
     constraints: &mut [WideConstraint],
     rare: Option<&mut [WideExtra]>,
-    bodies: Bodies<'_>,
+    bodies: PassBodies<'_>,
     inv_h: f64,
 ) {
     let inv_h = L::splat(inv_h);
@@ -612,13 +638,16 @@ fn pass_group<L: Lanes>(
     c: &mut WideConstraint,
     e: Option<&mut WideExtra>,
     g: usize,
-    bodies: Bodies<'_>,
+    bodies: PassBodies<'_>,
     (inv_h, bias): (L, Bias<L>),
 ) {
     let (zero, one) = (L::splat(0.0), L::splat(1.0));
-    let (mut a, mut b) = (gather::<L>(bodies, &c.a, g), gather::<L>(bodies, &c.b, g));
-    let separation = separations::<L>(bodies, (c, g), (&a, &b));
-    let m = Masses::of(c, g);
+    let (mut a, mut b) = (
+        gather::<L>(bodies.rows, &c.a, g),
+        gather::<L>(bodies.rows, &c.b, g),
+    );
+    let separation = separations::<L>(bodies.rows, (c, g), (&a, &b));
+    let m = Masses::of(bodies.masses, c, g);
     let (nx, ny) = (L::load(&c.normal_x, g), L::load(&c.normal_y, g));
     let (bias_rate, mass_scale, impulse_scale, min_bias) = match bias {
         Bias::Soft { soft, hard } => {
@@ -686,8 +715,8 @@ fn pass_group<L: Lanes>(
             }
         }
     }
-    scatter(bodies, &c.a, g, &a);
-    scatter(bodies, &c.b, g, &b);
+    scatter(bodies.rows, &c.a, g, &a);
+    scatter(bodies.rows, &c.b, g, &b);
 }
 
 /// The restitution pass (see [`super::contact_solver::restitution`]).
@@ -696,9 +725,10 @@ pub(crate) fn restitution(
     constraints: &mut [WideConstraint],
     extras: &[WideExtra],
     bodies: &mut [SolverBody],
+    masses: BodyMasses<'_>,
     threshold: f64,
 ) {
-    restitution_shared(constraints, extras, Bodies::new(bodies), threshold);
+    restitution_shared(constraints, extras, Bodies::new(bodies), masses, threshold);
 }
 
 /// [`restitution`] on shared records (see [`warm_start_shared`]).
@@ -707,16 +737,21 @@ pub(crate) fn restitution_shared(
     constraints: &mut [WideConstraint],
     extras: &[WideExtra],
     bodies: Bodies<'_>,
+    masses: BodyMasses<'_>,
     threshold: f64,
 ) {
-    dispatch!(restitution_with, restitution_avx512, restitution_avx, (constraints: &mut [WideConstraint], extras: &[WideExtra], bodies: Bodies<'_>, threshold: f64));
+    let bodies = PassBodies {
+        rows: bodies,
+        masses,
+    };
+    dispatch!(restitution_with, restitution_avx512, restitution_avx, (constraints: &mut [WideConstraint], extras: &[WideExtra], bodies: PassBodies<'_>, threshold: f64));
 }
 
 #[inline(always)]
 fn restitution_with<L: Lanes>(
     constraints: &mut [WideConstraint],
     extras: &[WideExtra],
-    bodies: Bodies<'_>,
+    bodies: PassBodies<'_>,
     threshold: f64,
 ) {
     let min_approach = L::splat(-threshold);
@@ -733,7 +768,7 @@ fn restitution_with<L: Lanes>(
 fn restitution_group<L: Lanes>(
     (c, e): (&mut WideConstraint, &WideExtra),
     g: usize,
-    bodies: Bodies<'_>,
+    bodies: PassBodies<'_>,
     min_approach: L,
 ) {
     let zero = L::splat(0.0);
@@ -741,8 +776,11 @@ fn restitution_group<L: Lanes>(
     if L::all(restitution.eq(zero)) {
         return;
     }
-    let (mut a, mut b) = (gather::<L>(bodies, &c.a, g), gather::<L>(bodies, &c.b, g));
-    let m = Masses::of(c, g);
+    let (mut a, mut b) = (
+        gather::<L>(bodies.rows, &c.a, g),
+        gather::<L>(bodies.rows, &c.b, g),
+    );
+    let m = Masses::of(bodies.masses, c, g);
     let (nx, ny) = (L::load(&c.normal_x, g), L::load(&c.normal_y, g));
     for (p, relative) in c.points.iter_mut().zip(&e.normal_velocity) {
         let relative = L::load(relative, g);
@@ -764,8 +802,8 @@ fn restitution_group<L: Lanes>(
         L::select(skip, total, total + impulse).store(&mut p.total_normal_impulse, g);
         apply(&m, (&mut a, &mut b), &r, (impulse * nx, impulse * ny));
     }
-    scatter(bodies, &c.a, g, &a);
-    scatter(bodies, &c.b, g, &b);
+    scatter(bodies.rows, &c.a, g, &a);
+    scatter(bodies.rows, &c.b, g, &b);
 }
 
 /// Copies the impulses of lane `l` of `(w, e)` back into its contact.
@@ -800,8 +838,15 @@ mod tests {
     /// between neighbours and one with the ground per body, with varied
     /// anchors, separations (overlapping and speculative), impulses and
     /// softness.
-    fn scene() -> (Vec<SolverBody>, Vec<ContactConstraint>) {
+    fn scene() -> (Vec<SolverBody>, Vec<[f64; 2]>, Vec<ContactConstraint>) {
         let mut n = Numbers(7);
+        // Each body's inverse mass and inertia (the static dummy's zero).
+        let masses: Vec<[f64; 2]> = (0..13)
+            .map(|k| match k {
+                0 => [0.0, 0.0],
+                k => [0.5 + 0.05 * k as f64, 3.0 + 0.3 * k as f64],
+            })
+            .collect();
         let mut bodies = vec![SolverBody::AT_REST];
         for _ in 0..12 {
             let dtheta = 0.01 * n.next();
@@ -844,10 +889,10 @@ mod tests {
                 normal,
                 friction: 0.6,
                 restitution: if contact % 3 == 0 { 0.5 } else { 0.0 },
-                inv_mass_a: if static_a { 0.0 } else { 1.0 },
-                inv_inertia_a: if static_a { 0.0 } else { 6.0 },
-                inv_mass_b: 0.5,
-                inv_inertia_b: 3.0,
+                inv_mass_a: masses[a][0],
+                inv_inertia_a: masses[a][1],
+                inv_mass_b: masses[b][0],
+                inv_inertia_b: masses[b][1],
                 softness: if static_a { static_soft } else { soft },
                 // A shared push-out bound on some lanes (prepare's rule for
                 // a body with several deep contacts).
@@ -856,13 +901,13 @@ mod tests {
                 // (with a warm-start impulse) on others.
                 tangent_speed: if contact % 5 == 0 { 0.3 } else { 0.0 },
                 rolling_resistance: if contact % 3 == 1 { 0.05 } else { 0.0 },
-                rolling_mass: 1.0 / (if static_a { 0.0 } else { 6.0 } + 3.0),
+                rolling_mass: 1.0 / (masses[a][1] + masses[b][1]),
                 rolling_impulse: if contact % 3 == 1 { 0.01 } else { 0.0 },
                 count: 1 + contact % 2,
                 points,
             });
         }
-        (bodies, constraints)
+        (bodies, masses, constraints)
     }
 
     /// The scene's two softnesses: between two moving bodies, and with
@@ -888,7 +933,7 @@ mod tests {
     /// resistance (else those are zeroed and the passes run without the
     /// rare fields).
     fn lanes_give_the_scalar_bits(rare: bool) {
-        let (bodies, mut constraints) = scene();
+        let (bodies, masses, mut constraints) = scene();
         if !rare {
             for c in &mut constraints {
                 (c.tangent_speed, c.rolling_resistance, c.rolling_impulse) = (0.0, 0.0, 0.0);
@@ -948,20 +993,26 @@ mod tests {
         // scalar solver, so equal bits.
         fn passes<L: Lanes>(
             (wide, extra): (&mut [WideConstraint], &mut [WideExtra]),
-            bodies: &mut [SolverBody],
+            (bodies, masses): (&mut [SolverBody], BodyMasses<'_>),
             (inv_h, softness, rare): (f64, &StepSoftness, bool),
         ) {
+            fn shared<'a>(bodies: &'a mut [SolverBody], masses: BodyMasses<'a>) -> PassBodies<'a> {
+                PassBodies {
+                    rows: Bodies::new(bodies),
+                    masses,
+                }
+            }
             for _ in 0..3 {
-                warm_start_with::<L>(wide, rare.then_some(&mut *extra), Bodies::new(bodies));
-                solve_with::<L>(wide, Bodies::new(bodies), inv_h, softness);
+                warm_start_with::<L>(wide, rare.then_some(&mut *extra), shared(bodies, masses));
+                solve_with::<L>(wide, shared(bodies, masses), inv_h, softness);
                 relax_with::<L>(
                     wide,
                     rare.then_some(&mut *extra),
-                    Bodies::new(bodies),
+                    shared(bodies, masses),
                     inv_h,
                 );
             }
-            restitution_with::<L>(wide, extra, Bodies::new(bodies), 1.0);
+            restitution_with::<L>(wide, extra, shared(bodies, masses), 1.0);
         }
         for path in ["SSE2", "AVX", "AVX-512", "dispatched"] {
             if !lane_type_runs(path) {
@@ -972,17 +1023,18 @@ mod tests {
             let records = (&mut wide[..], &mut extra[..]);
             let settings = (inv_h, &softness, rare);
             match path {
-                "SSE2" => passes::<F64x4>(records, &mut wide_bodies, settings),
-                "AVX" => passes::<Avx4>(records, &mut wide_bodies, settings),
-                "AVX-512" => passes::<Avx8>(records, &mut wide_bodies, settings),
+                "SSE2" => passes::<F64x4>(records, (&mut wide_bodies, &masses), settings),
+                "AVX" => passes::<Avx4>(records, (&mut wide_bodies, &masses), settings),
+                "AVX-512" => passes::<Avx8>(records, (&mut wide_bodies, &masses), settings),
                 _ => {
                     let (wide, extra) = records;
                     for _ in 0..3 {
-                        warm_start(wide, rare.then_some(&mut *extra), &mut wide_bodies);
-                        solve(wide, &mut wide_bodies, inv_h, &softness);
-                        relax(wide, rare.then_some(&mut *extra), &mut wide_bodies, inv_h);
+                        let bodies = &mut wide_bodies;
+                        warm_start(wide, rare.then_some(&mut *extra), bodies, &masses);
+                        solve(wide, bodies, &masses, inv_h, &softness);
+                        relax(wide, rare.then_some(&mut *extra), bodies, &masses, inv_h);
                     }
-                    restitution(wide, extra, &mut wide_bodies, 1.0);
+                    restitution(wide, extra, &mut wide_bodies, &masses, 1.0);
                 }
             }
             assert_eq!(scalar_bodies, wide_bodies, "{path}, rare: {rare}");
