@@ -26,7 +26,7 @@
 //! `wide`, whose operations are the SSE2 intrinsics themselves.
 
 use super::bodies::SolverBody;
-use super::wide_solver::{Bodies, FIXED};
+use super::wide_solver::{Bodies, FIXED, INDEX};
 use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 use wide::{CmpEq, CmpGt, f64x4};
 
@@ -179,13 +179,13 @@ pub(crate) fn group_of(index: &[u32; LANES], group: usize) -> &[u32; 4] {
     &index.as_chunks::<4>().0[group & 1]
 }
 
-/// The record of the body of lane `index` (its [`FIXED`] bit ignored).
+/// The record of the body of lane `index` (its flags ignored).
 #[inline(always)]
 pub(crate) fn body_of(bodies: Bodies<'_>, index: u32) -> &SolverBody {
     // SAFETY: a dynamic body of a lane is written only by this thread
     // (the colouring; the reference is dropped before the scatter), a
     // fixed one by no thread.
-    unsafe { bodies.get((index & !FIXED) as usize) }
+    unsafe { bodies.get((index & INDEX) as usize) }
 }
 
 /// The lane arithmetic the wide solvers' passes are written in, so that
@@ -254,6 +254,16 @@ pub(crate) trait Lanes:
     /// whose index carries [`FIXED`]: it is not written back (no lane
     /// changed it).
     fn scatter_head(head: [Self; 4], bodies: Bodies<'_>, index: &[u32; LANES], group: usize);
+
+    /// The inverse masses and inverse inertias (`[m, i]` of
+    /// [`super::wide_solver::BodyMasses`]) of the bodies of group `group`
+    /// of a record's lanes (`index`: the record's body indices), transposed
+    /// into two values. (Pure data movement.)
+    fn gather_masses(masses: &[[f64; 2]], index: &[u32; LANES], group: usize) -> [Self; 2];
+
+    /// The lanes of group `group` whose index word (of `index`, a record's
+    /// body indices) has `flag` set.
+    fn flagged(index: &[u32; LANES], group: usize, flag: u32) -> Self::Mask;
 }
 
 impl Lanes for F64x4 {
@@ -321,11 +331,23 @@ impl Lanes for F64x4 {
             }
             // SAFETY: a dynamic body of a lane is this thread's alone (the
             // colouring); no reference to it is alive.
-            let b = unsafe { bodies.get_mut(i as usize) };
+            let b = unsafe { bodies.get_mut((i & INDEX) as usize) };
             b.v.x = vx[l];
             b.v.y = vy[l];
             b.w = w[l];
         }
+    }
+
+    #[inline(always)]
+    fn gather_masses(masses: &[[f64; 2]], index: &[u32; LANES], group: usize) -> [Self; 2] {
+        let m = group_of(index, group).map(|i| masses[(i & INDEX) as usize]);
+        [F64x4::new(m.map(|x| x[0])), F64x4::new(m.map(|x| x[1]))]
+    }
+
+    #[inline(always)]
+    fn flagged(index: &[u32; LANES], group: usize, flag: u32) -> Mask4 {
+        let set = |i: u32| f64::from_bits(if i & flag != 0 { u64::MAX } else { 0 });
+        Mask4(f64x4::new(group_of(index, group).map(set)))
     }
 }
 

@@ -20,12 +20,13 @@
 //! the soft step.
 
 use super::lanes::{F64x4, F64x8, LANES, Lanes, body_of, group_of};
-use super::wide_solver::{Bodies, FIXED};
+use super::wide_solver::{Bodies, FIXED, INDEX};
 use std::arch::x86_64::{
-    __m256d, _CMP_EQ_OQ, _CMP_GT_OQ, _mm256_add_pd, _mm256_blendv_pd, _mm256_cmp_pd, _mm256_div_pd,
-    _mm256_load_pd, _mm256_loadu_pd, _mm256_max_pd, _mm256_min_pd, _mm256_movemask_pd,
-    _mm256_mul_pd, _mm256_or_pd, _mm256_permute2f128_pd, _mm256_set1_pd, _mm256_store_pd,
-    _mm256_storeu_pd, _mm256_sub_pd, _mm256_unpackhi_pd, _mm256_unpacklo_pd, _mm256_xor_pd,
+    __m256d, _CMP_EQ_OQ, _CMP_GT_OQ, _mm_loadu_pd, _mm256_add_pd, _mm256_blendv_pd,
+    _mm256_castpd128_pd256, _mm256_cmp_pd, _mm256_div_pd, _mm256_insertf128_pd, _mm256_load_pd,
+    _mm256_loadu_pd, _mm256_max_pd, _mm256_min_pd, _mm256_movemask_pd, _mm256_mul_pd, _mm256_or_pd,
+    _mm256_permute2f128_pd, _mm256_set1_pd, _mm256_store_pd, _mm256_storeu_pd, _mm256_sub_pd,
+    _mm256_unpackhi_pd, _mm256_unpacklo_pd, _mm256_xor_pd,
 };
 use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
@@ -207,12 +208,44 @@ impl Lanes for Avx4 {
             }
             // SAFETY: a dynamic body of a lane is this thread's alone (the
             // colouring); no reference to it is alive.
-            let row = unsafe { bodies.get_mut(i as usize) }.head_mut();
+            let row = unsafe { bodies.get_mut((i & INDEX) as usize) }.head_mut();
             // SAFETY: AVX is available (module invariant); `row` is 32
             // writable bytes aligned to 32 (the start of a 64-aligned
             // record).
             unsafe { _mm256_store_pd(row.as_mut_ptr(), rows[l]) };
         }
+    }
+
+    /// Four 16-byte loads, paired and unpacked.
+    #[inline(always)]
+    fn gather_masses(masses: &[[f64; 2]], index: &[u32; LANES], group: usize) -> [Self; 2] {
+        let index = group_of(index, group);
+        let at = |l: usize| masses[(index[l] & INDEX) as usize].as_ptr();
+        // SAFETY: AVX is available (module invariant); each pointer is 16
+        // readable bytes (unaligned loads).
+        unsafe {
+            // [m0, i0, m2, i2] and [m1, i1, m3, i3].
+            let even = _mm256_insertf128_pd::<1>(
+                _mm256_castpd128_pd256(_mm_loadu_pd(at(0))),
+                _mm_loadu_pd(at(2)),
+            );
+            let odd = _mm256_insertf128_pd::<1>(
+                _mm256_castpd128_pd256(_mm_loadu_pd(at(1))),
+                _mm_loadu_pd(at(3)),
+            );
+            [
+                Avx4(_mm256_unpacklo_pd(even, odd)),
+                Avx4(_mm256_unpackhi_pd(even, odd)),
+            ]
+        }
+    }
+
+    #[inline(always)]
+    fn flagged(index: &[u32; LANES], group: usize, flag: u32) -> AvxMask {
+        let set = |i: u32| f64::from_bits(if i & flag != 0 { u64::MAX } else { 0 });
+        // SAFETY: AVX is available (module invariant); the array is 32
+        // readable bytes (an unaligned load).
+        AvxMask(unsafe { _mm256_loadu_pd(group_of(index, group).map(set).as_ptr()) })
     }
 }
 

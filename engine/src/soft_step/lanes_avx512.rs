@@ -23,14 +23,16 @@
 //! relies on. The type is private to the soft step.
 
 use super::lanes::{F64x8, LANES, Lanes, body_of};
-use super::wide_solver::{Bodies, FIXED};
+use super::wide_solver::{Bodies, FIXED, INDEX};
 use std::arch::x86_64::{
-    __m512d, __m512i, __mmask8, _CMP_EQ_OQ, _CMP_GT_OQ, _mm256_load_pd, _mm256_store_pd,
-    _mm512_add_pd, _mm512_castpd_si512, _mm512_castpd256_pd512, _mm512_castpd512_pd256,
-    _mm512_castsi512_pd, _mm512_cmp_pd_mask, _mm512_div_pd, _mm512_extractf64x4_pd,
-    _mm512_insertf64x4, _mm512_load_pd, _mm512_loadu_pd, _mm512_mask_blend_pd, _mm512_max_pd,
-    _mm512_min_pd, _mm512_mul_pd, _mm512_permutex2var_pd, _mm512_set1_epi64, _mm512_set1_pd,
-    _mm512_setr_epi64, _mm512_store_pd, _mm512_storeu_pd, _mm512_sub_pd, _mm512_unpackhi_pd,
+    __m256i, __m512d, __m512i, __mmask8, _CMP_EQ_OQ, _CMP_GT_OQ, _mm_loadu_pd,
+    _mm256_castpd128_pd256, _mm256_insertf128_pd, _mm256_load_pd, _mm256_loadu_si256,
+    _mm256_store_pd, _mm512_add_pd, _mm512_castpd_si512, _mm512_castpd256_pd512,
+    _mm512_castpd512_pd256, _mm512_castsi256_si512, _mm512_castsi512_pd, _mm512_cmp_pd_mask,
+    _mm512_div_pd, _mm512_extractf64x4_pd, _mm512_insertf64x4, _mm512_load_pd, _mm512_loadu_pd,
+    _mm512_mask_blend_pd, _mm512_max_pd, _mm512_min_pd, _mm512_mul_pd, _mm512_permutex2var_pd,
+    _mm512_set1_epi32, _mm512_set1_epi64, _mm512_set1_pd, _mm512_setr_epi64, _mm512_store_pd,
+    _mm512_storeu_pd, _mm512_sub_pd, _mm512_test_epi32_mask, _mm512_unpackhi_pd,
     _mm512_unpacklo_pd, _mm512_xor_si512,
 };
 use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
@@ -250,11 +252,48 @@ impl Lanes for Avx8 {
             };
             // SAFETY: a dynamic body of a lane is this thread's alone (the
             // colouring); no reference to it is alive.
-            let row = unsafe { bodies.get_mut(i as usize) }.head_mut();
+            let row = unsafe { bodies.get_mut((i & INDEX) as usize) }.head_mut();
             // SAFETY: AVX is available (AVX-512F implies it); `row` is 32
             // writable bytes aligned to 32 (the start of a 64-aligned
             // record).
             unsafe { _mm256_store_pd(row.as_mut_ptr(), half) };
+        }
+    }
+
+    /// Eight 16-byte loads, paired into two registers and unpacked.
+    #[inline(always)]
+    fn gather_masses(masses: &[[f64; 2]], index: &[u32; LANES], _group: usize) -> [Self; 2] {
+        let at = |l: usize| masses[(index[l] & INDEX) as usize].as_ptr();
+        // SAFETY: AVX-512F (so AVX) is available (module invariant); each
+        // pointer is 16 readable bytes (unaligned loads).
+        unsafe {
+            let pair = |l: usize, k: usize| {
+                _mm256_insertf128_pd::<1>(
+                    _mm256_castpd128_pd256(_mm_loadu_pd(at(l))),
+                    _mm_loadu_pd(at(k)),
+                )
+            };
+            // [m0, i0, m2, i2, m4, i4, m6, i6] and the odd lanes likewise.
+            let even = _mm512_insertf64x4::<1>(_mm512_castpd256_pd512(pair(0, 2)), pair(4, 6));
+            let odd = _mm512_insertf64x4::<1>(_mm512_castpd256_pd512(pair(1, 3)), pair(5, 7));
+            [
+                Avx8(_mm512_unpacklo_pd(even, odd)),
+                Avx8(_mm512_unpackhi_pd(even, odd)),
+            ]
+        }
+    }
+
+    /// One 32-byte load of the eight indices and a `vptestmd`.
+    #[inline(always)]
+    fn flagged(index: &[u32; LANES], _group: usize, flag: u32) -> __mmask8 {
+        // SAFETY: AVX-512F (so AVX) is available (module invariant);
+        // `index` is 32 readable bytes (an unaligned load); the upper half
+        // of the widened register is undefined, its bits of the mask are
+        // dropped.
+        unsafe {
+            let words =
+                _mm512_castsi256_si512(_mm256_loadu_si256(index.as_ptr().cast::<__m256i>()));
+            _mm512_test_epi32_mask(words, _mm512_set1_epi32(flag as i32)) as __mmask8
         }
     }
 }

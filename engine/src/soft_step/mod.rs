@@ -157,6 +157,10 @@ pub struct SoftStep {
     /// The prepare stage's copy of the bodies' masses (see [`BodyMass`]).
     #[cfg_attr(feature = "serde", serde(skip))]
     masses: Vec<BodyMass>,
+    /// The same masses by solver index, as the wide passes gather them
+    /// ([`wide_solver::BodyMasses`]).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    lane_masses: Vec<[f64; 2]>,
     /// One per convex shape; a body's are contiguous.
     colliders: Vec<Collider>,
     /// Each collider's filter, sensor flag and material.
@@ -167,9 +171,13 @@ pub struct SoftStep {
     /// written to bytes).
     #[cfg_attr(feature = "serde", serde(skip))]
     hooks: Hooks,
-    /// Whether a constraint of this step has rolling resistance (prepare's;
-    /// the wide passes skip its rows otherwise).
-    rolling: bool,
+    /// Whether a constraint of the step's records has a tangent speed or
+    /// rolling resistance (prepare's, [`wide_solver::is_rare`]; the wide
+    /// passes read those fields only then).
+    rare: bool,
+    /// The two softnesses of the step's contacts (prepare's; the records
+    /// keep which one each lane takes).
+    softness: wide_solver::StepSoftness,
     /// Solver records; index 0 is the static dummy, body `i` is `i + 1`.
     bodies: Vec<SolverBody>,
     broad: BroadPhase,
@@ -238,11 +246,13 @@ impl SoftStep {
             settings,
             sims: Vec::new(),
             masses: Vec::new(),
+            lane_masses: Vec::new(),
             colliders: Vec::new(),
             shape_data: Vec::new(),
             events: StepEvents::default(),
             hooks: Hooks::default(),
-            rolling: false,
+            rare: false,
+            softness: [Softness::RIGID; 2],
             bodies: vec![SolverBody::AT_REST],
             broad: BroadPhase::default(),
             contacts: ContactSet::default(),
@@ -455,13 +465,20 @@ impl SoftStep {
                 let started = core.profiler.start();
                 self.joints.warm_start(&mut self.bodies);
                 contact_solver::warm_start(&mut self.constraints, &mut self.bodies);
-                wide_solver::warm_start(&mut self.wide, &mut self.bodies, self.rolling);
+                let rare = self.rare.then_some(&mut self.wide_extra[..]);
+                wide_solver::warm_start(&mut self.wide, rare, &mut self.bodies, &self.lane_masses);
                 core.profiler.stop(Phase::WarmStart, started);
 
                 let started = core.profiler.start();
                 self.joints.solve(&mut self.bodies, h, true);
                 contact_solver::solve(&mut self.constraints, &mut self.bodies, inv_h, true);
-                wide_solver::solve(&mut self.wide, &mut self.bodies, inv_h);
+                wide_solver::solve(
+                    &mut self.wide,
+                    &mut self.bodies,
+                    &self.lane_masses,
+                    inv_h,
+                    &self.softness,
+                );
                 core.profiler.stop(Phase::Solve, started);
 
                 let started = core.profiler.start();
@@ -471,7 +488,14 @@ impl SoftStep {
                 let started = core.profiler.start();
                 self.joints.solve(&mut self.bodies, h, false);
                 contact_solver::solve(&mut self.constraints, &mut self.bodies, inv_h, false);
-                wide_solver::relax(&mut self.wide, &mut self.bodies, inv_h, self.rolling);
+                let rare = self.rare.then_some(&mut self.wide_extra[..]);
+                wide_solver::relax(
+                    &mut self.wide,
+                    rare,
+                    &mut self.bodies,
+                    &self.lane_masses,
+                    inv_h,
+                );
                 core.profiler.stop(Phase::Relax, started);
             }
             self.stats.evaluations += 1;
@@ -500,6 +524,7 @@ impl SoftStep {
                 &mut self.wide,
                 &self.wide_extra,
                 &mut self.bodies,
+                &self.lane_masses,
                 settings.restitution_threshold,
             );
         }

@@ -63,13 +63,14 @@ impl SoftStep {
     ) {
         let controls = core.controls_act.then_some(core.controls.as_slice());
         let sims = &self.sims;
-        let rolling = self.rolling;
+        let (rare, softness, masses) = (self.rare, &self.softness, &self.lane_masses);
         let colouring = &self.colouring;
         let bodies = Bodies::new(&mut self.bodies);
         let wide = SharedSlice::new(&mut self.wide);
         // What thread 0 solves alone before the colours; whether there is
         // any decides the barriers, the same way on every thread.
         let overflow_empty = self.constraints.is_empty();
+        let extra = SharedSlice::new(&mut self.wide_extra);
         let overflow = SharedSlice::new(std::slice::from_mut(&mut self.constraints));
         let (mut scalar_joints, wide_joints) = self.joints.split_for_threads();
         let scalar_empty = scalar_joints.is_empty();
@@ -148,11 +149,19 @@ impl SoftStep {
                 each_colour_share(w, colouring, |mine| {
                     // SAFETY: the threads' shares of a colour are disjoint;
                     // see the module docs for the bodies.
-                    let records = unsafe { wide.slice(mine) };
+                    let records = unsafe { wide.slice(mine.clone()) };
+                    // SAFETY: as the records (the same share).
+                    let extras = rare.then(|| unsafe { extra.slice(mine) });
                     match pass {
-                        Pass::WarmStart => wide_solver::warm_start_shared(records, bodies, rolling),
-                        Pass::Solve => wide_solver::solve_shared(records, bodies, inv_h),
-                        Pass::Relax => wide_solver::relax_shared(records, bodies, inv_h, rolling),
+                        Pass::WarmStart => {
+                            wide_solver::warm_start_shared(records, extras, bodies, masses)
+                        }
+                        Pass::Solve => {
+                            wide_solver::solve_shared(records, bodies, masses, inv_h, softness)
+                        }
+                        Pass::Relax => {
+                            wide_solver::relax_shared(records, extras, bodies, masses, inv_h)
+                        }
                     }
                 });
                 if let Pass::Solve = pass {
@@ -172,7 +181,7 @@ impl SoftStep {
     pub(super) fn parallel_restitution_and_store(&mut self, pool: &Pool, threshold: f64) {
         let colouring = &self.colouring;
         let constrained = &self.constrained;
-        let extras = &self.wide_extra;
+        let (extras, masses) = (&self.wide_extra, &self.lane_masses);
         let bodies = Bodies::new(&mut self.bodies);
         let wide = SharedSlice::new(&mut self.wide);
         let overflow = SharedSlice::new(std::slice::from_mut(&mut self.constraints));
@@ -188,7 +197,7 @@ impl SoftStep {
             each_colour_share(w, colouring, |mine| {
                 // SAFETY: disjoint shares of one colour.
                 let part = unsafe { wide.slice(mine.clone()) };
-                wide_solver::restitution_shared(part, &extras[mine], bodies, threshold);
+                wide_solver::restitution_shared(part, &extras[mine], bodies, masses, threshold);
             });
             // Store: the overflow on thread 0 while the others wait, then
             // the lanes, each constraint's contact its own.

@@ -51,6 +51,12 @@ impl SoftStep {
     pub(super) fn load_bodies(&mut self, core: &WorldCore) {
         self.masses.clear();
         self.masses.extend(self.sims.iter().map(BodyMass::of));
+        // By solver index: the static dummy, then the bodies (a static
+        // body's entry is never gathered: its lanes use the dummy).
+        self.lane_masses.clear();
+        self.lane_masses.push([0.0, 0.0]);
+        self.lane_masses
+            .extend(self.masses.iter().map(|m| [m.inv_mass, m.inv_inertia]));
         for (id, sim) in self.sims.iter().enumerate() {
             let record = &mut self.bodies[id + 1];
             *record = if sim.moving() {
@@ -89,12 +95,10 @@ impl SoftStep {
         self.push_demand.clear();
         self.push_demand.resize(self.sims.len(), 0.0);
         let mut points = 0;
-        let mut rolling = false;
         for (index, c) in self.contacts.contacts.iter().enumerate() {
             if c.count == 0 || c.sensor {
                 continue;
             }
-            rolling |= c.rolling_resistance > 0.0;
             let (sa, sb) = (&self.masses[c.body_a], &self.masses[c.body_b]);
             if !sa.moving && !sb.moving {
                 continue;
@@ -119,7 +123,6 @@ impl SoftStep {
                 }
             }
         }
-        self.rolling = rolling;
         let touching = self.constrained.len();
         let records = self.colouring.finish();
         // The records of the last step are overwritten lane by lane, every
@@ -129,6 +132,10 @@ impl SoftStep {
         self.constraints.clear();
         let (masses, contacts, bodies) = (&self.masses, &self.contacts.contacts, &self.bodies);
         let demand = &self.push_demand;
+        // The two softnesses the records select from (`constraint_of`
+        // gives each constraint one of them).
+        let step_softness = [soft, static_soft];
+        self.softness = step_softness;
         let constraint_of = |index: usize| {
             let c = &contacts[index];
             let (sa, sb) = (&masses[c.body_a], &masses[c.body_b]);
@@ -169,6 +176,7 @@ impl SoftStep {
             }
             let (constrained, colouring, source) =
                 (&self.constrained, &self.colouring, &self.lane_source);
+            let rare = std::sync::atomic::AtomicBool::new(false);
             let wide = SharedSlice::new(&mut self.wide);
             let extra = SharedSlice::new(&mut self.wide_extra);
             let overflow = SharedSlice::new(std::slice::from_mut(&mut self.constraints));
@@ -182,32 +190,43 @@ impl SoftStep {
                         }
                     }
                 }
+                let mut mine_rare = false;
                 for record in w.share(wide.len()) {
                     // SAFETY: each thread its own records.
                     let (r, e) = unsafe { (wide.get_mut(record), extra.get_mut(record)) };
                     for lane in 0..LANES {
                         match source[record * LANES + lane] {
                             u32::MAX => wide_solver::set_padding_lane((r, e), lane),
-                            i => wide_solver::set_lane(
-                                (r, e),
-                                lane,
-                                &constraint_of(constrained[i as usize]),
-                            ),
+                            i => {
+                                let constraint = constraint_of(constrained[i as usize]);
+                                mine_rare |= wide_solver::is_rare(&constraint);
+                                wide_solver::set_lane((r, e), lane, &constraint, &step_softness);
+                            }
                         }
                     }
                 }
+                if mine_rare {
+                    rare.store(true, std::sync::atomic::Ordering::Relaxed);
+                }
             });
+            // (The pool's run returns after every thread finished.)
+            self.rare = rare.into_inner();
         } else {
             // In contact order, so that the contacts are read in memory
             // order; each colour's records are written in order too.
+            let mut rare = false;
             for (i, &index) in self.constrained.iter().enumerate() {
                 let constraint = constraint_of(index);
                 match self.colouring.slot(i) {
-                    Slot::Lane { record, lane } => wide_solver::set_lane(
-                        (&mut self.wide[record], &mut self.wide_extra[record]),
-                        lane,
-                        &constraint,
-                    ),
+                    Slot::Lane { record, lane } => {
+                        rare |= wide_solver::is_rare(&constraint);
+                        wide_solver::set_lane(
+                            (&mut self.wide[record], &mut self.wide_extra[record]),
+                            lane,
+                            &constraint,
+                            &step_softness,
+                        );
+                    }
                     // Overflow positions come in order.
                     Slot::Overflow(_) => self.constraints.push(constraint),
                 }
@@ -218,6 +237,7 @@ impl SoftStep {
                     lane,
                 );
             }
+            self.rare = rare;
         }
         let profile = &mut core.profiler.profile;
         profile.contacts += self.contacts.contacts.len() as u64;

@@ -6,20 +6,27 @@
 //! with AVX-512, four and four with AVX or SSE2 ([`super::lanes`]).
 //!
 //! Each pass gathers the two bodies of each lane (velocities, motion since
-//! the step began), applies the scalar solver's formulas lane by lane, and
-//! scatters the velocities back. The formulas and their order of operations
-//! are those of [`super::contact_solver`], the reference implementation: a
-//! lane gives the same bits as the scalar code on the same constraint, and
-//! solving a colour here gives what solving its constraints one after the
-//! other would give (tested below).
+//! the step began, inverse masses), applies the scalar solver's formulas
+//! lane by lane, and scatters the velocities back. The formulas and their
+//! order of operations are those of [`super::contact_solver`], the
+//! reference implementation: a lane gives the same bits as the scalar code
+//! on the same constraint, and solving a colour here gives what solving its
+//! constraints one after the other would give (tested below).
 //!
 //! Layout: what the passes read and write every substep is in
-//! [`WideConstraint`] (structure of arrays, 2304 bytes per eight constraints, checked below);
-//! what only restitution and the store read is in [`WideExtra`]. A
-//! constraint of one point has a second point with zero mass, and a colour
-//! whose size is not a multiple of eight has padding lanes between the
-//! static dummy body and itself, with zero masses: both give zero impulses
-//! and change nothing.
+//! [`WideConstraint`] (structure of arrays, 1600 bytes per eight
+//! constraints, checked below), and only that: on large scenes the passes
+//! are bound by the traffic of these records through the caches
+//! (docs/soft_step.md, "Smaller records"). What is the same for many
+//! constraints is kept out of them: the inverse masses are the bodies'
+//! ([`BodyMasses`], gathered per lane), the softness is one of the step's
+//! two ([`StepSoftness`], a bit per lane in the body index), and what only
+//! restitution and the store read, or the passes only in a step that has
+//! tangent speeds or rolling resistance, is in [`WideExtra`]. A constraint
+//! of one point has a second point with zero mass, and a colour whose size
+//! is not a multiple of eight has padding lanes between the static dummy
+//! body and itself, with zero masses: both give zero impulses and change
+//! nothing.
 
 use super::bodies::SolverBody;
 use super::contact_solver::{ConstraintPoint, ContactConstraint};
@@ -33,12 +40,43 @@ use super::pool::SharedSlice;
 /// [`super::pool::SharedSlice`].
 pub(crate) type Bodies<'a> = SharedSlice<'a, SolverBody>;
 
+/// Each body's inverse mass (1/kg) and inverse inertia (1/(kg·m²)), by
+/// solver index (0: the static dummy, zeros): the passes gather them per
+/// lane, as they gather the velocities, instead of keeping four fields of
+/// them in every record (prepare's copy of the masses the constraints were
+/// built with: the same values).
+pub(crate) type BodyMasses<'a> = &'a [[f64; 2]];
+
+/// What a pass reads and writes of the bodies: their solver records and
+/// their masses.
+#[derive(Clone, Copy)]
+struct PassBodies<'a> {
+    rows: Bodies<'a>,
+    masses: BodyMasses<'a>,
+}
+
 /// Set in a lane's body index when that body has zero inverse mass and
 /// inertia (the static dummy, a kinematic body, a padding lane): no
 /// impulse changes its velocity, so its record is read but never written
 /// back (which lets the threads of a parallel pass share it; the bits are
 /// those of writing back the unchanged value).
 pub(crate) const FIXED: u32 = 1 << 31;
+
+/// Set in a lane's index of body A when the lane takes the second of the
+/// step's two softnesses ([`StepSoftness`]: a contact with a static body),
+/// clear when it takes the first.
+pub(crate) const STATIC_SOFT: u32 = 1 << 30;
+
+/// The bits of a lane's body index that number the body (below the flags
+/// [`FIXED`] and [`STATIC_SOFT`]).
+pub(crate) const INDEX: u32 = STATIC_SOFT - 1;
+
+/// The two softnesses of a step's contacts: prepare gives each constraint
+/// one of them (`[0]` between two moving bodies or with a kinematic one,
+/// `[1]` with a static body, twice as stiff), so the records keep a bit
+/// per lane ([`STATIC_SOFT`]) instead of three fields of coefficients,
+/// and the solve pass selects between the two lane by lane.
+pub(crate) type StepSoftness = [super::Softness; 2];
 
 /// One point of eight constraints.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -60,26 +98,37 @@ pub(crate) struct WidePoint {
     pub total_normal_impulse: F64x8,
 }
 
-/// Eight constraints of one colour, one per lane: what every substep reads.
+/// Eight constraints of one colour, one per lane: what the passes read
+/// every substep, and only that (the passes stream these records through
+/// the caches twelve times a step: each field less is a line less per
+/// record and pass).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct WideConstraint {
-    /// Solver indices of the bodies (0: the static dummy).
+    /// Solver indices of the bodies (0: the static dummy), with the flags
+    /// [`FIXED`] (both) and [`STATIC_SOFT`] (in `a`).
     pub a: [u32; LANES],
     pub b: [u32; LANES],
     /// Unit normal from A to B.
     pub normal_x: F64x8,
     pub normal_y: F64x8,
     pub friction: F64x8,
-    pub inv_mass_a: F64x8,
-    pub inv_inertia_a: F64x8,
-    pub inv_mass_b: F64x8,
-    pub inv_inertia_b: F64x8,
-    /// Softness ([`super::Softness`]) of each lane.
-    pub bias_rate: F64x8,
-    pub mass_scale: F64x8,
-    pub impulse_scale: F64x8,
     /// Minus each lane's push-out bound (m/s): the bias is at least this.
     pub min_bias: F64x8,
+    pub points: [WidePoint; 2],
+}
+
+// The size the module documentation gives.
+const _: () = assert!(std::mem::size_of::<WideConstraint>() == 1600);
+
+/// What the passes seldom read of eight constraints: restitution and the
+/// store, and, only in a step where some constraint has a tangent speed or
+/// rolling resistance (the `rare` flag of the passes), warm start and
+/// relax.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct WideExtra {
+    pub restitution: F64x8,
+    /// Normal velocity of each point before the solve (m/s).
+    pub normal_velocity: [F64x8; 2],
     /// Tangent speed of the surfaces (m/s).
     pub tangent_speed: F64x8,
     /// Rolling resistance (m), its effective mass (kg·m²) and accumulated
@@ -87,33 +136,36 @@ pub(crate) struct WideConstraint {
     pub rolling_resistance: F64x8,
     pub rolling_mass: F64x8,
     pub rolling_impulse: F64x8,
-    pub points: [WidePoint; 2],
 }
 
-// The size the module documentation gives.
-const _: () = assert!(std::mem::size_of::<WideConstraint>() == 2304);
-
-/// What restitution and the store read of eight constraints.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub(crate) struct WideExtra {
-    pub restitution: F64x8,
-    /// Normal velocity of each point before the solve (m/s).
-    pub normal_velocity: [F64x8; 2],
+/// Whether constraint `c` makes the passes read the rare fields of the
+/// records ([`WideExtra`]): a tangent speed other than +0 (subtracting +0
+/// changes no value, −0 included, so skipping it gives the same bits) or
+/// rolling resistance.
+#[inline(always)]
+pub(crate) fn is_rare(c: &ContactConstraint) -> bool {
+    c.tangent_speed.to_bits() != 0 || c.rolling_resistance > 0.0
 }
 
 /// Writes constraint `c` into lane `l` of `(w, e)`, every field of the lane
-/// (a missing second point as zeros).
+/// (a missing second point as zeros); `softness`: the step's two, one of
+/// which is `c`'s.
+///
+/// # Panics
+/// If `c`'s softness is neither of `softness` (prepare gives every
+/// constraint one of the two).
 #[inline(always)]
 pub(crate) fn set_lane(
     (w, e): (&mut WideConstraint, &mut WideExtra),
     l: usize,
     c: &ContactConstraint,
+    softness: &StepSoftness,
 ) {
     let index = |i: usize| {
         u32::try_from(i)
             .ok()
-            .filter(|&i| i < FIXED)
-            .expect("fewer than 2³¹ bodies")
+            .filter(|&i| i <= INDEX)
+            .expect("fewer than 2³⁰ bodies")
     };
     let fixed = |inv_mass: f64, inv_inertia: f64| {
         if inv_mass == 0.0 && inv_inertia == 0.0 {
@@ -122,24 +174,23 @@ pub(crate) fn set_lane(
             0
         }
     };
-    w.a[l] = index(c.a) | fixed(c.inv_mass_a, c.inv_inertia_a);
+    let static_soft = if c.softness == softness[1] {
+        STATIC_SOFT
+    } else {
+        assert!(c.softness == softness[0], "a softness of the step");
+        0
+    };
+    w.a[l] = index(c.a) | fixed(c.inv_mass_a, c.inv_inertia_a) | static_soft;
     w.b[l] = index(c.b) | fixed(c.inv_mass_b, c.inv_inertia_b);
     w.normal_x.set_lane(l, c.normal.x);
     w.normal_y.set_lane(l, c.normal.y);
     w.friction.set_lane(l, c.friction);
-    w.inv_mass_a.set_lane(l, c.inv_mass_a);
-    w.inv_inertia_a.set_lane(l, c.inv_inertia_a);
-    w.inv_mass_b.set_lane(l, c.inv_mass_b);
-    w.inv_inertia_b.set_lane(l, c.inv_inertia_b);
-    w.bias_rate.set_lane(l, c.softness.bias_rate);
-    w.mass_scale.set_lane(l, c.softness.mass_scale);
-    w.impulse_scale.set_lane(l, c.softness.impulse_scale);
     w.min_bias.set_lane(l, -c.push_out);
-    w.tangent_speed.set_lane(l, c.tangent_speed);
-    w.rolling_resistance.set_lane(l, c.rolling_resistance);
-    w.rolling_mass.set_lane(l, c.rolling_mass);
-    w.rolling_impulse.set_lane(l, c.rolling_impulse);
     e.restitution.set_lane(l, c.restitution);
+    e.tangent_speed.set_lane(l, c.tangent_speed);
+    e.rolling_resistance.set_lane(l, c.rolling_resistance);
+    e.rolling_mass.set_lane(l, c.rolling_mass);
+    e.rolling_impulse.set_lane(l, c.rolling_impulse);
     for k in 0..2 {
         let cp = if k < c.count {
             c.points[k]
@@ -162,7 +213,8 @@ pub(crate) fn set_lane(
 }
 
 /// Makes lane `l` of `(w, e)` padding: between the static dummy and itself,
-/// zero masses and zero points, so it gives zero impulses.
+/// zero masses and zero points, so it gives zero impulses (whichever
+/// softness it takes).
 pub(crate) fn set_padding_lane((w, e): (&mut WideConstraint, &mut WideExtra), l: usize) {
     let padding = ContactConstraint {
         a: 0,
@@ -184,7 +236,7 @@ pub(crate) fn set_padding_lane((w, e): (&mut WideConstraint, &mut WideExtra), l:
         count: 0,
         points: [ConstraintPoint::default(); 2],
     };
-    set_lane((w, e), l, &padding);
+    set_lane((w, e), l, &padding, &[super::Softness::RIGID; 2]);
 }
 
 /// The velocities of the bodies of a group of lanes (what the passes
@@ -308,13 +360,10 @@ struct Masses<L> {
 
 impl<L: Lanes> Masses<L> {
     #[inline(always)]
-    fn of(c: &WideConstraint, g: usize) -> Self {
-        Masses {
-            a: L::load(&c.inv_mass_a, g),
-            ia: L::load(&c.inv_inertia_a, g),
-            b: L::load(&c.inv_mass_b, g),
-            ib: L::load(&c.inv_inertia_b, g),
-        }
+    fn of(masses: BodyMasses<'_>, c: &WideConstraint, g: usize) -> Self {
+        let [a, ia] = L::gather_masses(masses, &c.a, g);
+        let [b, ib] = L::gather_masses(masses, &c.b, g);
+        Masses { a, ia, b, ib }
     }
 }
 
@@ -363,51 +412,80 @@ fn apply<L: Lanes>(
     b.w += m.ib * (r.rb_x * py - r.rb_y * px);
 }
 
-/// Applies every constraint's accumulated impulses.
+/// Applies every constraint's accumulated impulses. `rare`: the records'
+/// [`WideExtra`], given when a constraint of the step has a tangent speed
+/// or rolling resistance ([`is_rare`]; else those fields are not read).
 #[inline(never)]
-/// `rolling`: whether any constraint has rolling resistance (else its
-/// rows are skipped without being looked at).
 pub(crate) fn warm_start(
     constraints: &mut [WideConstraint],
+    rare: Option<&mut [WideExtra]>,
     bodies: &mut [SolverBody],
-    rolling: bool,
+    masses: BodyMasses<'_>,
 ) {
-    warm_start_shared(constraints, Bodies::new(bodies), rolling);
+    warm_start_shared(constraints, rare, Bodies::new(bodies), masses);
 }
 
 /// [`warm_start`] on records shared by the threads of a parallel pass:
-/// `constraints` must be of one colour (or the whole list, alone).
+/// `constraints` (and `rare`, the same records' extras) must be of one
+/// colour (or the whole list, alone).
 #[inline(never)]
 pub(crate) fn warm_start_shared(
     constraints: &mut [WideConstraint],
+    rare: Option<&mut [WideExtra]>,
     bodies: Bodies<'_>,
-    rolling: bool,
+    masses: BodyMasses<'_>,
 ) {
-    dispatch!(warm_start_with, warm_start_avx512, warm_start_avx, (constraints: &mut [WideConstraint], bodies: Bodies<'_>, rolling: bool));
+    let bodies = PassBodies {
+        rows: bodies,
+        masses,
+    };
+    dispatch!(warm_start_with, warm_start_avx512, warm_start_avx, (constraints: &mut [WideConstraint], rare: Option<&mut [WideExtra]>, bodies: PassBodies<'_>));
 }
 
 #[inline(always)]
 fn warm_start_with<L: Lanes>(
     constraints: &mut [WideConstraint],
-    bodies: Bodies<'_>,
-    rolling: bool,
+    rare: Option<&mut [WideExtra]>,
+    bodies: PassBodies<'_>,
 ) {
-    for c in constraints.iter_mut() {
-        // Group by group, each written out with its number as a constant
-        // (a loop over the groups kept values on the stack: 9 % more
-        // instructions for the AVX passes).
-        warm_start_group::<L>(c, 0, bodies, rolling);
-        if L::GROUPS == 2 {
-            warm_start_group::<L>(c, 1, bodies, rolling);
+    // Group by group, each written out with its number as a constant (a
+    // loop over the groups kept values on the stack: 9 % more instructions
+    // for the AVX passes); a loop with the extras and one without (no test
+    // per record).
+    match rare {
+        Some(extras) => {
+            for (c, e) in constraints.iter_mut().zip(extras.iter()) {
+                warm_start_group::<L>(c, Some(e), 0, bodies);
+                if L::GROUPS == 2 {
+                    warm_start_group::<L>(c, Some(e), 1, bodies);
+                }
+            }
+        }
+        None => {
+            for c in constraints.iter_mut() {
+                warm_start_group::<L>(c, None, 0, bodies);
+                if L::GROUPS == 2 {
+                    warm_start_group::<L>(c, None, 1, bodies);
+                }
+            }
         }
     }
 }
 
-/// [`warm_start_with`] on group `g` of record `c`.
+/// [`warm_start_with`] on group `g` of record `c` (`e`: its extra, when
+/// the step has rare fields).
 #[inline(always)]
-fn warm_start_group<L: Lanes>(c: &mut WideConstraint, g: usize, bodies: Bodies<'_>, rolling: bool) {
-    let (mut a, mut b) = (gather::<L>(bodies, &c.a, g), gather::<L>(bodies, &c.b, g));
-    let m = Masses::of(c, g);
+fn warm_start_group<L: Lanes>(
+    c: &mut WideConstraint,
+    e: Option<&WideExtra>,
+    g: usize,
+    bodies: PassBodies<'_>,
+) {
+    let (mut a, mut b) = (
+        gather::<L>(bodies.rows, &c.a, g),
+        gather::<L>(bodies.rows, &c.b, g),
+    );
+    let m = Masses::of(bodies.masses, c, g);
     let (nx, ny) = (L::load(&c.normal_x, g), L::load(&c.normal_y, g));
     let (tx, ty) = (ny, -nx);
     for p in &mut c.points {
@@ -421,109 +499,168 @@ fn warm_start_group<L: Lanes>(c: &mut WideConstraint, g: usize, bodies: Bodies<'
             .store(&mut p.total_normal_impulse, g);
         apply(&m, (&mut a, &mut b), &Anchors::of(p, g), (px, py));
     }
-    if rolling {
-        let impulse = L::load(&c.rolling_impulse, g);
+    if let Some(e) = e {
+        let impulse = L::load(&e.rolling_impulse, g);
         if !L::all(impulse.eq(L::splat(0.0))) {
             a.w -= m.ia * impulse;
             b.w += m.ib * impulse;
         }
     }
-    scatter(bodies, &c.a, g, &a);
-    scatter(bodies, &c.b, g, &b);
+    scatter(bodies.rows, &c.a, g, &a);
+    scatter(bodies.rows, &c.b, g, &b);
 }
 
-/// The solve pass, with the soft bias (see [`super::contact_solver::solve`]).
+/// The solve pass, with the soft bias (see [`super::contact_solver::solve`]);
+/// `softness`: the step's two (see [`StepSoftness`]).
 #[inline(never)]
-pub(crate) fn solve(constraints: &mut [WideConstraint], bodies: &mut [SolverBody], inv_h: f64) {
-    solve_shared(constraints, Bodies::new(bodies), inv_h);
+pub(crate) fn solve(
+    constraints: &mut [WideConstraint],
+    bodies: &mut [SolverBody],
+    masses: BodyMasses<'_>,
+    inv_h: f64,
+    softness: &StepSoftness,
+) {
+    solve_shared(constraints, Bodies::new(bodies), masses, inv_h, softness);
 }
 
 /// [`solve`] on shared records (see [`warm_start_shared`]).
 #[inline(never)]
-pub(crate) fn solve_shared(constraints: &mut [WideConstraint], bodies: Bodies<'_>, inv_h: f64) {
-    dispatch!(solve_with, solve_avx512, solve_avx, (constraints: &mut [WideConstraint], bodies: Bodies<'_>, inv_h: f64));
+pub(crate) fn solve_shared(
+    constraints: &mut [WideConstraint],
+    bodies: Bodies<'_>,
+    masses: BodyMasses<'_>,
+    inv_h: f64,
+    softness: &StepSoftness,
+) {
+    let bodies = PassBodies {
+        rows: bodies,
+        masses,
+    };
+    dispatch!(solve_with, solve_avx512, solve_avx, (constraints: &mut [WideConstraint], bodies: PassBodies<'_>, inv_h: f64, softness: &StepSoftness));
 }
 
 #[inline(always)]
-fn solve_with<L: Lanes>(constraints: &mut [WideConstraint], bodies: Bodies<'_>, inv_h: f64) {
-    pass::<L, true>(constraints, bodies, inv_h, false);
+fn solve_with<L: Lanes>(
+    constraints: &mut [WideConstraint],
+    bodies: PassBodies<'_>,
+    inv_h: f64,
+    softness: &StepSoftness,
+) {
+    // Per softness: the bias rate times the mass scale (the product the
+    // scalar solver forms), the mass scale and the impulse scale.
+    let [soft, hard] = softness.map(|s| {
+        (
+            L::splat(s.mass_scale * s.bias_rate),
+            L::splat(s.mass_scale),
+            L::splat(s.impulse_scale),
+        )
+    });
+    let bias = Bias::Soft { soft, hard };
+    for c in constraints.iter_mut() {
+        pass_group::<L>(c, None, 0, bodies, (L::splat(inv_h), bias));
+        if L::GROUPS == 2 {
+            pass_group::<L>(c, None, 1, bodies, (L::splat(inv_h), bias));
+        }
+    }
 }
 
-/// The relax pass: without bias, with friction (and rolling resistance
-/// when `rolling`, see [`warm_start`]).
+/// The relax pass: without bias, with friction (and tangent speeds and
+/// rolling resistance when `rare` is given, see [`warm_start`]).
 #[inline(never)]
 pub(crate) fn relax(
     constraints: &mut [WideConstraint],
+    rare: Option<&mut [WideExtra]>,
     bodies: &mut [SolverBody],
+    masses: BodyMasses<'_>,
     inv_h: f64,
-    rolling: bool,
 ) {
-    relax_shared(constraints, Bodies::new(bodies), inv_h, rolling);
+    relax_shared(constraints, rare, Bodies::new(bodies), masses, inv_h);
 }
 
 /// [`relax`] on shared records (see [`warm_start_shared`]).
 #[inline(never)]
 pub(crate) fn relax_shared(
     constraints: &mut [WideConstraint],
+    rare: Option<&mut [WideExtra]>,
     bodies: Bodies<'_>,
+    masses: BodyMasses<'_>,
     inv_h: f64,
-    rolling: bool,
 ) {
-    dispatch!(relax_with, relax_avx512, relax_avx, (constraints: &mut [WideConstraint], bodies: Bodies<'_>, inv_h: f64, rolling: bool));
+    let bodies = PassBodies {
+        rows: bodies,
+        masses,
+    };
+    dispatch!(relax_with, relax_avx512, relax_avx, (constraints: &mut [WideConstraint], rare: Option<&mut [WideExtra]>, bodies: PassBodies<'_>, inv_h: f64));
 }
 
 #[inline(always)]
 fn relax_with<L: Lanes>(
     constraints: &mut [WideConstraint],
-    bodies: Bodies<'_>,
+    rare: Option<&mut [WideExtra]>,
+    bodies: PassBodies<'_>,
     inv_h: f64,
-    rolling: bool,
-) {
-    pass::<L, false>(constraints, bodies, inv_h, rolling);
-}
-
-/// One pass of sequential impulses over the records, a group of lanes at
-/// a time.
-#[inline(always)]
-fn pass<L: Lanes, const BIAS: bool>(
-    constraints: &mut [WideConstraint],
-    bodies: Bodies<'_>,
-    inv_h: f64,
-    rolling: bool,
 ) {
     let inv_h = L::splat(inv_h);
-    for c in constraints.iter_mut() {
-        pass_group::<L, BIAS>(c, 0, bodies, (inv_h, rolling));
-        if L::GROUPS == 2 {
-            pass_group::<L, BIAS>(c, 1, bodies, (inv_h, rolling));
+    match rare {
+        Some(extras) => {
+            for (c, e) in constraints.iter_mut().zip(extras.iter_mut()) {
+                pass_group::<L>(c, Some(&mut *e), 0, bodies, (inv_h, Bias::None));
+                if L::GROUPS == 2 {
+                    pass_group::<L>(c, Some(e), 1, bodies, (inv_h, Bias::None));
+                }
+            }
+        }
+        None => {
+            for c in constraints.iter_mut() {
+                pass_group::<L>(c, None, 0, bodies, (inv_h, Bias::None));
+                if L::GROUPS == 2 {
+                    pass_group::<L>(c, None, 1, bodies, (inv_h, Bias::None));
+                }
+            }
         }
     }
 }
 
-/// [`pass`] on group `g` of record `c`.
+/// The bias of a pass: the solve's soft bias, from the step's two
+/// softnesses as `(mass scale × bias rate, mass scale, impulse scale)`
+/// (`soft` where a lane's [`STATIC_SOFT`] is clear, `hard` where set), or
+/// none (relax).
+#[derive(Clone, Copy)]
+enum Bias<L> {
+    Soft { soft: (L, L, L), hard: (L, L, L) },
+    None,
+}
+
+/// One pass of sequential impulses on group `g` of record `c` (`e`: its
+/// extra, given to relax when the step has rare fields).
 #[inline(always)]
-fn pass_group<L: Lanes, const BIAS: bool>(
+fn pass_group<L: Lanes>(
     c: &mut WideConstraint,
+    e: Option<&mut WideExtra>,
     g: usize,
-    bodies: Bodies<'_>,
-    (inv_h, rolling): (L, bool),
+    bodies: PassBodies<'_>,
+    (inv_h, bias): (L, Bias<L>),
 ) {
     let (zero, one) = (L::splat(0.0), L::splat(1.0));
-    let (mut a, mut b) = (gather::<L>(bodies, &c.a, g), gather::<L>(bodies, &c.b, g));
-    let separation = separations::<L>(bodies, (c, g), (&a, &b));
-    let m = Masses::of(c, g);
+    let (mut a, mut b) = (
+        gather::<L>(bodies.rows, &c.a, g),
+        gather::<L>(bodies.rows, &c.b, g),
+    );
+    let separation = separations::<L>(bodies.rows, (c, g), (&a, &b));
+    let m = Masses::of(bodies.masses, c, g);
     let (nx, ny) = (L::load(&c.normal_x, g), L::load(&c.normal_y, g));
-    let (bias_rate, mass_scale, impulse_scale, min_bias) = if BIAS {
-        let mass_scale = L::load(&c.mass_scale, g);
-        (
-            mass_scale * L::load(&c.bias_rate, g),
-            mass_scale,
-            L::load(&c.impulse_scale, g),
-            L::load(&c.min_bias, g),
-        )
-    } else {
+    let (bias_rate, mass_scale, impulse_scale, min_bias) = match bias {
+        Bias::Soft { soft, hard } => {
+            let hard_lanes = L::flagged(&c.a, g, STATIC_SOFT);
+            (
+                L::select(hard_lanes, hard.0, soft.0),
+                L::select(hard_lanes, hard.1, soft.1),
+                L::select(hard_lanes, hard.2, soft.2),
+                L::load(&c.min_bias, g),
+            )
+        }
         // Relax: no bias (0 · s is ±0, and max(±0, −0) is ±0 as before).
-        (zero, one, zero, L::splat(-0.0))
+        Bias::None => (zero, one, zero, L::splat(-0.0)),
     };
     for (p, s) in c.points.iter_mut().zip(separation) {
         let speculative = s.gt(zero);
@@ -542,14 +679,18 @@ fn pass_group<L: Lanes, const BIAS: bool>(
         (L::load(&p.total_normal_impulse, g) + impulse).store(&mut p.total_normal_impulse, g);
         apply(&m, (&mut a, &mut b), &r, (impulse * nx, impulse * ny));
     }
-    if !BIAS {
+    if let Bias::None = bias {
         let friction = L::load(&c.friction, g);
-        let tangent_speed = L::load(&c.tangent_speed, g);
         let (tx, ty) = (ny, -nx);
         for p in &mut c.points {
             let r = Anchors::of(p, g);
             let (dvx, dvy) = r.relative_velocity((&a, &b));
-            let vt = dvx * tx + dvy * ty - tangent_speed;
+            // Without rare fields every tangent speed is +0: nothing to
+            // subtract (see `is_rare`).
+            let vt = match &e {
+                Some(e) => dvx * tx + dvy * ty - L::load(&e.tangent_speed, g),
+                None => dvx * tx + dvy * ty,
+            };
             let max_friction = friction * L::load(&p.normal_impulse, g);
             let tangent_impulse = L::load(&p.tangent_impulse, g);
             let accumulated = (tangent_impulse - L::load(&p.tangent_mass, g) * vt)
@@ -558,21 +699,24 @@ fn pass_group<L: Lanes, const BIAS: bool>(
             accumulated.store(&mut p.tangent_impulse, g);
             apply(&m, (&mut a, &mut b), &r, (impulse * tx, impulse * ty));
         }
-        let rolling_resistance = L::load(&c.rolling_resistance, g);
-        if rolling && !L::all(rolling_resistance.eq(zero)) {
-            let normal =
-                L::load(&c.points[0].normal_impulse, g) + L::load(&c.points[1].normal_impulse, g);
-            let max = rolling_resistance * normal;
-            let old = L::load(&c.rolling_impulse, g);
-            let accumulated = (old - L::load(&c.rolling_mass, g) * (b.w - a.w)).clamp(-max, max);
-            accumulated.store(&mut c.rolling_impulse, g);
-            let delta = accumulated - old;
-            a.w -= m.ia * delta;
-            b.w += m.ib * delta;
+        if let Some(e) = e {
+            let rolling_resistance = L::load(&e.rolling_resistance, g);
+            if !L::all(rolling_resistance.eq(zero)) {
+                let normal = L::load(&c.points[0].normal_impulse, g)
+                    + L::load(&c.points[1].normal_impulse, g);
+                let max = rolling_resistance * normal;
+                let old = L::load(&e.rolling_impulse, g);
+                let accumulated =
+                    (old - L::load(&e.rolling_mass, g) * (b.w - a.w)).clamp(-max, max);
+                accumulated.store(&mut e.rolling_impulse, g);
+                let delta = accumulated - old;
+                a.w -= m.ia * delta;
+                b.w += m.ib * delta;
+            }
         }
     }
-    scatter(bodies, &c.a, g, &a);
-    scatter(bodies, &c.b, g, &b);
+    scatter(bodies.rows, &c.a, g, &a);
+    scatter(bodies.rows, &c.b, g, &b);
 }
 
 /// The restitution pass (see [`super::contact_solver::restitution`]).
@@ -581,9 +725,10 @@ pub(crate) fn restitution(
     constraints: &mut [WideConstraint],
     extras: &[WideExtra],
     bodies: &mut [SolverBody],
+    masses: BodyMasses<'_>,
     threshold: f64,
 ) {
-    restitution_shared(constraints, extras, Bodies::new(bodies), threshold);
+    restitution_shared(constraints, extras, Bodies::new(bodies), masses, threshold);
 }
 
 /// [`restitution`] on shared records (see [`warm_start_shared`]).
@@ -592,16 +737,21 @@ pub(crate) fn restitution_shared(
     constraints: &mut [WideConstraint],
     extras: &[WideExtra],
     bodies: Bodies<'_>,
+    masses: BodyMasses<'_>,
     threshold: f64,
 ) {
-    dispatch!(restitution_with, restitution_avx512, restitution_avx, (constraints: &mut [WideConstraint], extras: &[WideExtra], bodies: Bodies<'_>, threshold: f64));
+    let bodies = PassBodies {
+        rows: bodies,
+        masses,
+    };
+    dispatch!(restitution_with, restitution_avx512, restitution_avx, (constraints: &mut [WideConstraint], extras: &[WideExtra], bodies: PassBodies<'_>, threshold: f64));
 }
 
 #[inline(always)]
 fn restitution_with<L: Lanes>(
     constraints: &mut [WideConstraint],
     extras: &[WideExtra],
-    bodies: Bodies<'_>,
+    bodies: PassBodies<'_>,
     threshold: f64,
 ) {
     let min_approach = L::splat(-threshold);
@@ -618,7 +768,7 @@ fn restitution_with<L: Lanes>(
 fn restitution_group<L: Lanes>(
     (c, e): (&mut WideConstraint, &WideExtra),
     g: usize,
-    bodies: Bodies<'_>,
+    bodies: PassBodies<'_>,
     min_approach: L,
 ) {
     let zero = L::splat(0.0);
@@ -626,8 +776,11 @@ fn restitution_group<L: Lanes>(
     if L::all(restitution.eq(zero)) {
         return;
     }
-    let (mut a, mut b) = (gather::<L>(bodies, &c.a, g), gather::<L>(bodies, &c.b, g));
-    let m = Masses::of(c, g);
+    let (mut a, mut b) = (
+        gather::<L>(bodies.rows, &c.a, g),
+        gather::<L>(bodies.rows, &c.b, g),
+    );
+    let m = Masses::of(bodies.masses, c, g);
     let (nx, ny) = (L::load(&c.normal_x, g), L::load(&c.normal_y, g));
     for (p, relative) in c.points.iter_mut().zip(&e.normal_velocity) {
         let relative = L::load(relative, g);
@@ -649,8 +802,8 @@ fn restitution_group<L: Lanes>(
         L::select(skip, total, total + impulse).store(&mut p.total_normal_impulse, g);
         apply(&m, (&mut a, &mut b), &r, (impulse * nx, impulse * ny));
     }
-    scatter(bodies, &c.a, g, &a);
-    scatter(bodies, &c.b, g, &b);
+    scatter(bodies.rows, &c.a, g, &a);
+    scatter(bodies.rows, &c.b, g, &b);
 }
 
 /// Copies the impulses of lane `l` of `(w, e)` back into its contact.
@@ -664,7 +817,7 @@ pub(crate) fn store_lane((w, e): (&WideConstraint, &WideExtra), l: usize, contac
         p.total_normal_impulse = q.total_normal_impulse.lane(l);
         p.normal_velocity = e.normal_velocity[k].lane(l);
     }
-    contact.rolling_impulse = w.rolling_impulse.lane(l);
+    contact.rolling_impulse = e.rolling_impulse.lane(l);
 }
 
 #[cfg(test)]
@@ -685,8 +838,15 @@ mod tests {
     /// between neighbours and one with the ground per body, with varied
     /// anchors, separations (overlapping and speculative), impulses and
     /// softness.
-    fn scene() -> (Vec<SolverBody>, Vec<ContactConstraint>) {
+    fn scene() -> (Vec<SolverBody>, Vec<[f64; 2]>, Vec<ContactConstraint>) {
         let mut n = Numbers(7);
+        // Each body's inverse mass and inertia (the static dummy's zero).
+        let masses: Vec<[f64; 2]> = (0..13)
+            .map(|k| match k {
+                0 => [0.0, 0.0],
+                k => [0.5 + 0.05 * k as f64, 3.0 + 0.3 * k as f64],
+            })
+            .collect();
         let mut bodies = vec![SolverBody::AT_REST];
         for _ in 0..12 {
             let dtheta = 0.01 * n.next();
@@ -698,7 +858,7 @@ mod tests {
                 dq: [dtheta.cos(), dtheta.sin()],
             });
         }
-        let soft = Softness::new(30.0, 10.0, 1.0 / 240.0);
+        let [soft, static_soft] = step_softness();
         let mut constraints = Vec::new();
         let pairs = (1..12).map(|i| (i, i + 1)).chain((1..13).map(|i| (0, i)));
         for (contact, (a, b)) in pairs.enumerate() {
@@ -729,15 +889,11 @@ mod tests {
                 normal,
                 friction: 0.6,
                 restitution: if contact % 3 == 0 { 0.5 } else { 0.0 },
-                inv_mass_a: if static_a { 0.0 } else { 1.0 },
-                inv_inertia_a: if static_a { 0.0 } else { 6.0 },
-                inv_mass_b: 0.5,
-                inv_inertia_b: 3.0,
-                softness: if static_a {
-                    Softness::new(60.0, 10.0, 1.0 / 240.0)
-                } else {
-                    soft
-                },
+                inv_mass_a: masses[a][0],
+                inv_inertia_a: masses[a][1],
+                inv_mass_b: masses[b][0],
+                inv_inertia_b: masses[b][1],
+                softness: if static_a { static_soft } else { soft },
                 // A shared push-out bound on some lanes (prepare's rule for
                 // a body with several deep contacts).
                 push_out: if contact % 4 == 1 { 0.75 } else { 3.0 },
@@ -745,18 +901,46 @@ mod tests {
                 // (with a warm-start impulse) on others.
                 tangent_speed: if contact % 5 == 0 { 0.3 } else { 0.0 },
                 rolling_resistance: if contact % 3 == 1 { 0.05 } else { 0.0 },
-                rolling_mass: 1.0 / (if static_a { 0.0 } else { 6.0 } + 3.0),
+                rolling_mass: 1.0 / (masses[a][1] + masses[b][1]),
                 rolling_impulse: if contact % 3 == 1 { 0.01 } else { 0.0 },
                 count: 1 + contact % 2,
                 points,
             });
         }
-        (bodies, constraints)
+        (bodies, masses, constraints)
+    }
+
+    /// The scene's two softnesses: between two moving bodies, and with
+    /// the static dummy.
+    fn step_softness() -> StepSoftness {
+        [
+            Softness::new(30.0, 10.0, 1.0 / 240.0),
+            Softness::new(60.0, 10.0, 1.0 / 240.0),
+        ]
     }
 
     #[test]
     fn a_colour_solved_in_lanes_gives_the_bits_of_the_scalar_solver() {
-        let (bodies, constraints) = scene();
+        // With tangent speeds and rolling resistance (the passes read the
+        // rare fields), and without (they do not).
+        for rare in [true, false] {
+            lanes_give_the_scalar_bits(rare);
+        }
+    }
+
+    /// The scene solved by the scalar solver and by each lane type; `rare`:
+    /// whether some constraints keep their tangent speeds and rolling
+    /// resistance (else those are zeroed and the passes run without the
+    /// rare fields).
+    fn lanes_give_the_scalar_bits(rare: bool) {
+        let (bodies, masses, mut constraints) = scene();
+        if !rare {
+            for c in &mut constraints {
+                (c.tangent_speed, c.rolling_resistance, c.rolling_impulse) = (0.0, 0.0, 0.0);
+            }
+        }
+        assert_eq!(constraints.iter().any(is_rare), rare);
+        let softness = step_softness();
         let mut colouring = Colouring::default();
         colouring.clear(13);
         for c in &constraints {
@@ -772,7 +956,7 @@ mod tests {
             let Slot::Lane { record, lane } = colouring.slot(i) else {
                 unreachable!("no overflow")
             };
-            set_lane((&mut wide[record], &mut extra[record]), lane, c);
+            set_lane((&mut wide[record], &mut extra[record]), lane, c, &softness);
             order[i] = (record, lane);
         }
         for (record, lane) in colouring.padding() {
@@ -808,42 +992,57 @@ mod tests {
         // runs): same operations in the same order on the same data as the
         // scalar solver, so equal bits.
         fn passes<L: Lanes>(
-            (wide, extra): (&mut [WideConstraint], &[WideExtra]),
-            bodies: &mut [SolverBody],
-            inv_h: f64,
+            (wide, extra): (&mut [WideConstraint], &mut [WideExtra]),
+            (bodies, masses): (&mut [SolverBody], BodyMasses<'_>),
+            (inv_h, softness, rare): (f64, &StepSoftness, bool),
         ) {
-            for _ in 0..3 {
-                warm_start_with::<L>(wide, Bodies::new(bodies), true);
-                solve_with::<L>(wide, Bodies::new(bodies), inv_h);
-                relax_with::<L>(wide, Bodies::new(bodies), inv_h, true);
+            fn shared<'a>(bodies: &'a mut [SolverBody], masses: BodyMasses<'a>) -> PassBodies<'a> {
+                PassBodies {
+                    rows: Bodies::new(bodies),
+                    masses,
+                }
             }
-            restitution_with::<L>(wide, extra, Bodies::new(bodies), 1.0);
+            for _ in 0..3 {
+                warm_start_with::<L>(wide, rare.then_some(&mut *extra), shared(bodies, masses));
+                solve_with::<L>(wide, shared(bodies, masses), inv_h, softness);
+                relax_with::<L>(
+                    wide,
+                    rare.then_some(&mut *extra),
+                    shared(bodies, masses),
+                    inv_h,
+                );
+            }
+            restitution_with::<L>(wide, extra, shared(bodies, masses), 1.0);
         }
         for path in ["SSE2", "AVX", "AVX-512", "dispatched"] {
             if !lane_type_runs(path) {
                 continue;
             }
-            let (mut wide, mut wide_bodies) = (wide.clone(), bodies.clone());
-            let records = (&mut wide[..], &extra[..]);
+            let (mut wide, mut extra, mut wide_bodies) =
+                (wide.clone(), extra.clone(), bodies.clone());
+            let records = (&mut wide[..], &mut extra[..]);
+            let settings = (inv_h, &softness, rare);
             match path {
-                "SSE2" => passes::<F64x4>(records, &mut wide_bodies, inv_h),
-                "AVX" => passes::<Avx4>(records, &mut wide_bodies, inv_h),
-                "AVX-512" => passes::<Avx8>(records, &mut wide_bodies, inv_h),
+                "SSE2" => passes::<F64x4>(records, (&mut wide_bodies, &masses), settings),
+                "AVX" => passes::<Avx4>(records, (&mut wide_bodies, &masses), settings),
+                "AVX-512" => passes::<Avx8>(records, (&mut wide_bodies, &masses), settings),
                 _ => {
+                    let (wide, extra) = records;
                     for _ in 0..3 {
-                        warm_start(records.0, &mut wide_bodies, true);
-                        solve(records.0, &mut wide_bodies, inv_h);
-                        relax(records.0, &mut wide_bodies, inv_h, true);
+                        let bodies = &mut wide_bodies;
+                        warm_start(wide, rare.then_some(&mut *extra), bodies, &masses);
+                        solve(wide, bodies, &masses, inv_h, &softness);
+                        relax(wide, rare.then_some(&mut *extra), bodies, &masses, inv_h);
                     }
-                    restitution(records.0, records.1, &mut wide_bodies, 1.0);
+                    restitution(wide, extra, &mut wide_bodies, &masses, 1.0);
                 }
             }
-            assert_eq!(scalar_bodies, wide_bodies, "{path}");
+            assert_eq!(scalar_bodies, wide_bodies, "{path}, rare: {rare}");
             let mut contacts = set.contacts.clone();
             for (i, &(record, lane)) in order.iter().enumerate() {
                 store_lane((&wide[record], &extra[record]), lane, &mut contacts[i]);
             }
-            assert_eq!(reference, contacts, "{path}");
+            assert_eq!(reference, contacts, "{path}, rare: {rare}");
         }
         // Restitution acted somewhere (the test covers it).
         assert!(

@@ -28,7 +28,9 @@ use super::revolute::RevoluteRows;
 use super::wrap_angle;
 use crate::soft_step::bodies::SolverBody;
 use crate::soft_step::lanes::{F64x8, LANES, Lanes, dispatch};
-use crate::soft_step::wide_solver::{Bodies, FIXED, WideBody, gather, gather_motion, scatter};
+use crate::soft_step::wide_solver::{
+    Bodies, FIXED, INDEX, WideBody, gather, gather_motion, scatter,
+};
 
 /// Four revolute joints' point rows: what every pass reads.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -116,8 +118,8 @@ pub(crate) fn set_lane(
     let index = |i: usize| {
         u32::try_from(i)
             .ok()
-            .filter(|&i| i < FIXED)
-            .expect("fewer than 2³¹ bodies")
+            .filter(|&i| i <= INDEX)
+            .expect("fewer than 2³⁰ bodies")
     };
     // A body with zero inverse mass and inertia (the world, the static
     // dummy, a kinematic body) is read but never written back: the lanes'
