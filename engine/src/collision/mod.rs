@@ -52,6 +52,8 @@ pub mod manifold;
 pub mod narrow_phase;
 pub mod polygon_circle;
 pub mod polygon_polygon;
+pub(crate) mod polygon_polygon_local;
+pub(crate) mod segment_distance;
 pub mod time_of_impact;
 
 #[cfg(test)]

@@ -29,11 +29,17 @@
 //! separation wins, A on an exact tie, so the depth and normal are the
 //! exact ones (a world may add frame-to-frame persistence on top).
 //!
-//! Computations run in A's frame (B's vertices mapped by `pose_a⁻¹ pose_b`)
-//! and results are mapped back to the world frame.
+//! The geometry (axes, faces, clipping) is the one both models share,
+//! `polygon_polygon_local.rs`, computed in A's frame (B mapped by
+//! `pose_a⁻¹ pose_b`, no shift); this file applies
+//! the exact model's policy to it: the exact SAT depth and normal, the
+//! clipped points within the margin (the deepest incident vertex when none
+//! is), mapped back to the world frame.
 
 use super::manifold::{Manifold, ManifoldPoint, Proximity};
 use super::polygon_circle::{closest_on_segment, edge_normal};
+pub(crate) use super::polygon_polygon_local::IncidentPoint;
+use super::polygon_polygon_local::{Faces, Placed, RoundPolygon, Scratch, separating_axes};
 use crate::shape::ConvexPolygon;
 use nalgebra::{Isometry2, Point2, Vector2};
 
@@ -48,137 +54,68 @@ pub struct SeparatingAxis {
     pub normal: Vector2<f64>,
 }
 
-/// Vertices and outward unit normals of one polygon in A's frame.
-struct Placed {
-    vertices: Vec<Vector2<f64>>,
-    normals: Vec<Vector2<f64>>,
+/// The outward unit edge normals of a polygon, its frame.
+fn normals_of(polygon: &ConvexPolygon) -> Vec<Vector2<f64>> {
+    let v = polygon.vertices();
+    (0..v.len())
+        .map(|i| edge_normal(v[i], v[(i + 1) % v.len()]))
+        .collect()
 }
 
-impl Placed {
-    fn of(polygon: &ConvexPolygon, to_frame: &Isometry2<f64>) -> Self {
-        let local = polygon.vertices();
-        let n = local.len();
+/// The buffers of one polygon pair: both polygons' normals (their frames)
+/// and the shared geometry's scratch.
+struct Pair {
+    a_normals: Vec<Vector2<f64>>,
+    b_normals: Vec<Vector2<f64>>,
+    scratch: Scratch,
+}
+
+impl Pair {
+    fn of(a: &ConvexPolygon, b: &ConvexPolygon) -> Self {
         Self {
-            vertices: local
-                .iter()
-                .map(|v| to_frame.transform_point(&Point2::from(*v)).coords)
-                .collect(),
-            normals: (0..n)
-                .map(|i| to_frame.rotation * edge_normal(local[i], local[(i + 1) % n]))
-                .collect(),
+            a_normals: normals_of(a),
+            b_normals: normals_of(b),
+            scratch: Scratch::default(),
         }
     }
 
-    /// Index of the vertex deepest along `-direction` (smallest `direction · v`).
-    fn support_min(&self, direction: &Vector2<f64>) -> usize {
-        let mut best = 0;
-        for (k, v) in self.vertices.iter().enumerate() {
-            if direction.dot(v) < direction.dot(&self.vertices[best]) {
-                best = k;
-            }
-        }
-        best
-    }
-}
-
-/// `max_i min_j n_i · (w_j − v_i)` over the edges i of `reference` and the
-/// vertices j of `incident`, with its edge. Stops early once an axis
-/// separates by more than `stop_above` (seed §7.2: the test "is interrupted
-/// as soon as one axis shows no overlap").
-fn max_separation(reference: &Placed, incident: &Placed, stop_above: f64) -> (usize, f64) {
-    let (mut best_edge, mut best) = (0, f64::NEG_INFINITY);
-    for (i, (v, n)) in reference
-        .vertices
-        .iter()
-        .zip(&reference.normals)
-        .enumerate()
-    {
-        let s = incident
-            .vertices
-            .iter()
-            .map(|w| n.dot(&(w - v)))
-            .fold(f64::INFINITY, f64::min);
-        if s > best {
-            (best_edge, best) = (i, s);
-            if s > stop_above {
-                break;
-            }
-        }
-    }
-    (best_edge, best)
-}
-
-/// The SAT result in A's frame: which polygon holds the reference face.
-struct Sat {
-    separation: f64,
-    edge: usize,
-    reference_is_a: bool,
-}
-
-fn sat(a: &Placed, b: &Placed, stop_above: f64) -> Sat {
-    let (edge_a, sep_a) = max_separation(a, b, stop_above);
-    if sep_a > stop_above {
-        return Sat {
-            separation: sep_a,
-            edge: edge_a,
-            reference_is_a: true,
+    /// Both polygons in A's frame (unshifted: the exact model's distances
+    /// and times of impact keep the bits they had before the geometry was
+    /// shared) with their best axes, `None` when an axis separates them by
+    /// more than `beyond` (m).
+    fn place<'s>(
+        &'s mut self,
+        a: &'s ConvexPolygon,
+        pose_a: &Isometry2<f64>,
+        b: &ConvexPolygon,
+        pose_b: &Isometry2<f64>,
+        beyond: f64,
+    ) -> Option<Placed<'s>> {
+        let ra = RoundPolygon {
+            vertices: a.vertices(),
+            normals: &self.a_normals,
+            radius: 0.0,
         };
+        let rb = RoundPolygon {
+            vertices: b.vertices(),
+            normals: &self.b_normals,
+            radius: 0.0,
+        };
+        let xf = pose_a.inverse() * pose_b;
+        separating_axes(&ra, &rb, &xf, Vector2::zeros(), beyond, &mut self.scratch)
     }
-    let (edge_b, sep_b) = max_separation(b, a, stop_above);
-    if sep_b > sep_a {
-        Sat {
-            separation: sep_b,
-            edge: edge_b,
-            reference_is_a: false,
-        }
+}
+
+/// The reference normal of `faces` in A's frame, and the normal from A to
+/// B.
+fn reference_normal(placed: &Placed, faces: Faces) -> (Vector2<f64>, Vector2<f64>) {
+    if faces.flip {
+        let n = placed.b_normals[faces.edge_b];
+        (n, -n)
     } else {
-        Sat {
-            separation: sep_a,
-            edge: edge_a,
-            reference_is_a: true,
-        }
+        let n = placed.a_normals[faces.edge_a];
+        (n, n)
     }
-}
-
-/// Both polygons in A's frame.
-fn place(
-    a: &ConvexPolygon,
-    pose_a: &Isometry2<f64>,
-    b: &ConvexPolygon,
-    pose_b: &Isometry2<f64>,
-) -> (Placed, Placed) {
-    (
-        Placed::of(a, &Isometry2::identity()),
-        Placed::of(b, &(pose_a.inverse() * pose_b)),
-    )
-}
-
-/// The part of segment `points` on the side `normal · p ≤ offset`
-/// (Box2D-lite's `ClipSegmentToLine`), each point with where it comes from
-/// (`cut` for the intersection with the line). Returns the kept points (0
-/// to 2).
-fn clip(
-    points: &[(Vector2<f64>, IncidentPoint)],
-    normal: Vector2<f64>,
-    offset: f64,
-    cut: IncidentPoint,
-) -> Vec<(Vector2<f64>, IncidentPoint)> {
-    let mut out = Vec::with_capacity(2);
-    if points.len() < 2 {
-        return out;
-    }
-    let (p0, p1) = (points[0].0, points[1].0);
-    let (d0, d1) = (normal.dot(&p0) - offset, normal.dot(&p1) - offset);
-    if d0 <= 0.0 {
-        out.push(points[0]);
-    }
-    if d1 <= 0.0 {
-        out.push(points[1]);
-    }
-    if d0 * d1 < 0.0 {
-        out.push((p0 + (d0 / (d0 - d1)) * (p1 - p0), cut));
-    }
-    out
 }
 
 /// Signed separation of two convex polygons along their best SAT axis:
@@ -191,16 +128,18 @@ pub fn separation_polygon_polygon(
     b: &ConvexPolygon,
     pose_b: &Isometry2<f64>,
 ) -> SeparatingAxis {
-    let (pa, pb) = place(a, pose_a, b, pose_b);
-    let s = sat(&pa, &pb, f64::INFINITY);
-    let local = if s.reference_is_a {
-        pa.normals[s.edge]
-    } else {
-        -pb.normals[s.edge]
+    let mut pair = Pair::of(a, b);
+    let Some(placed) = pair.place(a, pose_a, b, pose_b, f64::INFINITY) else {
+        // Only a non-finite pose leaves no axis: no separation to report.
+        return SeparatingAxis {
+            separation: f64::NAN,
+            normal: Vector2::new(f64::NAN, f64::NAN),
+        };
     };
+    let (_, normal) = reference_normal(&placed, placed.faces());
     SeparatingAxis {
-        separation: s.separation,
-        normal: pose_a.rotation * local,
+        separation: placed.core_separation(),
+        normal: pose_a.rotation * normal,
     }
 }
 
@@ -217,17 +156,6 @@ pub fn collide_polygon_polygon_with_margin(
     margin: f64,
 ) -> Option<Manifold> {
     clip_polygon_polygon(a, pose_a, b, pose_b, margin).map(|(m, _)| m)
-}
-
-/// Where a point of a polygon–polygon manifold comes from on the incident
-/// polygon.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum IncidentPoint {
-    /// Vertex i of the incident polygon.
-    Vertex(usize),
-    /// The incident edge cut by the side plane through the reference face's
-    /// first (0) or second (1) vertex.
-    Clip(u8),
 }
 
 /// The features behind a polygon–polygon manifold: the reference face and
@@ -273,24 +201,25 @@ pub(crate) fn equally_deep_faces(
     pose_b: &Isometry2<f64>,
     tolerance: f64,
 ) -> Vec<(Face, Vector2<f64>)> {
-    let (pa, pb) = place(a, pose_a, b, pose_b);
-    let best = sat(&pa, &pb, f64::INFINITY);
-    let mut faces = vec![(
-        (best.reference_is_a, best.edge),
-        if best.reference_is_a {
-            pa.normals[best.edge]
-        } else {
-            -pb.normals[best.edge]
-        },
-    )];
-    for (reference_is_a, reference, incident) in [(true, &pa, &pb), (false, &pb, &pa)] {
-        for edge in 0..reference.vertices.len() {
-            if (reference_is_a, edge) == (best.reference_is_a, best.edge) {
+    let mut pair = Pair::of(a, b);
+    let Some(placed) = pair.place(a, pose_a, b, pose_b, f64::INFINITY) else {
+        return Vec::new();
+    };
+    let best = placed.faces();
+    let best_separation = placed.core_separation();
+    let face_of = |f: Faces| (!f.flip, if f.flip { f.edge_b } else { f.edge_a });
+    let mut faces = vec![(face_of(best), reference_normal(&placed, best).1)];
+    for (flip, edges) in [
+        (false, placed.a_vertices.len()),
+        (true, placed.b_vertices.len()),
+    ] {
+        for edge in 0..edges {
+            let candidate = placed.faces_on(flip, edge);
+            if face_of(candidate) == face_of(best) {
                 continue;
             }
-            if separation_on(reference, incident, edge) >= best.separation - tolerance {
-                let n = reference.normals[edge];
-                faces.push(((reference_is_a, edge), if reference_is_a { n } else { -n }));
+            if placed.separation_on(candidate) >= best_separation - tolerance {
+                faces.push((face_of(candidate), reference_normal(&placed, candidate).1));
             }
         }
     }
@@ -298,16 +227,6 @@ pub(crate) fn equally_deep_faces(
         .into_iter()
         .map(|(face, n)| (face, pose_a.rotation * n))
         .collect()
-}
-
-/// The separation of `incident` from the half-plane of `reference`'s edge.
-fn separation_on(reference: &Placed, incident: &Placed, edge: usize) -> f64 {
-    let (v, n) = (reference.vertices[edge], reference.normals[edge]);
-    incident
-        .vertices
-        .iter()
-        .map(|w| n.dot(&(w - v)))
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// [`clip_polygon_polygon`] on the reference face `face`, or on the SAT's
@@ -320,98 +239,79 @@ pub(crate) fn clip_polygon_polygon_on(
     margin: f64,
     face: Option<Face>,
 ) -> Option<(Manifold, ClippedFeatures)> {
-    let (pa, pb) = place(a, pose_a, b, pose_b);
-    let s = match face {
-        None => sat(&pa, &pb, margin),
+    let mut pair = Pair::of(a, b);
+    // A NaN separation (non-finite input) reports no contact: the shared
+    // geometry then finds an axis beyond any `beyond`.
+    let beyond = if face.is_none() {
+        margin
+    } else {
+        f64::INFINITY
+    };
+    let placed = pair.place(a, pose_a, b, pose_b, beyond)?;
+    let (faces, separation) = match face {
+        None => (placed.faces(), placed.core_separation()),
         Some((reference_is_a, edge)) => {
-            let (reference, incident) = if reference_is_a {
-                (&pa, &pb)
-            } else {
-                (&pb, &pa)
-            };
-            Sat {
-                separation: separation_on(reference, incident, edge),
-                edge,
-                reference_is_a,
-            }
+            let faces = placed.faces_on(!reference_is_a, edge);
+            (faces, placed.separation_on(faces))
         }
     };
-    // A NaN separation (non-finite input) reports no contact.
-    if s.separation.is_nan() || s.separation > margin {
+    if separation.is_nan() || separation > margin {
         return None;
     }
-    let (reference, incident) = if s.reference_is_a {
-        (&pa, &pb)
-    } else {
-        (&pb, &pa)
-    };
-    let nr = reference.vertices.len();
-    let v1 = reference.vertices[s.edge];
-    let v2 = reference.vertices[(s.edge + 1) % nr];
-    let n = reference.normals[s.edge];
-
-    // Incident edge: the edge of the other polygon whose normal is most
-    // anti-parallel to the reference normal.
-    let ni = incident.vertices.len();
-    let k = (0..ni)
-        .min_by(|&i, &j| {
-            n.dot(&incident.normals[i])
-                .total_cmp(&n.dot(&incident.normals[j]))
-        })
-        .unwrap_or(0);
-    let face = [
-        (incident.vertices[k], IncidentPoint::Vertex(k)),
-        (
-            incident.vertices[(k + 1) % ni],
-            IncidentPoint::Vertex((k + 1) % ni),
-        ),
-    ];
-
-    // Clip to the reference face's side planes: t · p ≥ t · v1 and
-    // t · p ≤ t · v2, with t the face's unit tangent.
-    let t = (v2 - v1).normalize();
-    let clipped = clip(&face, -t, -t.dot(&v1), IncidentPoint::Clip(0));
-    let clipped = clip(&clipped, t, t.dot(&v2), IncidentPoint::Clip(1));
-
-    let to_point = |p: Vector2<f64>| {
-        let gap = n.dot(&(p - v1));
-        ManifoldPoint {
-            point: pose_a
-                .transform_point(&Point2::from(p - 0.5 * gap * n))
-                .coords,
-            depth: -gap,
-        }
-    };
-    let mut kept: Vec<(Vector2<f64>, IncidentPoint)> = Vec::with_capacity(2);
-    if clipped.len() == 2 {
-        kept.extend(
-            clipped
-                .iter()
-                .filter(|(p, _)| n.dot(&(*p - v1)) <= margin)
-                .copied(),
-        );
-    }
+    let clipped = placed.clip(faces);
+    let (n, normal) = reference_normal(&placed, faces);
+    // (point midway, depth, incident point, its origin), A's shifted frame.
+    let mut kept: Vec<(Vector2<f64>, f64, Vector2<f64>, IncidentPoint)> = clipped.points
+        [..clipped.count]
+        .iter()
+        .filter(|p| p.separation <= margin)
+        .map(|p| (p.point, -p.separation, p.incident, p.side))
+        .collect();
     if kept.is_empty() {
-        // Vertex against vertex: the deepest incident vertex, at the SAT
-        // separation itself.
-        let deepest = incident.support_min(&n);
-        kept.push((incident.vertices[deepest], IncidentPoint::Vertex(deepest)));
+        // Vertex against vertex (or the edges do not face each other): the
+        // deepest incident vertex, at the SAT separation itself.
+        let (incident, reference_vertex) = if faces.flip {
+            (placed.a_vertices, placed.b_vertices[faces.edge_b])
+        } else {
+            (placed.b_vertices, placed.a_vertices[faces.edge_a])
+        };
+        let mut deepest = 0;
+        for (k, v) in incident.iter().enumerate() {
+            if n.dot(v) < n.dot(&incident[deepest]) {
+                deepest = k;
+            }
+        }
+        let p = incident[deepest];
+        let gap = n.dot(&(p - reference_vertex));
+        kept.push((p - 0.5 * gap * n, -gap, p, IncidentPoint::Vertex(deepest)));
     }
-    let local_normal = if s.reference_is_a { n } else { -n };
-    let normal = pose_a.rotation * local_normal;
-    let first = kept[0];
-    let last = kept[kept.len() - 1];
-    let features = ClippedFeatures {
-        reference_is_a: s.reference_is_a,
-        edge: s.edge,
-        points: [first.0, last.0],
-        ids: [first.1, last.1],
-        count: kept.len().min(2),
+    let to_world = |p: Vector2<f64>| {
+        pose_a
+            .transform_point(&Point2::from(p + placed.origin))
+            .coords
     };
-    let manifold = match kept[..] {
-        [(p, _)] => Manifold::one(normal, to_point(p)),
-        [(p, _), (q, _), ..] => Manifold::two(normal, to_point(p), to_point(q)),
-        [] => unreachable!("the fallback pushes a point"),
+    let to_point =
+        |&(p, depth, _, _): &(Vector2<f64>, f64, Vector2<f64>, IncidentPoint)| ManifoldPoint {
+            point: to_world(p),
+            depth,
+        };
+    let normal = pose_a.rotation * normal;
+    let (first, last) = (kept[0], kept[kept.len() - 1]);
+    let features = ClippedFeatures {
+        reference_is_a: !faces.flip,
+        edge: if faces.flip {
+            faces.edge_b
+        } else {
+            faces.edge_a
+        },
+        points: [first.2 + placed.origin, last.2 + placed.origin],
+        ids: [first.3, last.3],
+        count: kept.len(),
+    };
+    let manifold = match &kept[..] {
+        [p] => Manifold::one(normal, to_point(p)),
+        [p, q] => Manifold::two(normal, to_point(p), to_point(q)),
+        _ => unreachable!("one or two points: the fallback pushes one, the clip gives two"),
     };
     Some((manifold, features))
 }
@@ -443,37 +343,57 @@ pub fn distance_polygon_polygon(
     b: &ConvexPolygon,
     pose_b: &Isometry2<f64>,
 ) -> Proximity {
-    let (pa, pb) = place(a, pose_a, b, pose_b);
-    let s = sat(&pa, &pb, 0.0);
-    let to_world = |p: Vector2<f64>| pose_a.transform_point(&Point2::from(p)).coords;
-    if s.separation <= 0.0 {
-        let (reference, incident) = if s.reference_is_a {
-            (&pa, &pb)
-        } else {
-            (&pb, &pa)
+    let mut pair = Pair::of(a, b);
+    let nan = Vector2::new(f64::NAN, f64::NAN);
+    let Some(placed) = pair.place(a, pose_a, b, pose_b, f64::INFINITY) else {
+        return Proximity {
+            distance: f64::NAN,
+            normal: nan,
+            point_a: nan,
+            point_b: nan,
         };
-        let n = reference.normals[s.edge];
-        let deep = incident.vertices[incident.support_min(&n)];
-        let on_face = deep - s.separation * n;
-        let (point_a, point_b, local_normal) = if s.reference_is_a {
-            (on_face, deep, n)
+    };
+    let to_world = |p: Vector2<f64>| {
+        pose_a
+            .transform_point(&Point2::from(p + placed.origin))
+            .coords
+    };
+    let separation = placed.core_separation();
+    if separation <= 0.0 {
+        let faces = placed.faces();
+        let (n, normal) = reference_normal(&placed, faces);
+        let incident = if faces.flip {
+            placed.a_vertices
         } else {
-            (deep, on_face, -n)
+            placed.b_vertices
+        };
+        let mut deepest = 0;
+        for (k, v) in incident.iter().enumerate() {
+            if n.dot(v) < n.dot(&incident[deepest]) {
+                deepest = k;
+            }
+        }
+        let deep = incident[deepest];
+        let on_face = deep - separation * n;
+        let (point_a, point_b) = if faces.flip {
+            (deep, on_face)
+        } else {
+            (on_face, deep)
         };
         return Proximity {
-            distance: s.separation,
-            normal: pose_a.rotation * local_normal,
+            distance: separation,
+            normal: pose_a.rotation * normal,
             point_a: to_world(point_a),
             point_b: to_world(point_b),
         };
     }
     // Apart: closest vertex–edge pair, in both directions.
     let mut best = (f64::INFINITY, Vector2::zeros(), Vector2::zeros());
-    let mut scan = |from: &Placed, to: &Placed, from_is_a: bool| {
-        let m = to.vertices.len();
-        for w in &from.vertices {
+    let mut scan = |from: &[Vector2<f64>], to: &[Vector2<f64>], from_is_a: bool| {
+        let m = to.len();
+        for w in from {
             for i in 0..m {
-                let q = closest_on_segment(*w, to.vertices[i], to.vertices[(i + 1) % m]);
+                let q = closest_on_segment(*w, to[i], to[(i + 1) % m]);
                 let d2 = (w - q).norm_squared();
                 if d2 < best.0 {
                     best = if from_is_a { (d2, *w, q) } else { (d2, q, *w) };
@@ -481,8 +401,8 @@ pub fn distance_polygon_polygon(
             }
         }
     };
-    scan(&pa, &pb, true);
-    scan(&pb, &pa, false);
+    scan(placed.a_vertices, placed.b_vertices, true);
+    scan(placed.b_vertices, placed.a_vertices, false);
     let (d2, on_a, on_b) = best;
     let distance = d2.sqrt();
     Proximity {

@@ -4,20 +4,14 @@
 //! so the next step's point from the same features inherits its impulses
 //! (warm starting).
 //!
-//! The algorithm is Box2D v3's (`b2CollidePolygons`), written anew:
-//!
-//! 1. separating axes: the largest separation of B along A's edge
-//!    normals, and of A along B's; beyond the speculative distance there is
-//!    no manifold;
-//! 2. the polygon with the larger separation gives the **reference edge**,
-//!    the other the **incident edge** (the one most anti-parallel to it);
-//! 3. the incident edge is clipped to the reference edge's extent: two
-//!    points, each placed midway between the incident point and the
-//!    reference surface, with its separation (negative when overlapping,
-//!    positive within the speculative margin);
-//! 4. when the polygons are apart (separation over a tenth of the linear
-//!    slop) and two vertices are substantially closer than the clipped
-//!    points, a single vertex–vertex point along the line between them.
+//! Two polygons go through the geometry both models share
+//! (`collision/polygon_polygon_local.rs`: separating axes, reference and
+//! incident edges, the clipped points midway between the surfaces with
+//! their separations), and this file applies the soft step's policy, Box2D
+//! v3's (`b2CollidePolygons`): beyond the speculative distance there is no
+//! manifold; when the polygons are apart (separation over a tenth of the
+//! linear slop) and two vertices are substantially closer than the clipped
+//! points, a single vertex–vertex point along the line between them.
 //!
 //! A polygon against a circle takes the edge of least penetration, or the
 //! nearest vertex when the centre lies beyond it; two circles meet along
@@ -32,7 +26,12 @@ use super::geometry::{Polygon, SolverShape};
 use crate::collision::circle_circle::circle_circle_local;
 use crate::collision::manifold::LocalProximity;
 use crate::collision::polygon_circle::polygon_circle_local;
+use crate::collision::polygon_polygon_local::{Clipped, Placed, RoundPolygon, separating_axes};
+use crate::collision::segment_distance::segment_distance;
 use nalgebra::{Isometry2, Vector2};
+
+/// Buffers reused by every polygon pair (no allocation once grown).
+pub(crate) use crate::collision::polygon_polygon_local::Scratch;
 
 /// Read from `engine/src/tunables.rs` (unit, value and source there).
 pub(crate) use crate::tunables::LINEAR_SLOP;
@@ -59,20 +58,8 @@ pub(crate) struct LocalManifold {
     pub points: [LocalPoint; 2],
 }
 
-/// Buffers reused by every polygon pair (no allocation once grown).
-#[derive(Debug, Clone, Default)]
-pub(crate) struct Scratch {
-    a_vertices: Vec<Vector2<f64>>,
-    b_vertices: Vec<Vector2<f64>>,
-    b_normals: Vec<Vector2<f64>>,
-}
-
 fn feature_id(a: usize, b: usize) -> u32 {
     ((a as u32) << 16) | b as u32
-}
-
-fn perp_left(v: Vector2<f64>) -> Vector2<f64> {
-    Vector2::new(-v.y, v.x)
 }
 
 /// The manifold of `a` and `b`, where `xf` maps B's frame into A's, with
@@ -127,52 +114,8 @@ fn one_point(contact: LocalProximity) -> LocalManifold {
     }
 }
 
-/// The largest separation of `b`'s vertices along `a`'s edge normals, and
-/// the edge that gives it; `None` as soon as an edge separates them by
-/// more than `beyond` (the pair then has no manifold, whatever the other
-/// edges give). The values are finite, so the minimum is a plain
-/// comparison (`f64::min`'s NaN handling costs two instructions more in
-/// this O(n·m) loop; signs of zero do not matter: only comparisons read
-/// the result).
-fn max_separation(
-    a_vertices: &[Vector2<f64>],
-    a_normals: &[Vector2<f64>],
-    b_vertices: &[Vector2<f64>],
-    beyond: f64,
-) -> Option<(usize, f64)> {
-    let mut best = (0, f64::NEG_INFINITY);
-    for (i, (n, v)) in a_normals.iter().zip(a_vertices).enumerate() {
-        let mut si = f64::INFINITY;
-        for w in b_vertices {
-            let d = n.dot(&(w - v));
-            if d < si {
-                si = d;
-            }
-        }
-        if si > best.1 {
-            if si > beyond {
-                return None;
-            }
-            best = (i, si);
-        }
-    }
-    Some(best)
-}
-
-/// The edge of `normals` most anti-parallel to `direction`.
-fn incident_edge(normals: &[Vector2<f64>], direction: Vector2<f64>) -> usize {
-    let mut best = (0, f64::INFINITY);
-    for (i, n) in normals.iter().enumerate() {
-        let d = direction.dot(n);
-        if d < best.1 {
-            best = (i, d);
-        }
-    }
-    best.0
-}
-
-/// Two polygons; works in A's frame shifted to A's first vertex (round-off
-/// stays relative to the pair, not to the world origin).
+/// Two polygons (radius 0: the soft step has no rounded shapes yet; a
+/// rounded one passes its radius to the shared geometry).
 fn collide_polygons(
     pa: &Polygon,
     pb: &Polygon,
@@ -180,73 +123,73 @@ fn collide_polygons(
     speculative: f64,
     scratch: &mut Scratch,
 ) -> LocalManifold {
+    let a = RoundPolygon {
+        vertices: &pa.vertices,
+        normals: &pa.normals,
+        radius: 0.0,
+    };
+    let b = RoundPolygon {
+        vertices: &pb.vertices,
+        normals: &pb.normals,
+        radius: 0.0,
+    };
+    let radius = a.radius + b.radius;
     let origin = pa.vertices[0];
-    let shift = xf.translation.vector - origin;
-    scratch.a_vertices.clear();
-    scratch
-        .a_vertices
-        .extend(pa.vertices.iter().map(|v| v - origin));
-    scratch.b_vertices.clear();
-    scratch
-        .b_vertices
-        .extend(pb.vertices.iter().map(|v| xf.rotation * v + shift));
-    let (av, an) = (&scratch.a_vertices[..], &pa.normals[..]);
-    let Some((mut edge_a, separation_a)) = max_separation(av, an, &scratch.b_vertices, speculative)
-    else {
+    let Some(placed) = separating_axes(&a, &b, xf, origin, speculative + radius, scratch) else {
         return LocalManifold::default();
     };
-    scratch.b_normals.clear();
-    scratch
-        .b_normals
-        .extend(pb.normals.iter().map(|n| xf.rotation * n));
-    let (bv, bn) = (&scratch.b_vertices[..], &scratch.b_normals[..]);
-    let Some((mut edge_b, separation_b)) = max_separation(bv, bn, av, speculative) else {
-        return LocalManifold::default();
-    };
-    let flip = separation_a < separation_b;
-    if flip {
-        edge_a = incident_edge(an, bn[edge_b]);
+    let mut manifold = if placed.axis_a.1 > 0.1 * LINEAR_SLOP || placed.axis_b.1 > 0.1 * LINEAR_SLOP
+    {
+        apart(&placed, speculative)
     } else {
-        edge_b = incident_edge(bn, an[edge_a]);
-    }
-    let mut manifold = if separation_a > 0.1 * LINEAR_SLOP || separation_b > 0.1 * LINEAR_SLOP {
-        apart(av, bv, an, bn, edge_a, edge_b, flip, speculative)
-    } else {
-        clip(av, bv, an, bn, edge_a, edge_b, flip)
+        local_manifold(placed.clip(placed.faces()))
     };
     for p in &mut manifold.points[..manifold.count] {
-        p.point += origin;
+        p.point += placed.origin;
     }
     manifold
 }
 
+/// The soft step's manifold of clipped points: all of them, with the
+/// feature id of each.
+#[inline]
+fn local_manifold(clipped: Clipped) -> LocalManifold {
+    let point = |k: usize| {
+        let p = clipped.points[k];
+        LocalPoint {
+            point: p.point,
+            separation: p.separation,
+            id: feature_id(p.vertex_a, p.vertex_b),
+        }
+    };
+    LocalManifold {
+        normal: clipped.normal,
+        count: clipped.count,
+        points: [point(0), point(1)],
+    }
+}
+
 /// The polygons are apart: clip the edges, unless two vertices are
 /// substantially closer than the clipped points, then one vertex–vertex
-/// point.
-#[allow(clippy::too_many_arguments)]
-fn apart(
-    av: &[Vector2<f64>],
-    bv: &[Vector2<f64>],
-    an: &[Vector2<f64>],
-    bn: &[Vector2<f64>],
-    edge_a: usize,
-    edge_b: usize,
-    flip: bool,
-    speculative: f64,
-) -> LocalManifold {
-    let (i11, i12) = (edge_a, (edge_a + 1) % av.len());
-    let (i21, i22) = (edge_b, (edge_b + 1) % bv.len());
+/// point (the distance between the cores, less the radii, along the line
+/// between the vertices).
+fn apart(placed: &Placed, speculative: f64) -> LocalManifold {
+    let faces = placed.faces();
+    let (av, bv) = (placed.a_vertices, placed.b_vertices);
+    let (i11, i12) = (faces.edge_a, (faces.edge_a + 1) % av.len());
+    let (i21, i22) = (faces.edge_b, (faces.edge_b + 1) % bv.len());
+    let radius = placed.radius_a + placed.radius_b;
     let closest = segment_distance(av[i11], av[i12], bv[i21], bv[i22]);
     let distance = closest.distance_squared.sqrt();
-    if distance > speculative {
+    if distance - radius > speculative {
         return LocalManifold::default();
     }
-    let manifold = clip(av, bv, an, bn, edge_a, edge_b, flip);
+    let manifold = local_manifold(placed.clip(faces));
     let min_separation = manifold.points[..manifold.count]
         .iter()
         .map(|p| p.separation)
         .fold(f64::INFINITY, f64::min);
-    if distance + 0.1 * LINEAR_SLOP < min_separation && distance > 0.0 {
+    if distance - radius + 0.1 * LINEAR_SLOP < min_separation && distance > 0.0 {
         let ends = |f: f64| {
             if f == 0.0 {
                 Some(0)
@@ -259,13 +202,17 @@ fn apart(
         if let (Some(ea), Some(eb)) = (ends(closest.fraction_a), ends(closest.fraction_b)) {
             let (ia, ib) = ([i11, i12][ea], [i21, i22][eb]);
             let normal = (bv[ib] - av[ia]) / distance;
+            // Midway between the surfaces: ½(ra − rb) along the normal from
+            // the vertices' midpoint (+0 for sharp polygons, which keeps
+            // their bits).
+            let offset = 0.5 * (placed.radius_a - placed.radius_b);
             return LocalManifold {
                 normal,
                 count: 1,
                 points: [
                     LocalPoint {
-                        point: 0.5 * (av[ia] + bv[ib]),
-                        separation: distance,
+                        point: 0.5 * (av[ia] + bv[ib]) + offset * normal,
+                        separation: distance - radius,
                         id: feature_id(ia, ib),
                     },
                     LocalPoint::default(),
@@ -274,144 +221,6 @@ fn apart(
         }
     }
     manifold
-}
-
-/// Clips the incident edge to the reference edge (Box2D's
-/// `b2ClipPolygons`): up to two points, midway between the incident points
-/// and the reference surface.
-fn clip(
-    av: &[Vector2<f64>],
-    bv: &[Vector2<f64>],
-    an: &[Vector2<f64>],
-    bn: &[Vector2<f64>],
-    edge_a: usize,
-    edge_b: usize,
-    flip: bool,
-) -> LocalManifold {
-    // Reference polygon 1, incident polygon 2.
-    let (v1, n1, e1, v2, e2) = if flip {
-        (bv, bn, edge_b, av, edge_a)
-    } else {
-        (av, an, edge_a, bv, edge_b)
-    };
-    let (i11, i12) = (e1, (e1 + 1) % v1.len());
-    let (i21, i22) = (e2, (e2 + 1) % v2.len());
-    let normal = n1[i11];
-    let (v11, v12, v21, v22) = (v1[i11], v1[i12], v2[i21], v2[i22]);
-    let tangent = perp_left(normal);
-    let (lower1, upper1) = (0.0, (v12 - v11).dot(&tangent));
-    // The incident edge runs against the tangent (both are CCW).
-    let upper2 = (v21 - v11).dot(&tangent);
-    let lower2 = (v22 - v11).dot(&tangent);
-    if upper2 < lower1 || upper1 < lower2 {
-        return LocalManifold::default();
-    }
-    let span = upper2 - lower2;
-    let v_lower = if lower2 < lower1 && span > f64::EPSILON {
-        v22 + (lower1 - lower2) / span * (v21 - v22)
-    } else {
-        v22
-    };
-    let v_upper = if upper2 > upper1 && span > f64::EPSILON {
-        v22 + (upper1 - lower2) / span * (v21 - v22)
-    } else {
-        v21
-    };
-    let s_lower = (v_lower - v11).dot(&normal);
-    let s_upper = (v_upper - v11).dot(&normal);
-    let lower = LocalPoint {
-        point: v_lower - 0.5 * s_lower * normal,
-        separation: s_lower,
-        id: 0,
-    };
-    let upper = LocalPoint {
-        point: v_upper - 0.5 * s_upper * normal,
-        separation: s_upper,
-        id: 0,
-    };
-    let points = if flip {
-        [
-            LocalPoint {
-                id: feature_id(i21, i12),
-                ..upper
-            },
-            LocalPoint {
-                id: feature_id(i22, i11),
-                ..lower
-            },
-        ]
-    } else {
-        [
-            LocalPoint {
-                id: feature_id(i11, i22),
-                ..lower
-            },
-            LocalPoint {
-                id: feature_id(i12, i21),
-                ..upper
-            },
-        ]
-    };
-    LocalManifold {
-        normal: if flip { -normal } else { normal },
-        count: 2,
-        points,
-    }
-}
-
-/// The closest points of segments p1–q1 and p2–q2: their parameters in
-/// [0, 1] along each and the squared distance (Ericson, Real-Time Collision
-/// Detection §5.1.9).
-struct SegmentDistance {
-    fraction_a: f64,
-    fraction_b: f64,
-    distance_squared: f64,
-}
-
-fn segment_distance(
-    p1: Vector2<f64>,
-    q1: Vector2<f64>,
-    p2: Vector2<f64>,
-    q2: Vector2<f64>,
-) -> SegmentDistance {
-    let (d1, d2) = (q1 - p1, q2 - p2);
-    let r = p1 - p2;
-    let (dd1, dd2, rd1, rd2) = (d1.dot(&d1), d2.dot(&d2), r.dot(&d1), r.dot(&d2));
-    let eps_sqr = f64::EPSILON * f64::EPSILON;
-    let (f1, f2) = if dd1 < eps_sqr || dd2 < eps_sqr {
-        if dd1 >= eps_sqr {
-            ((-rd1 / dd1).clamp(0.0, 1.0), 0.0)
-        } else if dd2 >= eps_sqr {
-            (0.0, (rd2 / dd2).clamp(0.0, 1.0))
-        } else {
-            (0.0, 0.0)
-        }
-    } else {
-        let d12 = d1.dot(&d2);
-        let denominator = dd1 * dd2 - d12 * d12;
-        // Parallel segments: any f1 will do; take 0.
-        let mut f1 = if denominator != 0.0 {
-            ((d12 * rd2 - rd1 * dd2) / denominator).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let mut f2 = (d12 * f1 + rd2) / dd2;
-        if f2 < 0.0 {
-            f2 = 0.0;
-            f1 = (-rd1 / dd1).clamp(0.0, 1.0);
-        } else if f2 > 1.0 {
-            f2 = 1.0;
-            f1 = ((d12 - rd1) / dd1).clamp(0.0, 1.0);
-        }
-        (f1, f2)
-    };
-    let c1 = p1 + f1 * d1;
-    let c2 = p2 + f2 * d2;
-    SegmentDistance {
-        fraction_a: f1,
-        fraction_b: f2,
-        distance_squared: (c1 - c2).norm_squared(),
-    }
 }
 
 #[cfg(test)]
