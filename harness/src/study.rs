@@ -11,6 +11,8 @@ use crate::plots;
 use crate::row::Row;
 use crate::stability::{self, Limit, Problem};
 use crate::sweep::{self, Sweep, SweepSettings};
+use crate::pool::{Done, Job};
+use crate::sweep::SweepCase;
 use anyhow::{Context, Result};
 use std::path::Path;
 
@@ -103,7 +105,8 @@ pub struct StudyResults {
     pub figures: Vec<FigureFile>,
     /// The speed comparisons of the sweeps that declare a target error.
     pub speed: Vec<SpeedComparison>,
-    /// Wall time of the studies (s).
+    /// The studies' time (s): the sum of their jobs' wall times (the jobs
+    /// run on the pool of the run, beside each other and the cases).
     pub seconds: f64,
 }
 
@@ -121,7 +124,8 @@ pub struct StudySummary {
     pub figures: Vec<(Section, String, String)>,
     /// The study pages written: one line each of the report's table.
     pub pages: Vec<StudyPageLine>,
-    /// Wall time of the studies (s).
+    /// The studies' time (s): the sum of their jobs' wall times (the jobs
+    /// run on the pool of the run, beside each other and the cases).
     pub seconds: f64,
 }
 
@@ -240,66 +244,173 @@ fn declared_figures() -> Vec<(&'static Case, &'static StudyFigure)> {
     figures
 }
 
-/// Runs every study and writes its figures into `dir`.
-pub fn run(dir: &Path, settings: SweepSettings) -> Result<StudyResults> {
-    let started = std::time::Instant::now();
-    let mut out = StudyResults::default();
-    let swept: Vec<_> = CASES
+/// What one job of the studies produced (see [`jobs`]).
+pub enum StudyPiece {
+    /// A swept case: its sweep, its order rows, the Dormand–Prince slope,
+    /// its two figures and its speed comparison.
+    Sweep {
+        /// The sweep.
+        sweep: Sweep,
+        /// Its observed-order rows.
+        orders: Vec<Row>,
+        /// Dormand–Prince's slope of log(error) on log(tolerance).
+        slope: f64,
+        /// The work-precision and convergence figures.
+        figures: Vec<FigureFile>,
+        /// The speed comparison, if the case declares a target error.
+        speed: Option<SpeedComparison>,
+    },
+    /// The stability limits of one method on every problem.
+    Stability {
+        /// The limits.
+        limits: Vec<Limit>,
+        /// Their rows.
+        rows: Vec<Row>,
+    },
+    /// A declared figure and its rows.
+    Figure {
+        /// The figure.
+        figure: FigureFile,
+        /// Its rows.
+        rows: Vec<Row>,
+    },
+}
+
+/// Expected wall time of the studies' jobs on one quiet core (s), for the
+/// order in which a run starts them ([`crate::pool`]): measured in one run
+/// (see [`job_cost`]).
+const STUDY_COSTS: &[(&str, f64)] = &[];
+
+/// The cost of a study job without an estimate (s).
+const DEFAULT_STUDY_COST: f64 = 1.0;
+
+/// The expected cost (s) of the study job `label`.
+pub fn job_cost(label: &str) -> f64 {
+    STUDY_COSTS
         .iter()
-        .filter_map(|c| c.sweep.map(|build| (c.id, build)))
-        .collect();
-    let figures = declared_figures();
-    let progress = crate::progress::bar((swept.len() + 1 + figures.len()) as u64, "studies");
-    for (id, build) in swept {
-        progress.set_message(format!("sweep {id}"));
-        let declared = build().with_context(|| format!("sweep of {id}"))?;
-        let sweep =
-            sweep::run(id, &declared, settings).with_context(|| format!("sweep of {id}"))?;
-        out.add_rows(Section::Convergence, order_rows(&sweep));
-        out.dp_slopes
-            .push((id.to_string(), tolerance_slope(&sweep)));
-        for (section, file) in [
-            (
-                Section::WorkPrecision,
-                plots::work_precision::write(dir, &sweep)?,
-            ),
-            (
-                Section::Convergence,
-                plots::convergence::write(dir, &sweep)?,
-            ),
-        ] {
-            out.figures.push(FigureFile {
-                section,
-                case: id,
-                file,
-            });
-        }
-        if let Some(target) = declared.speed_target {
-            out.speed.push(speed_comparison(&sweep, target));
-        }
-        out.sweeps.push(sweep);
-        progress.inc(1);
+        .find(|(l, _)| *l == label)
+        .map_or(DEFAULT_STUDY_COST, |(_, s)| *s)
+}
+
+/// The studies as independent jobs, in the order their results are
+/// gathered ([`assemble`]): one per swept case (its sweep and figures), one
+/// per method of the stability study, one per declared figure. Each writes
+/// its figures into `dir`.
+pub fn jobs(dir: &Path, settings: SweepSettings) -> Result<Vec<Job<'_, StudyPiece>>> {
+    let mut jobs = Vec::new();
+    for case in CASES {
+        let Some(build) = case.sweep else { continue };
+        let id = case.id;
+        let label = format!("sweep {id}");
+        jobs.push(Job::new(label.clone(), job_cost(&label), move || {
+            sweep_piece(dir, id, build, settings)
+        }));
     }
-    progress.set_message("stability");
-    let (limits, rows) = stability::measure_all(&stability_problems()?)?;
-    out.limits = limits;
-    out.add_rows(Section::Stability, rows);
-    progress.inc(1);
-    for (case, figure) in figures {
-        progress.set_message(format!("figures of {}", case.id));
-        let drawn =
-            (figure.write)(dir, case.id).with_context(|| format!("a figure of {}", case.id))?;
-        out.figures.push(FigureFile {
-            section: figure.section.into(),
-            case: case.id,
-            file: drawn.file,
-        });
-        out.add_rows(figure.section.into(), drawn.rows);
-        progress.inc(1);
+    let problems = stability_problems()?;
+    for method in stability::methods() {
+        let label = format!("stability {}", method.id());
+        let problems = problems.clone();
+        jobs.push(Job::new(label.clone(), job_cost(&label), move || {
+            let (limits, rows) = stability::measure_method(method, &problems)?;
+            Ok(StudyPiece::Stability { limits, rows })
+        }));
     }
-    progress.finish_and_clear();
+    for (case, figure) in declared_figures() {
+        let label = format!("figure {} {:?}", case.id, figure.section);
+        jobs.push(Job::new(label.clone(), job_cost(&label), move || {
+            let drawn =
+                (figure.write)(dir, case.id).with_context(|| format!("a figure of {}", case.id))?;
+            Ok(StudyPiece::Figure {
+                figure: FigureFile {
+                    section: figure.section.into(),
+                    case: case.id,
+                    file: drawn.file,
+                },
+                rows: drawn.rows,
+            })
+        }));
+    }
+    Ok(jobs)
+}
+
+/// The sweep of case `id` and its figures.
+fn sweep_piece(
+    dir: &Path,
+    id: &'static str,
+    build: fn() -> Result<SweepCase>,
+    settings: SweepSettings,
+) -> Result<StudyPiece> {
+    let declared = build().with_context(|| format!("sweep of {id}"))?;
+    let sweep = sweep::run(id, &declared, settings).with_context(|| format!("sweep of {id}"))?;
+    let figures = vec![
+        FigureFile {
+            section: Section::WorkPrecision,
+            case: id,
+            file: plots::work_precision::write(dir, &sweep)?,
+        },
+        FigureFile {
+            section: Section::Convergence,
+            case: id,
+            file: plots::convergence::write(dir, &sweep)?,
+        },
+    ];
+    Ok(StudyPiece::Sweep {
+        orders: order_rows(&sweep),
+        slope: tolerance_slope(&sweep),
+        speed: declared
+            .speed_target
+            .map(|target| speed_comparison(&sweep, target)),
+        figures,
+        sweep,
+    })
+}
+
+/// The studies' results from their jobs' (in the order of [`jobs`]): the
+/// sweeps' rows and figures first, then the stability rows, then the
+/// declared figures' (the order of a serial run); writes `sweeps.json`
+/// into `dir`. `seconds` is the sum of the jobs' wall times. The first
+/// error in that order is the one returned.
+pub fn assemble(dir: &Path, done: Vec<Done<StudyPiece>>) -> Result<StudyResults> {
+    let mut out = StudyResults::default();
+    let mut declared = Vec::new();
+    for d in done {
+        out.seconds += d.seconds;
+        match d.result? {
+            StudyPiece::Sweep {
+                sweep,
+                orders,
+                slope,
+                figures,
+                speed,
+            } => {
+                out.add_rows(Section::Convergence, orders);
+                out.dp_slopes.push((sweep.case.to_string(), slope));
+                out.figures.extend(figures);
+                out.speed.extend(speed);
+                out.sweeps.push(sweep);
+            }
+            StudyPiece::Stability { limits, rows } => {
+                out.limits.extend(limits);
+                out.add_rows(Section::Stability, rows);
+            }
+            StudyPiece::Figure { figure, rows } => declared.push((figure, rows)),
+        }
+    }
+    for (figure, rows) in declared {
+        out.add_rows(figure.section, rows);
+        out.figures.push(figure);
+    }
     let json = serde_json::to_string_pretty(&out.sweeps)?;
     std::fs::write(dir.join("sweeps.json"), json + "\n").context("writing sweeps.json")?;
-    out.seconds = started.elapsed().as_secs_f64();
     Ok(out)
+}
+
+/// Runs every study and writes its figures into `dir`: [`jobs`] on the
+/// worker pool ([`crate::pool`]), then [`assemble`].
+pub fn run(dir: &Path, settings: SweepSettings) -> Result<StudyResults> {
+    let jobs = jobs(dir, settings)?;
+    let progress = crate::progress::bar(jobs.len() as u64, "studies");
+    let done = crate::pool::run(jobs, |_| progress.inc(1));
+    progress.finish_and_clear();
+    assemble(dir, done)
 }
