@@ -87,7 +87,7 @@ fn thread_cpu() -> Option<f64> {
         };
         // SAFETY: `t` is a valid timespec for the call to fill.
         let ok = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) } == 0;
-        ok.then(|| t.tv_sec as f64 + 1e-9 * t.tv_nsec as f64)
+        ok.then_some(t.tv_sec as f64 + 1e-9 * t.tv_nsec as f64)
     }
     #[cfg(not(unix))]
     {
@@ -133,10 +133,9 @@ pub fn run<'a, T: Send>(jobs: Vec<Job<'a, T>>, done: impl Fn(&str) + Sync) -> Ve
             let label = job.label.clone();
             let (finished, cpu) = run_one(job);
             match cpu {
-                Some(cpu) => tracing::info!(
-                    "{label} in {:.2} s ({cpu:.2} s of CPU)",
-                    finished.seconds
-                ),
+                Some(cpu) => {
+                    tracing::info!("{label} in {:.2} s ({cpu:.2} s of CPU)", finished.seconds)
+                }
                 None => tracing::info!("{label} in {:.2} s", finished.seconds),
             }
             done(&label);

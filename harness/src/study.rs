@@ -8,11 +8,10 @@
 use crate::cases::{CASES, Case, FigureSection, StudyFigure};
 use crate::convergence::{order_rows, tolerance_slope};
 use crate::plots;
+use crate::pool::{Done, Job};
 use crate::row::Row;
 use crate::stability::{self, Limit, Problem};
 use crate::sweep::{self, Sweep, SweepSettings};
-use crate::pool::{Done, Job};
-use crate::sweep::SweepCase;
 use anyhow::{Context, Result};
 use std::path::Path;
 
@@ -246,19 +245,12 @@ fn declared_figures() -> Vec<(&'static Case, &'static StudyFigure)> {
 
 /// What one job of the studies produced (see [`jobs`]).
 pub enum StudyPiece {
-    /// A swept case: its sweep, its order rows, the Dormand–Prince slope,
-    /// its two figures and its speed comparison.
-    Sweep {
-        /// The sweep.
-        sweep: Sweep,
-        /// Its observed-order rows.
-        orders: Vec<Row>,
-        /// Dormand–Prince's slope of log(error) on log(tolerance).
-        slope: f64,
-        /// The work-precision and convergence figures.
-        figures: Vec<FigureFile>,
-        /// The speed comparison, if the case declares a target error.
-        speed: Option<SpeedComparison>,
+    /// A part of a swept case's sweep: its points.
+    SweepPart {
+        /// The case.
+        case: &'static str,
+        /// The points.
+        points: Vec<sweep::SweepPoint>,
     },
     /// The stability limits of one method on every problem.
     Stability {
@@ -293,18 +285,27 @@ pub fn job_cost(label: &str) -> f64 {
 }
 
 /// The studies as independent jobs, in the order their results are
-/// gathered ([`assemble`]): one per swept case (its sweep and figures), one
-/// per method of the stability study, one per declared figure. Each writes
-/// its figures into `dir`.
+/// gathered ([`assemble`]): one per part of each swept case's sweep (a
+/// method, or rapier2d at a substep count: [`sweep::parts`]), one per
+/// method of the stability study, one per declared figure. The figures'
+/// jobs write their figures into `dir`.
 pub fn jobs(dir: &Path, settings: SweepSettings) -> Result<Vec<Job<'_, StudyPiece>>> {
     let mut jobs = Vec::new();
     for case in CASES {
         let Some(build) = case.sweep else { continue };
         let id = case.id;
-        let label = format!("sweep {id}");
-        jobs.push(Job::new(label.clone(), job_cost(&label), move || {
-            sweep_piece(dir, id, build, settings)
-        }));
+        // Each job builds the sweep's runs again (they are not `Send`):
+        // cheap beside the sweep itself.
+        let declared = build().with_context(|| format!("sweep of {id}"))?;
+        for part in sweep::parts(&declared) {
+            let label = format!("sweep {id} {}", part.name());
+            jobs.push(Job::new(label.clone(), job_cost(&label), move || {
+                let declared = build().with_context(|| format!("sweep of {id}"))?;
+                let points = sweep::run_part(&declared, part, settings)
+                    .with_context(|| format!("sweep of {id}"))?;
+                Ok(StudyPiece::SweepPart { case: id, points })
+            }));
+        }
     }
     let problems = stability_problems()?;
     for method in stability::methods() {
@@ -333,61 +334,69 @@ pub fn jobs(dir: &Path, settings: SweepSettings) -> Result<Vec<Job<'_, StudyPiec
     Ok(jobs)
 }
 
-/// The sweep of case `id` and its figures.
-fn sweep_piece(
+/// The sweep of case `id` from its `points`, its rows and figures (into
+/// `dir`) into `out`, as a serial run adds them.
+fn add_sweep(
+    out: &mut StudyResults,
     dir: &Path,
     id: &'static str,
-    build: fn() -> Result<SweepCase>,
-    settings: SweepSettings,
-) -> Result<StudyPiece> {
+    points: Vec<sweep::SweepPoint>,
+) -> Result<()> {
+    let build = crate::cases::find(id)
+        .and_then(|c| c.sweep)
+        .with_context(|| format!("no sweep of {id}"))?;
     let declared = build().with_context(|| format!("sweep of {id}"))?;
-    let sweep = sweep::run(id, &declared, settings).with_context(|| format!("sweep of {id}"))?;
-    let figures = vec![
-        FigureFile {
-            section: Section::WorkPrecision,
+    let sweep = sweep::assemble(id, &declared, points);
+    out.add_rows(Section::Convergence, order_rows(&sweep));
+    out.dp_slopes
+        .push((id.to_string(), tolerance_slope(&sweep)));
+    for (section, file) in [
+        (
+            Section::WorkPrecision,
+            plots::work_precision::write(dir, &sweep)?,
+        ),
+        (
+            Section::Convergence,
+            plots::convergence::write(dir, &sweep)?,
+        ),
+    ] {
+        out.figures.push(FigureFile {
+            section,
             case: id,
-            file: plots::work_precision::write(dir, &sweep)?,
-        },
-        FigureFile {
-            section: Section::Convergence,
-            case: id,
-            file: plots::convergence::write(dir, &sweep)?,
-        },
-    ];
-    Ok(StudyPiece::Sweep {
-        orders: order_rows(&sweep),
-        slope: tolerance_slope(&sweep),
-        speed: declared
-            .speed_target
-            .map(|target| speed_comparison(&sweep, target)),
-        figures,
-        sweep,
-    })
+            file,
+        });
+    }
+    if let Some(target) = declared.speed_target {
+        out.speed.push(speed_comparison(&sweep, target));
+    }
+    out.sweeps.push(sweep);
+    Ok(())
 }
 
 /// The studies' results from their jobs' (in the order of [`jobs`]): the
 /// sweeps' rows and figures first, then the stability rows, then the
-/// declared figures' (the order of a serial run); writes `sweeps.json`
-/// into `dir`. `seconds` is the sum of the jobs' wall times. The first
-/// error in that order is the one returned.
+/// declared figures' (the order of a serial run); writes the sweeps'
+/// figures and `sweeps.json` into `dir`. `seconds` is the sum of the jobs'
+/// wall times. The first error in that order is the one returned.
 pub fn assemble(dir: &Path, done: Vec<Done<StudyPiece>>) -> Result<StudyResults> {
     let mut out = StudyResults::default();
     let mut declared = Vec::new();
+    let mut sweeping: Option<(&'static str, Vec<sweep::SweepPoint>)> = None;
     for d in done {
         out.seconds += d.seconds;
-        match d.result? {
-            StudyPiece::Sweep {
-                sweep,
-                orders,
-                slope,
-                figures,
-                speed,
-            } => {
-                out.add_rows(Section::Convergence, orders);
-                out.dp_slopes.push((sweep.case.to_string(), slope));
-                out.figures.extend(figures);
-                out.speed.extend(speed);
-                out.sweeps.push(sweep);
+        let piece = d.result?;
+        // A sweep is complete at the first piece of another kind or case.
+        let same = matches!((&piece, &sweeping),
+            (StudyPiece::SweepPart { case, .. }, Some((id, _))) if case == id);
+        if !same && let Some((id, points)) = sweeping.take() {
+            add_sweep(&mut out, dir, id, points)?;
+        }
+        match piece {
+            StudyPiece::SweepPart { case, points } => {
+                sweeping
+                    .get_or_insert_with(|| (case, Vec::new()))
+                    .1
+                    .extend(points);
             }
             StudyPiece::Stability { limits, rows } => {
                 out.limits.extend(limits);
@@ -395,6 +404,9 @@ pub fn assemble(dir: &Path, done: Vec<Done<StudyPiece>>) -> Result<StudyResults>
             }
             StudyPiece::Figure { figure, rows } => declared.push((figure, rows)),
         }
+    }
+    if let Some((id, points)) = sweeping.take() {
+        add_sweep(&mut out, dir, id, points)?;
     }
     for (figure, rows) in declared {
         out.add_rows(figure.section, rows);

@@ -128,7 +128,8 @@ fn measure_scene(
         (true, Some(full)) => full,
         _ => bench.file,
     };
-    let scene = crate::scenes::load(file).with_context(|| format!("benchmark scene {}", bench.id))?;
+    let scene =
+        crate::scenes::load(file).with_context(|| format!("benchmark scene {}", bench.id))?;
     measure::measure(*bench, file, &scene, settings, contenders)
 }
 
