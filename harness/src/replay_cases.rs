@@ -93,8 +93,34 @@ pub fn with_scene<'a>(ids: &[&'a str]) -> Vec<&'a str> {
 /// note in the index); [`write_drawn`] writes them.
 pub fn jobs<'a>(ids: &[&'a str]) -> Vec<crate::pool::Job<'a, Result<Drawn>>> {
     ids.iter()
-        .map(|&id| crate::pool::Job::new(format!("replay {id}"), 0.5, move || Ok(draw(id))))
+        .map(|&id| {
+            let label = format!("replay {id}");
+            crate::pool::Job::new(label.clone(), job_cost(&label), move || Ok(draw(id)))
+        })
         .collect()
+}
+
+/// Expected wall time (s) of the replay jobs on one quiet core, for the
+/// order in which a run starts them ([`crate::pool`]):
+/// measured in one full run (2026-12-02, `RUST_LOG=info`, which logs
+/// each job's wall and thread CPU time) on the 2-core development machine
+/// shared with other work: the larger of the job's CPU time and a quarter
+/// of its wall time (the run had about a quarter of a core per worker;
+/// rapier2d's own pool thread is not the job's), the others
+/// under 0.3 s.
+const REPLAY_COSTS: &[(&str, f64)] = &[
+    ("replay pendulum", 2.3),
+    ("replay container_1000", 2.0),
+    ("replay physical_pendulum", 0.5),
+    ("replay pyramid_20", 0.4),
+];
+
+/// The expected cost (s) of replay job `label`.
+fn job_cost(label: &str) -> f64 {
+    REPLAY_COSTS
+        .iter()
+        .find(|(l, _)| *l == label)
+        .map_or(0.1, |(_, s)| *s)
 }
 
 /// Writes the replays `drawn` of the scenes `ids` (those of

@@ -269,12 +269,44 @@ pub enum StudyPiece {
 }
 
 /// Expected wall time of the studies' jobs on one quiet core (s), for the
-/// order in which a run starts them ([`crate::pool`]): measured in one run
-/// (see [`job_cost`]).
-const STUDY_COSTS: &[(&str, f64)] = &[];
+/// order in which a run starts them ([`crate::pool`]):
+/// measured in one full run (2026-12-02, `RUST_LOG=info`, which logs
+/// each job's wall and thread CPU time) on the 2-core development machine
+/// shared with other work: the larger of the job's CPU time and a quarter
+/// of its wall time (the run had about a quarter of a core per worker;
+/// rapier2d's own pool thread is not the job's), a sweep's
+/// CPU time × 1.5 (on a loaded machine its timing runs stop sooner, at
+/// [`crate::timing`]'s budget). Jobs under 0.3 s are left to the default.
+const STUDY_COSTS: &[(&str, f64)] = &[
+    ("sweep spring implicit_euler", 12.5),
+    ("sweep angular_drag implicit_euler", 5.1),
+    ("sweep spring rk2_midpoint", 3.9),
+    ("sweep spring rapier2d_16sub", 3.7),
+    ("sweep spring semi_implicit_euler", 3.6),
+    ("sweep spring explicit_euler", 3.2),
+    ("sweep spring velocity_verlet", 3.2),
+    ("sweep spring rapier2d_4sub", 3.1),
+    ("sweep projectile_drag implicit_euler", 2.8),
+    ("sweep spring rapier2d_1sub", 2.8),
+    ("sweep angular_drag rapier2d_16sub", 1.6),
+    ("sweep angular_drag velocity_verlet", 1.3),
+    ("sweep projectile_drag velocity_verlet", 1.3),
+    ("sweep angular_drag rapier2d_1sub", 1.3),
+    ("sweep projectile_drag rk2_midpoint", 1.2),
+    ("sweep angular_drag rk2_midpoint", 1.2),
+    ("sweep projectile_drag semi_implicit_euler", 1.2),
+    ("sweep angular_drag rapier2d_4sub", 1.2),
+    ("sweep projectile_drag explicit_euler", 1.2),
+    ("sweep angular_drag semi_implicit_euler", 1.1),
+    ("sweep angular_drag explicit_euler", 1.1),
+    ("sweep projectile_drag rapier2d_16sub", 0.8),
+    ("sweep projectile_drag rapier2d_1sub", 0.7),
+    ("sweep projectile_drag rapier2d_4sub", 0.6),
+    ("sweep spring rk4", 0.6),
+];
 
 /// The cost of a study job without an estimate (s).
-const DEFAULT_STUDY_COST: f64 = 1.0;
+const DEFAULT_STUDY_COST: f64 = 0.1;
 
 /// The expected cost (s) of the study job `label`.
 pub fn job_cost(label: &str) -> f64 {

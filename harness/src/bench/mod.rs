@@ -173,12 +173,28 @@ pub enum BenchPiece {
 }
 
 /// Expected wall time (s) of the short benchmark's jobs on one quiet core,
-/// for the order in which a run starts them ([`crate::pool`]): see
-/// [`job_cost`].
-const BENCH_COSTS: &[(&str, f64)] = &[];
+/// for the order in which a run starts them ([`crate::pool`]):
+/// measured in one full run (2026-12-02, `RUST_LOG=info`, which logs
+/// each job's wall and thread CPU time) on the 2-core development machine
+/// shared with other work: the larger of the job's CPU time and a quarter
+/// of its wall time (the run had about a quarter of a core per worker;
+/// rapier2d's own pool thread is not the job's),
+/// see [`job_cost`].
+const BENCH_COSTS: &[(&str, f64)] = &[
+    ("bench contact precision", 6.4),
+    ("bench large_pyramid", 6.1),
+    ("bench smash", 5.3),
+    ("bench tumbler", 3.9),
+    ("bench ragdoll_rain", 2.8),
+    ("bench joint_grid", 2.3),
+    ("bench many_pyramids", 1.4),
+    ("bench pyramid_70", 1.2),
+    ("bench shape_rain", 0.7),
+    ("bench pyramid_40", 0.6),
+];
 
 /// The cost of a benchmark job without an estimate (s).
-const DEFAULT_BENCH_COST: f64 = 2.0;
+const DEFAULT_BENCH_COST: f64 = 1.0;
 
 /// The expected cost (s) of the benchmark job `label`.
 pub fn job_cost(label: &str) -> f64 {

@@ -65,15 +65,25 @@ pub fn jobs<'a>(ids: &[&'a str]) -> Vec<crate::pool::Job<'a, Result<Drawn>>> {
 }
 
 /// Expected wall time (s) of the drawing jobs on one quiet core, for the
-/// order in which a run starts them ([`crate::pool`]).
-const PICTURE_COSTS: &[(&str, f64)] = &[];
+/// order in which a run starts them ([`crate::pool`]):
+/// measured in one full run (2026-12-02, `RUST_LOG=info`, which logs
+/// each job's wall and thread CPU time) on the 2-core development machine
+/// shared with other work: the larger of the job's CPU time and a quarter
+/// of its wall time (the run had about a quarter of a core per worker;
+/// rapier2d's own pool thread is not the job's), the others
+/// about 0.2 s.
+const PICTURE_COSTS: &[(&str, f64)] = &[
+    ("pictures pendulum", 1.0),
+    ("pictures container_1000", 0.6),
+    ("pictures filters", 0.3),
+];
 
 /// The expected cost (s) of drawing job `label`.
 fn job_cost(label: &str) -> f64 {
     PICTURE_COSTS
         .iter()
         .find(|(l, _)| *l == label)
-        .map_or(0.5, |(_, s)| *s)
+        .map_or(0.2, |(_, s)| *s)
 }
 
 /// Writes the pictures `drawn` of the cases `ids` (in their order) into
