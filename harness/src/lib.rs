@@ -12,6 +12,7 @@ pub mod interrupt;
 pub mod links;
 pub mod pictures;
 pub mod plots;
+pub mod pool;
 pub mod progress;
 pub mod provenance;
 pub mod rapier_scene;

@@ -1,7 +1,7 @@
 //! `cargo run --release -p harness`: runs every case and writes `reports/`.
 //! Exits non-zero when a row fails.
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use clap::{Parser, Subcommand};
 use harness::cases::{CASES, Case, CaseRecord, find};
 use harness::shard::{Joined, Run, Shard, ShardRecord, Unit};
@@ -317,74 +317,175 @@ fn default_out(full: bool, quick: bool) -> Option<PathBuf> {
     })
 }
 
-/// Runs `cases` in parallel over the cores, each whole on one thread;
-/// returns their records in the order of `cases`, their charts saved into
-/// `dir` when there is one. A case's rows depend on nothing but the case
-/// (no state is shared between cases), so they are the bits of a serial
-/// run; only the timing notes some cases write (ms per step) see the other
-/// threads' load. The first error in the order of `cases` is the one
-/// reported.
-///
-/// The workers are plain threads taking the next case in turn, not rayon's
-/// global pool: that pool has one thread ([`references::serial_rayon`], so
-/// rapier2d, built with `parallel`, steps serially and gives the bits of a
-/// serial run), and a case run on it would run the cases one at a time.
-/// Each case runs inside a one-thread rayon pool of its own, so whatever
-/// it runs through rayon (rapier2d) stays serial and waits on no other
-/// case.
+/// Runs `cases` in parallel over the cores, each whole on one thread
+/// ([`harness::pool`]: the longest expected first); returns their records
+/// in the order of `cases`, their charts saved into `dir` when there is
+/// one. A case's rows depend on nothing but the case (no state is shared
+/// between cases), so they are the bits of a serial run; only the timing
+/// notes some cases write (ms per step) see the other threads' load. The
+/// first error in the order of `cases` is the one reported.
 fn run_cases(cases: &[&'static Case], dir: Option<&Path>) -> Result<Vec<CaseRecord>> {
-    use std::sync::Mutex;
-    use std::sync::atomic::{AtomicUsize, Ordering};
     let progress = harness::progress::bar(cases.len() as u64, "cases");
-    let next = AtomicUsize::new(0);
-    let records: Vec<Mutex<Option<Result<CaseRecord>>>> =
-        cases.iter().map(|_| Mutex::new(None)).collect();
-    let run_one = |case: &'static Case| -> Result<CaseRecord> {
-        let started = Instant::now();
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(1)
-            .build()
-            .context("starting a one-thread pool for a case")?;
-        let record = pool
-            .install(|| (case.run)())
-            .and_then(|report| report.record(case.id, dir))
-            .with_context(|| format!("case {}", case.id));
-        tracing::info!(
-            "case {} in {:.2} s",
-            case.id,
-            started.elapsed().as_secs_f64()
-        );
-        progress.inc(1);
-        record
-    };
-    let workers = std::thread::available_parallelism()
-        .map_or(1, |n| n.get())
-        .min(cases.len().max(1));
-    std::thread::scope(|scope| {
-        for _ in 0..workers {
-            scope.spawn(|| {
-                loop {
-                    let i = next.fetch_add(1, Ordering::Relaxed);
-                    let Some(case) = cases.get(i) else { break };
-                    let record = run_one(case);
-                    *records[i].lock().unwrap_or_else(|e| e.into_inner()) = Some(record);
-                }
-            });
-        }
-    });
+    let done = harness::pool::run(case_jobs(cases, dir), |_| progress.inc(1));
     progress.finish_and_clear();
-    records
-        .into_iter()
-        .map(|slot| {
-            slot.into_inner()
-                .unwrap_or_else(|e| e.into_inner())
-                .unwrap_or_else(|| Err(anyhow::anyhow!("a case did not run")))
+    done.into_iter().map(|d| d.result).collect()
+}
+
+/// One job per case of `cases` for the pool of the run, each with its cost
+/// estimate ([`harness::shard::cost`]).
+fn case_jobs<'a>(
+    cases: &[&'static Case],
+    dir: Option<&'a Path>,
+) -> Vec<harness::pool::Job<'a, CaseRecord>> {
+    cases
+        .iter()
+        .map(|&case| {
+            harness::pool::Job::new(
+                format!("case {}", case.id),
+                harness::shard::cost(&Unit::Case(case.id)),
+                move || (case.run)().and_then(|report| report.record(case.id, dir)),
+            )
         })
         .collect()
 }
 
-/// Runs the studies into `dir` (serially: their sweeps are timed) and
-/// writes their pages.
+/// What a job of a full run returns.
+enum Output {
+    Case(CaseRecord),
+    Study(harness::study::StudyPiece),
+    Bench(harness::bench::BenchPiece),
+    Picture(Result<harness::pictures::Drawn>),
+    Replay(Result<harness::replay_cases::Drawn>),
+}
+
+/// The pictures and replays of the cases' scenes, drawn as jobs of a run
+/// ([`run_everything`]) for [`finish`] to write.
+struct Drawings {
+    pictures: Vec<Result<harness::pictures::Drawn>>,
+    replays: Vec<Result<harness::replay_cases::Drawn>>,
+}
+
+/// The scenes drawn for the cases `ids`: each case's first scene file (the
+/// parry comparison has none).
+fn drawn_scenes<'a>(ids: impl IntoIterator<Item = &'a str>) -> Vec<&'static str> {
+    ids.into_iter()
+        .filter_map(|id| find(id)?.scenes.first().copied())
+        .collect()
+}
+
+/// The results of the jobs of one kind from a run's `done`, those that
+/// `pick` takes (errors stay with their job).
+fn take<T>(
+    done: &mut Vec<harness::pool::Done<Output>>,
+    count: usize,
+    pick: impl Fn(Output) -> Option<T>,
+) -> Vec<harness::pool::Done<T>> {
+    done.drain(..count)
+        .map(|d| harness::pool::Done {
+            result: d.result.and_then(|o| {
+                pick(o).ok_or_else(|| anyhow::anyhow!("a job returned another kind's result"))
+            }),
+            seconds: d.seconds,
+        })
+        .collect()
+}
+
+/// A full run's cases, studies and (unless `quick`) short benchmark, all
+/// on one pool ([`harness::pool`]): the longest job first, so that both
+/// workers end together, instead of the studies and the benchmark one
+/// after the other after the cases. Writes the studies' pages and the
+/// benchmark's report into `dir`.
+fn run_everything(
+    cases: &[&'static Case],
+    dir: &Path,
+    settings: SweepSettings,
+    quick: bool,
+) -> Result<(Vec<CaseRecord>, StudySummary, Drawings)> {
+    let started = Instant::now();
+    let bench_settings = harness::bench::BenchSettings::DEFAULT;
+    let contenders = if quick {
+        None
+    } else {
+        Some(harness::bench::measure::Contenders::for_settings(
+            &bench_settings,
+        )?)
+    };
+    let mut jobs: Vec<harness::pool::Job<Output>> = case_jobs(cases, Some(dir))
+        .into_iter()
+        .map(|j| j.map(Output::Case))
+        .collect();
+    let study_jobs = harness::study::jobs(dir, settings)?;
+    let studies = study_jobs.len();
+    jobs.extend(study_jobs.into_iter().map(|j| j.map(Output::Study)));
+    if let Some(contenders) = &contenders {
+        jobs.extend(
+            harness::bench::jobs(bench_settings, contenders)
+                .into_iter()
+                .map(|j| j.map(Output::Bench)),
+        );
+    }
+    let bench_jobs = jobs.len() - cases.len() - studies;
+    // The pictures and replays time nothing: on the pool too.
+    let scenes = drawn_scenes(cases.iter().map(|c| c.id));
+    let replayed = harness::replay_cases::with_scene(&scenes);
+    jobs.extend(
+        harness::pictures::drawing_jobs(&scenes)
+            .into_iter()
+            .map(|j| j.map(Output::Picture)),
+    );
+    jobs.extend(
+        harness::replay_cases::jobs(&replayed)
+            .into_iter()
+            .map(|j| j.map(Output::Replay)),
+    );
+    let progress = harness::progress::bar(jobs.len() as u64, "cases, studies, benchmark, pictures");
+    let mut done = harness::pool::run(jobs, |_| progress.inc(1));
+    progress.finish_and_clear();
+    let records = take(&mut done, cases.len(), |o| match o {
+        Output::Case(r) => Some(r),
+        _ => None,
+    });
+    let pieces = take(&mut done, studies, |o| match o {
+        Output::Study(p) => Some(p),
+        _ => None,
+    });
+    let bench = take(&mut done, bench_jobs, |o| match o {
+        Output::Bench(p) => Some(p),
+        _ => None,
+    });
+    let mut drawings = Drawings {
+        pictures: Vec::new(),
+        replays: Vec::new(),
+    };
+    for (i, d) in done.into_iter().enumerate() {
+        match d.result? {
+            Output::Picture(p) if i < scenes.len() => drawings.pictures.push(p),
+            Output::Replay(r) if i >= scenes.len() => drawings.replays.push(r),
+            _ => bail!("a drawing job returned another kind's result"),
+        }
+    }
+    let records: Vec<CaseRecord> = records
+        .into_iter()
+        .map(|d| d.result)
+        .collect::<Result<_>>()?;
+    let study = harness::study::assemble(dir, pieces)?;
+    let summary = report::write_study_pages(dir, &study)?;
+    tracing::info!("studies: {:.2} s of jobs", study.seconds);
+    if let Some(contenders) = &contenders {
+        let seconds: f64 = bench.iter().map(|d| d.seconds).sum();
+        let measured = harness::bench::gather(bench)?;
+        harness::bench::write(dir, bench_settings, contenders, measured)?;
+        tracing::info!("benchmark: {seconds:.2} s of jobs");
+    }
+    tracing::info!(
+        "cases, studies and benchmark in {:.2} s",
+        started.elapsed().as_secs_f64()
+    );
+    Ok((records, summary, drawings))
+}
+
+/// Runs the studies into `dir` (their jobs on the pool,
+/// [`harness::study::run`]) and writes their pages.
 fn run_studies(dir: &Path, settings: SweepSettings) -> Result<StudySummary> {
     let started = Instant::now();
     let study = harness::study::run(dir, settings)?;
@@ -405,8 +506,8 @@ fn run_bench(dir: &Path) -> Result<()> {
     Ok(())
 }
 
-/// `run`: the selected cases (in parallel), then, on a full run, the
-/// studies and the benchmark (serially); writes the report into `out` (or
+/// `run`: the selected cases and, on a full run, the studies and the
+/// benchmark, in parallel ([`run_everything`]); writes the report into `out` (or
 /// the default folder of a full run) and, after a full run into
 /// `reports/`, the README's headline table.
 fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Result<bool> {
@@ -430,21 +531,19 @@ fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Resu
     };
     let stage = staging.as_ref().map(|s| s.dir().to_path_buf());
     let started = Instant::now();
-    let results = run_cases(&selected, stage.as_deref())?;
+    // The studies (sweeps, orders, stability, energy, trajectories) run with
+    // every full run that writes a report, and the many-body benchmark
+    // with a full run that is not `--quick`, on the cases' pool; a run of
+    // selected cases checks only those.
+    let (results, study, drawings) = match (&stage, full) {
+        (Some(dir), true) => {
+            let (results, study, drawings) = run_everything(&selected, dir, settings, quick)?;
+            (results, Some(study), Some(drawings))
+        }
+        _ => (run_cases(&selected, stage.as_deref())?, None, None),
+    };
     for r in &results {
         print!("{}", report::console_table(&r.id, &r.rows, reasons));
-    }
-    // The studies (sweeps, orders, stability, energy, trajectories) run with
-    // every full run that writes a report; a run of selected cases checks
-    // only those.
-    let study = match (&stage, full) {
-        (Some(dir), true) => Some(run_studies(dir, settings)?),
-        _ => None,
-    };
-    // The many-body benchmark runs with a full (not quick) run that writes
-    // a report.
-    if let (Some(dir), true) = (&stage, full && !quick) {
-        run_bench(dir)?;
     }
     let joined = Joined {
         run: Run {
@@ -456,7 +555,7 @@ fn run(ids: &[String], quick: bool, reasons: bool, out: Option<PathBuf>) -> Resu
         cases: results,
         studies: study,
     };
-    finish(joined, staging, out, reasons, started)
+    finish(joined, staging, drawings, out, reasons, started)
 }
 
 /// Prints where the report goes.
@@ -590,7 +689,7 @@ fn merge(dirs: &[PathBuf], reasons: bool, out: Option<PathBuf>) -> Result<bool> 
     for r in &joined.cases {
         print!("{}", report::console_table(&r.id, &r.rows, reasons));
     }
-    finish(joined, Some(staging), Some(out), reasons, started)
+    finish(joined, Some(staging), None, Some(out), reasons, started)
 }
 
 /// The end of a run or a merge: the pictures and replays of the cases'
@@ -599,6 +698,7 @@ fn merge(dirs: &[PathBuf], reasons: bool, out: Option<PathBuf>) -> Result<bool> 
 fn finish(
     joined: Joined,
     staging: Option<harness::interrupt::Staging>,
+    drawings: Option<Drawings>,
     out: Option<PathBuf>,
     reasons: bool,
     started: Instant,
@@ -613,14 +713,22 @@ fn finish(
         let dir = staging.dir();
         // The pictures index has one section per scene drawn: each case's
         // first scene file (the parry comparison has none).
-        let scenes: Vec<(&str, harness::cases::CaseReport)> = results
-            .iter()
-            .filter_map(|r| find(&r.id)?.scenes.first())
-            .map(|scene| (*scene, harness::cases::CaseReport::default()))
-            .collect();
-        harness::pictures::write_case_pictures(dir, &scenes)?;
-        let ids: Vec<&str> = scenes.iter().map(|(id, _)| *id).collect();
-        harness::replay_cases::write_case_replays(dir, &ids)?;
+        let ids = drawn_scenes(results.iter().map(|r| r.id.as_str()));
+        match drawings {
+            Some(Drawings { pictures, replays }) => {
+                harness::pictures::write_drawn(dir, &ids, pictures)?;
+                let replayed = harness::replay_cases::with_scene(&ids);
+                harness::replay_cases::write_drawn(dir, &replayed, replays)?;
+            }
+            None => {
+                let scenes: Vec<(&str, harness::cases::CaseReport)> = ids
+                    .iter()
+                    .map(|id| (*id, harness::cases::CaseReport::default()))
+                    .collect();
+                harness::pictures::write_case_pictures(dir, &scenes)?;
+                harness::replay_cases::write_case_replays(dir, &ids)?;
+            }
+        }
         // After the pictures, so that the pages can link them.
         report::write(dir, results, study, &joined.run.provenance)?;
     }

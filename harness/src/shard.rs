@@ -72,23 +72,24 @@ pub enum Unit {
     /// A case, by id.
     Case(&'static str),
     /// The studies (sweeps, orders, stability, figures): one unit, since
-    /// their pages read every sweep and their timings must not share the
-    /// machine with other work.
+    /// their pages read every sweep (inside the shard, their jobs run on
+    /// its pool, `harness::study::run`).
     Studies,
     /// The many-body benchmark at its short settings (timed).
     Bench,
 }
 
 /// Estimated wall time of `unit` on one core (s), measured on the
-/// development machine (a release build, `RUST_LOG=harness=info cargo run
-/// --release -p harness` logs each case's time): only the balance of the
-/// shards depends on it, never what they compute. A case not listed costs
-/// [`DEFAULT_COST`].
+/// development machine (a release build, `RUST_LOG=info cargo run
+/// --release -p harness` logs each job's wall and CPU time): only the
+/// balance of the shards, and the order in which a run starts its jobs
+/// (`harness::pool`), depend on it, never what they compute. A case not
+/// listed costs [`DEFAULT_COST`].
 pub fn cost(unit: &Unit) -> f64 {
     match unit {
-        // 345 s in the same loaded run as the cases' numbers below, scaled
-        // alike.
-        Unit::Studies => 124.0,
+        // The sum of the studies' jobs (`study::job_cost`) in the run of
+        // the cases' numbers below, their sweeps at 3 timing runs.
+        Unit::Studies => 50.0,
         Unit::Bench => BENCH_COST,
         Unit::Case(id) => CASE_COSTS
             .iter()
@@ -97,25 +98,28 @@ pub fn cost(unit: &Unit) -> f64 {
     }
 }
 
-/// The short benchmark of a full run (s): 272 s in the same loaded run,
-/// scaled alike.
-const BENCH_COST: f64 = 98.0;
+/// The short benchmark of a full run (s): the sum of its jobs
+/// (`bench::job_cost`) in the same run.
+const BENCH_COST: f64 = 31.5;
 
 /// The cost of a case without an estimate (s).
 const DEFAULT_COST: f64 = 0.2;
 
 /// Seconds of the slow cases (see [`cost`]): measured in one full run on
-/// the 2-core development machine under load (2026-12-02: container 119 s,
-/// pendulum 64 s, fuzz_scenes 35 s, queries_parry 18 s, collision_parry
-/// 4.6 s, double_pendulum 1.2 s, every other case under 1 s), scaled so
-/// that the cases sum to the 88 s they take on one quiet core.
+/// the 2-core development machine shared with other work (2026-12-02):
+/// the larger of the case's thread CPU time and a quarter of its wall time
+/// (the run had about a quarter of a core per worker, and rapier2d and
+/// Box2D runs partly on threads of their own); every other case under
+/// 0.3 s.
 const CASE_COSTS: &[(&str, f64)] = &[
-    ("container", 43.0),
-    ("pendulum", 23.0),
-    ("fuzz_scenes", 13.0),
-    ("queries_parry", 6.4),
-    ("collision_parry", 1.6),
-    ("double_pendulum", 0.45),
+    ("pendulum", 32.8),
+    ("container", 12.2),
+    ("fuzz_scenes", 3.4),
+    ("queries_parry", 1.8),
+    ("collision_parry", 0.7),
+    ("physical_pendulum", 0.6),
+    ("pendulum_wall", 0.4),
+    ("slider_crank", 0.4),
 ];
 
 /// The units of a run of `cases`: each case in order, then the studies on

@@ -232,11 +232,24 @@ pub struct Limit {
 /// Measures every method's limit on each problem's axis and returns rows
 /// comparing them with docs/cases.md.
 pub fn measure_all(problems: &[Problem]) -> Result<(Vec<Limit>, Vec<Row>)> {
+    let mut limits = Vec::new();
+    let mut rows = Vec::new();
+    for method in methods() {
+        let (l, r) = measure_method(method, problems)?;
+        limits.extend(l);
+        rows.extend(r);
+    }
+    Ok((limits, rows))
+}
+
+/// [`measure_all`]'s limits and rows of one method (the part of the study
+/// one job of a run computes: the methods are independent).
+pub fn measure_method(method: Method, problems: &[Problem]) -> Result<(Vec<Limit>, Vec<Row>)> {
     let omega = SpringOscillator::seed().omega();
     let lambda = Hoffman::seed().lambda.abs();
     let mut limits = Vec::new();
     let mut rows = Vec::new();
-    for method in methods() {
+    {
         for &Problem { case, scene, axis } in problems {
             if axis == Axis::Real && method.needs_second_order() {
                 continue;

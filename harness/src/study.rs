@@ -8,6 +8,7 @@
 use crate::cases::{CASES, Case, FigureSection, StudyFigure};
 use crate::convergence::{order_rows, tolerance_slope};
 use crate::plots;
+use crate::pool::{Done, Job};
 use crate::row::Row;
 use crate::stability::{self, Limit, Problem};
 use crate::sweep::{self, Sweep, SweepSettings};
@@ -103,7 +104,8 @@ pub struct StudyResults {
     pub figures: Vec<FigureFile>,
     /// The speed comparisons of the sweeps that declare a target error.
     pub speed: Vec<SpeedComparison>,
-    /// Wall time of the studies (s).
+    /// The studies' time (s): the sum of their jobs' wall times (the jobs
+    /// run on the pool of the run, beside each other and the cases).
     pub seconds: f64,
 }
 
@@ -121,7 +123,8 @@ pub struct StudySummary {
     pub figures: Vec<(Section, String, String)>,
     /// The study pages written: one line each of the report's table.
     pub pages: Vec<StudyPageLine>,
-    /// Wall time of the studies (s).
+    /// The studies' time (s): the sum of their jobs' wall times (the jobs
+    /// run on the pool of the run, beside each other and the cases).
     pub seconds: f64,
 }
 
@@ -240,66 +243,218 @@ fn declared_figures() -> Vec<(&'static Case, &'static StudyFigure)> {
     figures
 }
 
-/// Runs every study and writes its figures into `dir`.
-pub fn run(dir: &Path, settings: SweepSettings) -> Result<StudyResults> {
-    let started = std::time::Instant::now();
-    let mut out = StudyResults::default();
-    let swept: Vec<_> = CASES
+/// What one job of the studies produced (see [`jobs`]).
+pub enum StudyPiece {
+    /// A part of a swept case's sweep: its points.
+    SweepPart {
+        /// The case.
+        case: &'static str,
+        /// The points.
+        points: Vec<sweep::SweepPoint>,
+    },
+    /// The stability limits of one method on every problem.
+    Stability {
+        /// The limits.
+        limits: Vec<Limit>,
+        /// Their rows.
+        rows: Vec<Row>,
+    },
+    /// A declared figure and its rows.
+    Figure {
+        /// The figure.
+        figure: FigureFile,
+        /// Its rows.
+        rows: Vec<Row>,
+    },
+}
+
+/// Expected wall time of the studies' jobs on one quiet core (s), for the
+/// order in which a run starts them ([`crate::pool`]):
+/// measured in one full run (2026-12-02, `RUST_LOG=info`, which logs
+/// each job's wall and thread CPU time) on the 2-core development machine
+/// shared with other work: the larger of the job's CPU time and a quarter
+/// of its wall time (the run had about a quarter of a core per worker;
+/// rapier2d's own pool thread is not the job's), a sweep's
+/// CPU time × 1.5 (on a loaded machine its timing runs stop sooner, at
+/// [`crate::timing`]'s budget). Jobs under 0.3 s are left to the default.
+const STUDY_COSTS: &[(&str, f64)] = &[
+    ("sweep spring implicit_euler", 12.5),
+    ("sweep angular_drag implicit_euler", 5.1),
+    ("sweep spring rk2_midpoint", 3.9),
+    ("sweep spring rapier2d_16sub", 3.7),
+    ("sweep spring semi_implicit_euler", 3.6),
+    ("sweep spring explicit_euler", 3.2),
+    ("sweep spring velocity_verlet", 3.2),
+    ("sweep spring rapier2d_4sub", 3.1),
+    ("sweep projectile_drag implicit_euler", 2.8),
+    ("sweep spring rapier2d_1sub", 2.8),
+    ("sweep angular_drag rapier2d_16sub", 1.6),
+    ("sweep angular_drag velocity_verlet", 1.3),
+    ("sweep projectile_drag velocity_verlet", 1.3),
+    ("sweep angular_drag rapier2d_1sub", 1.3),
+    ("sweep projectile_drag rk2_midpoint", 1.2),
+    ("sweep angular_drag rk2_midpoint", 1.2),
+    ("sweep projectile_drag semi_implicit_euler", 1.2),
+    ("sweep angular_drag rapier2d_4sub", 1.2),
+    ("sweep projectile_drag explicit_euler", 1.2),
+    ("sweep angular_drag semi_implicit_euler", 1.1),
+    ("sweep angular_drag explicit_euler", 1.1),
+    ("sweep projectile_drag rapier2d_16sub", 0.8),
+    ("sweep projectile_drag rapier2d_1sub", 0.7),
+    ("sweep projectile_drag rapier2d_4sub", 0.6),
+    ("sweep spring rk4", 0.6),
+];
+
+/// The cost of a study job without an estimate (s).
+const DEFAULT_STUDY_COST: f64 = 0.1;
+
+/// The expected cost (s) of the study job `label`.
+pub fn job_cost(label: &str) -> f64 {
+    STUDY_COSTS
         .iter()
-        .filter_map(|c| c.sweep.map(|build| (c.id, build)))
-        .collect();
-    let figures = declared_figures();
-    let progress = crate::progress::bar((swept.len() + 1 + figures.len()) as u64, "studies");
-    for (id, build) in swept {
-        progress.set_message(format!("sweep {id}"));
+        .find(|(l, _)| *l == label)
+        .map_or(DEFAULT_STUDY_COST, |(_, s)| *s)
+}
+
+/// The studies as independent jobs, in the order their results are
+/// gathered ([`assemble`]): one per part of each swept case's sweep (a
+/// method, or rapier2d at a substep count: [`sweep::parts`]), one per
+/// method of the stability study, one per declared figure. The figures'
+/// jobs write their figures into `dir`.
+pub fn jobs(dir: &Path, settings: SweepSettings) -> Result<Vec<Job<'_, StudyPiece>>> {
+    let mut jobs = Vec::new();
+    for case in CASES {
+        let Some(build) = case.sweep else { continue };
+        let id = case.id;
+        // Each job builds the sweep's runs again (they are not `Send`):
+        // cheap beside the sweep itself.
         let declared = build().with_context(|| format!("sweep of {id}"))?;
-        let sweep =
-            sweep::run(id, &declared, settings).with_context(|| format!("sweep of {id}"))?;
-        out.add_rows(Section::Convergence, order_rows(&sweep));
-        out.dp_slopes
-            .push((id.to_string(), tolerance_slope(&sweep)));
-        for (section, file) in [
-            (
-                Section::WorkPrecision,
-                plots::work_precision::write(dir, &sweep)?,
-            ),
-            (
-                Section::Convergence,
-                plots::convergence::write(dir, &sweep)?,
-            ),
-        ] {
-            out.figures.push(FigureFile {
-                section,
-                case: id,
-                file,
-            });
+        for part in sweep::parts(&declared) {
+            let label = format!("sweep {id} {}", part.name());
+            jobs.push(Job::new(label.clone(), job_cost(&label), move || {
+                let declared = build().with_context(|| format!("sweep of {id}"))?;
+                let points = sweep::run_part(&declared, part, settings)
+                    .with_context(|| format!("sweep of {id}"))?;
+                Ok(StudyPiece::SweepPart { case: id, points })
+            }));
         }
-        if let Some(target) = declared.speed_target {
-            out.speed.push(speed_comparison(&sweep, target));
-        }
-        out.sweeps.push(sweep);
-        progress.inc(1);
     }
-    progress.set_message("stability");
-    let (limits, rows) = stability::measure_all(&stability_problems()?)?;
-    out.limits = limits;
-    out.add_rows(Section::Stability, rows);
-    progress.inc(1);
-    for (case, figure) in figures {
-        progress.set_message(format!("figures of {}", case.id));
-        let drawn =
-            (figure.write)(dir, case.id).with_context(|| format!("a figure of {}", case.id))?;
+    let problems = stability_problems()?;
+    for method in stability::methods() {
+        let label = format!("stability {}", method.id());
+        let problems = problems.clone();
+        jobs.push(Job::new(label.clone(), job_cost(&label), move || {
+            let (limits, rows) = stability::measure_method(method, &problems)?;
+            Ok(StudyPiece::Stability { limits, rows })
+        }));
+    }
+    for (case, figure) in declared_figures() {
+        let label = format!("figure {} {:?}", case.id, figure.section);
+        jobs.push(Job::new(label.clone(), job_cost(&label), move || {
+            let drawn =
+                (figure.write)(dir, case.id).with_context(|| format!("a figure of {}", case.id))?;
+            Ok(StudyPiece::Figure {
+                figure: FigureFile {
+                    section: figure.section.into(),
+                    case: case.id,
+                    file: drawn.file,
+                },
+                rows: drawn.rows,
+            })
+        }));
+    }
+    Ok(jobs)
+}
+
+/// The sweep of case `id` from its `points`, its rows and figures (into
+/// `dir`) into `out`, as a serial run adds them.
+fn add_sweep(
+    out: &mut StudyResults,
+    dir: &Path,
+    id: &'static str,
+    points: Vec<sweep::SweepPoint>,
+) -> Result<()> {
+    let build = crate::cases::find(id)
+        .and_then(|c| c.sweep)
+        .with_context(|| format!("no sweep of {id}"))?;
+    let declared = build().with_context(|| format!("sweep of {id}"))?;
+    let sweep = sweep::assemble(id, &declared, points);
+    out.add_rows(Section::Convergence, order_rows(&sweep));
+    out.dp_slopes
+        .push((id.to_string(), tolerance_slope(&sweep)));
+    for (section, file) in [
+        (
+            Section::WorkPrecision,
+            plots::work_precision::write(dir, &sweep)?,
+        ),
+        (
+            Section::Convergence,
+            plots::convergence::write(dir, &sweep)?,
+        ),
+    ] {
         out.figures.push(FigureFile {
-            section: figure.section.into(),
-            case: case.id,
-            file: drawn.file,
+            section,
+            case: id,
+            file,
         });
-        out.add_rows(figure.section.into(), drawn.rows);
-        progress.inc(1);
     }
-    progress.finish_and_clear();
+    if let Some(target) = declared.speed_target {
+        out.speed.push(speed_comparison(&sweep, target));
+    }
+    out.sweeps.push(sweep);
+    Ok(())
+}
+
+/// The studies' results from their jobs' (in the order of [`jobs`]): the
+/// sweeps' rows and figures first, then the stability rows, then the
+/// declared figures' (the order of a serial run); writes the sweeps'
+/// figures and `sweeps.json` into `dir`. `seconds` is the sum of the jobs'
+/// wall times. The first error in that order is the one returned.
+pub fn assemble(dir: &Path, done: Vec<Done<StudyPiece>>) -> Result<StudyResults> {
+    let mut out = StudyResults::default();
+    let mut declared = Vec::new();
+    let mut sweeping: Option<(&'static str, Vec<sweep::SweepPoint>)> = None;
+    for d in done {
+        out.seconds += d.seconds;
+        let piece = d.result?;
+        // A sweep is complete at the first piece of another kind or case.
+        let same = matches!((&piece, &sweeping),
+            (StudyPiece::SweepPart { case, .. }, Some((id, _))) if case == id);
+        if !same && let Some((id, points)) = sweeping.take() {
+            add_sweep(&mut out, dir, id, points)?;
+        }
+        match piece {
+            StudyPiece::SweepPart { case, points } => {
+                sweeping
+                    .get_or_insert_with(|| (case, Vec::new()))
+                    .1
+                    .extend(points);
+            }
+            StudyPiece::Stability { limits, rows } => {
+                out.limits.extend(limits);
+                out.add_rows(Section::Stability, rows);
+            }
+            StudyPiece::Figure { figure, rows } => declared.push((figure, rows)),
+        }
+    }
+    if let Some((id, points)) = sweeping.take() {
+        add_sweep(&mut out, dir, id, points)?;
+    }
+    for (figure, rows) in declared {
+        out.add_rows(figure.section, rows);
+        out.figures.push(figure);
+    }
     let json = serde_json::to_string_pretty(&out.sweeps)?;
     std::fs::write(dir.join("sweeps.json"), json + "\n").context("writing sweeps.json")?;
-    out.seconds = started.elapsed().as_secs_f64();
     Ok(out)
+}
+
+/// Runs every study and writes its figures into `dir`: [`jobs`] on the
+/// worker pool ([`crate::pool`]), then [`assemble`].
+pub fn run(dir: &Path, settings: SweepSettings) -> Result<StudyResults> {
+    let jobs = jobs(dir, settings)?;
+    let progress = crate::progress::bar(jobs.len() as u64, "studies");
+    let done = crate::pool::run(jobs, |_| progress.inc(1));
+    progress.finish_and_clear();
+    assemble(dir, done)
 }

@@ -65,9 +65,12 @@ pub struct SweepSettings {
 }
 
 impl SweepSettings {
-    /// The full sweep of the report.
+    /// The full sweep of the report. Three timing runs (the minimum is
+    /// kept): the timings make the work-precision diagrams and the speed
+    /// comparison, never a row, and a fine step's runs stop at
+    /// [`crate::timing`]'s budget after one or two anyway.
     pub const FULL: SweepSettings = SweepSettings {
-        timing_runs: 5,
+        timing_runs: 3,
         levels: 13,
         rapier_levels: 9,
     };
@@ -173,40 +176,74 @@ pub fn step_world(
     Ok(())
 }
 
-/// Runs the sweep of case `id`, as its [`SweepCase`] declares it.
-pub fn run(id: &'static str, case: &SweepCase, settings: SweepSettings) -> Result<Sweep> {
-    let mut points = Vec::new();
-    for method in all_methods() {
-        if case.first_order && method.needs_second_order() {
-            continue;
-        }
-        let plan: Vec<(Method, f64, Option<f64>)> = if method.is_adaptive() {
-            DP_TOLERANCES
-                .iter()
-                .map(|&tol| {
-                    (
-                        Method::DormandPrince(Tolerance::uniform(tol)),
-                        case.h0,
-                        Some(tol),
-                    )
-                })
-                .collect()
-        } else {
-            (0..=settings.levels)
-                .map(|k| (method, case.h0 / f64::from(1u32 << k), None))
-                .collect()
-        };
-        for (m, h, tolerance) in plan {
-            let point = measure(case, m, h, tolerance, settings)?;
-            let at_floor = point.stable && point.max_error < ROUND_OFF_FLOOR * case.scale;
-            points.push(point);
-            if at_floor && tolerance.is_none() {
-                break;
-            }
+/// An independent part of a sweep: the points of one of the engine's
+/// methods, or of rapier2d at one substep count. A run computes the parts
+/// on its workers ([`crate::study::jobs`]); [`run`] computes them in turn.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Part {
+    /// The engine's method (Dormand–Prince: every tolerance).
+    Method(Method),
+    /// rapier2d-f64 at this many substeps.
+    Rapier(usize),
+}
+
+impl Part {
+    /// A short name for the log.
+    pub fn name(&self) -> String {
+        match self {
+            Part::Method(m) => m.id().to_string(),
+            Part::Rapier(substeps) => format!("rapier2d_{substeps}sub"),
         }
     }
-    if let Some(rapier) = &case.rapier {
-        for substeps in RAPIER_SUBSTEPS {
+}
+
+/// The parts of `case`'s sweep, in the order of its points.
+pub fn parts(case: &SweepCase) -> Vec<Part> {
+    let mut parts: Vec<Part> = all_methods()
+        .into_iter()
+        .filter(|m| !(case.first_order && m.needs_second_order()))
+        .map(Part::Method)
+        .collect();
+    if case.rapier.is_some() {
+        parts.extend(RAPIER_SUBSTEPS.map(Part::Rapier));
+    }
+    parts
+}
+
+/// The points of `part` of `case`'s sweep.
+pub fn run_part(case: &SweepCase, part: Part, settings: SweepSettings) -> Result<Vec<SweepPoint>> {
+    let mut points = Vec::new();
+    match part {
+        Part::Method(method) => {
+            let plan: Vec<(Method, f64, Option<f64>)> = if method.is_adaptive() {
+                DP_TOLERANCES
+                    .iter()
+                    .map(|&tol| {
+                        (
+                            Method::DormandPrince(Tolerance::uniform(tol)),
+                            case.h0,
+                            Some(tol),
+                        )
+                    })
+                    .collect()
+            } else {
+                (0..=settings.levels)
+                    .map(|k| (method, case.h0 / f64::from(1u32 << k), None))
+                    .collect()
+            };
+            for (m, h, tolerance) in plan {
+                let point = measure(case, m, h, tolerance, settings)?;
+                let at_floor = point.stable && point.max_error < ROUND_OFF_FLOOR * case.scale;
+                points.push(point);
+                if at_floor && tolerance.is_none() {
+                    break;
+                }
+            }
+        }
+        Part::Rapier(substeps) => {
+            let Some(rapier) = &case.rapier else {
+                return Ok(points);
+            };
             for k in 0..=settings.rapier_levels {
                 let h = case.h0 / f64::from(1u32 << k);
                 let point = measure_with(
@@ -225,14 +262,29 @@ pub fn run(id: &'static str, case: &SweepCase, settings: SweepSettings) -> Resul
             }
         }
     }
-    Ok(Sweep {
+    Ok(points)
+}
+
+/// The sweep of case `id` from its `points` (its parts' in order).
+pub fn assemble(id: &'static str, case: &SweepCase, points: Vec<SweepPoint>) -> Sweep {
+    Sweep {
         case: id,
         error_label: case.error_label,
         unit: case.unit,
         reference: case.reference,
         scale: case.scale,
         points,
-    })
+    }
+}
+
+/// Runs the sweep of case `id`, as its [`SweepCase`] declares it: its
+/// [`parts`] in turn.
+pub fn run(id: &'static str, case: &SweepCase, settings: SweepSettings) -> Result<Sweep> {
+    let mut points = Vec::new();
+    for part in parts(case) {
+        points.extend(run_part(case, part, settings)?);
+    }
+    Ok(assemble(id, case, points))
 }
 
 fn measure(

@@ -237,9 +237,9 @@ pub fn section(timings: &[QueryTiming], repeats: usize) -> String {
     md
 }
 
-/// Measures, prints a line, and appends the section to `dir/benchmarks.md`.
-pub fn append(dir: &Path, repeats: usize) -> Result<()> {
-    let timings = measure(repeats)?;
+/// Prints a line of `timings` (measured over `repeats` repeats) and
+/// appends their section to `dir/benchmarks.md`.
+pub fn append(dir: &Path, timings: &[QueryTiming], repeats: usize) -> Result<()> {
     println!(
         "bench ray casts {BODIES} shapes: {}",
         timings
@@ -250,7 +250,7 @@ pub fn append(dir: &Path, repeats: usize) -> Result<()> {
     );
     let path = dir.join("benchmarks.md");
     let mut md = std::fs::read_to_string(&path).unwrap_or_default();
-    md.push_str(&section(&timings, repeats));
+    md.push_str(&section(timings, repeats));
     std::fs::write(&path, md)?;
     Ok(())
 }

@@ -31,7 +31,7 @@ mod table;
 pub mod text;
 mod view;
 
-pub use cases::write_case_pictures;
+pub use cases::{Drawn, jobs as drawing_jobs, write_case_pictures, write_drawn};
 pub use draw::sig;
 pub use film::Film;
 pub use gif::GifOptions;
