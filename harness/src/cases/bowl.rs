@@ -34,7 +34,7 @@
 
 use super::joint_common::{crossing_error, crossings};
 use super::soft_step_common::SoftRun;
-use super::{Case, CaseReport};
+use super::{Case, CaseReport, Snapshots};
 use crate::row::RowKind;
 use anyhow::{Result, bail};
 use references::bowl::PolygonBowl;
@@ -42,6 +42,12 @@ use references::bowl::PolygonBowl;
 /// The three bowls.
 pub const CASE: Case = Case {
     scenes: &["bowl_32", "bowl_128", "bowl_512"],
+    snapshots: Snapshots::HarnessOnly(
+        "not for its weight (three short runs) but because two of its rows fail, an open \
+         finding of issue 19 stated in docs/cases.md#bowl: at N = 32 and N = 512 the period \
+         differs from the rigid polygon model by more than the soft step's derived error; the \
+         harness reports them",
+    ),
     ..Case::new(
         "bowl",
         "Chains: a disc rolling inside a loop of N segments on a circle: period 2π√(3(R − r)/(2g)) as N grows",
