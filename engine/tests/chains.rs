@@ -3,15 +3,18 @@
 
 use etalon2d::forces::Gravity;
 use etalon2d::{
-    BodyDef, BodyKind, ContactModel, ContactSettings, EngineError, Method, Shape,
-    SoftStepSettings, World,
+    BodyDef, BodyKind, ContactModel, ContactSettings, EngineError, Method, Shape, SoftStepSettings,
+    World,
 };
 use nalgebra::Vector2;
 
 /// A flat ground from x = 10 to x = −10 (listed right to left: solid from
 /// above), the first and last points ghosts.
 fn ground() -> Shape {
-    let points = (-11..=11).rev().map(|x| Vector2::new(f64::from(x), 0.0)).collect();
+    let points = (-11..=11)
+        .rev()
+        .map(|x| Vector2::new(f64::from(x), 0.0))
+        .collect();
     Shape::chain(points, false).unwrap()
 }
 
@@ -45,9 +48,15 @@ fn the_exact_model_refuses_a_chain_naming_the_body_and_the_model() {
     let refused = world
         .set_contact_model(ContactModel::Exact(ContactSettings::default()))
         .expect_err("the exact model does not collide chains");
-    assert!(matches!(refused, EngineError::Unsupported { .. }), "{refused:?}");
+    assert!(
+        matches!(refused, EngineError::Unsupported { .. }),
+        "{refused:?}"
+    );
     let message = refused.to_string();
-    assert!(message.contains("'ground'") && message.contains("exact"), "{message}");
+    assert!(
+        message.contains("'ground'") && message.contains("exact"),
+        "{message}"
+    );
     assert!(
         matches!(world.contact_model(), Some(ContactModel::SoftStep(_))),
         "a refused switch leaves the soft step in place"
@@ -71,7 +80,10 @@ fn a_chain_goes_on_static_bodies_only() {
     let refused = world
         .add_body(BodyDef::rigid("rope", 1.0, ground()))
         .expect_err("a chain has no mass");
-    assert!(matches!(refused, EngineError::Unsupported { .. }), "{refused:?}");
+    assert!(
+        matches!(refused, EngineError::Unsupported { .. }),
+        "{refused:?}"
+    );
     assert!(refused.to_string().contains("static"), "{refused}");
     assert_eq!(world.bodies().len(), 0);
     // Nor can a static chain be made to move later.
@@ -112,10 +124,20 @@ fn a_chain_holds_from_its_right_side_only() {
         .add_body(BodyDef::fixed("ground", Vector2::zeros(), Some(ground())))
         .unwrap();
     let above = world
-        .add_body(body_at("above", Shape::rectangle(1.0, 1.0).unwrap(), 0.3, 1.0))
+        .add_body(body_at(
+            "above",
+            Shape::rectangle(1.0, 1.0).unwrap(),
+            0.3,
+            1.0,
+        ))
         .unwrap();
     let below = world
-        .add_body(body_at("below", Shape::rectangle(1.0, 1.0).unwrap(), 4.0, -0.45))
+        .add_body(body_at(
+            "below",
+            Shape::rectangle(1.0, 1.0).unwrap(),
+            4.0,
+            -0.45,
+        ))
         .unwrap();
     let disc = world
         .add_body(body_at("disc", Shape::circle(0.5).unwrap(), -4.0, 1.0))
@@ -126,9 +148,17 @@ fn a_chain_holds_from_its_right_side_only() {
     let s = world.states();
     // At rest on y = 0: centres at 0.5 m, within the soft contact's sink
     // (millimetres) and the speculative margin.
-    assert!((s[above].position.y - 0.5).abs() < 0.01, "{:?}", s[above].position);
+    assert!(
+        (s[above].position.y - 0.5).abs() < 0.01,
+        "{:?}",
+        s[above].position
+    );
     assert!(s[above].velocity.norm() < 1e-3, "{:?}", s[above].velocity);
-    assert!((s[disc].position.y - 0.5).abs() < 0.01, "{:?}", s[disc].position);
+    assert!(
+        (s[disc].position.y - 0.5).abs() < 0.01,
+        "{:?}",
+        s[disc].position
+    );
     // Free fall from −0.45 m for 2 s: far below.
     assert!(s[below].position.y < -10.0, "{:?}", s[below].position);
 }

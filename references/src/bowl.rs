@@ -176,7 +176,9 @@ fn first_root(a: f64, b: f64, c: f64) -> Option<f64> {
     roots
         .into_iter()
         .filter(|&r| r > 1e-15)
-        .fold(None, |best: Option<f64>, r| Some(best.map_or(r, |b| b.min(r))))
+        .fold(None, |best: Option<f64>, r| {
+            Some(best.map_or(r, |b| b.min(r)))
+        })
 }
 
 #[cfg(test)]

@@ -319,7 +319,11 @@ impl Box2dWorld {
                     .segments()
                     .map_err(engine_error)?;
                 bodies.push(id);
-                shape_ids.push(*segments.first().ok_or_else(|| refused(i, "Box2D made no segment"))?);
+                shape_ids.push(
+                    *segments
+                        .first()
+                        .ok_or_else(|| refused(i, "Box2D made no segment"))?,
+                );
                 continue;
             }
             let mut body = world.body(id).map_err(engine_error)?;

@@ -277,7 +277,10 @@ pub(crate) fn chain_segment_polygon_local(
         v.iter()
             .enumerate()
             .map(|(i, w)| (i, n.dot(&(w - at))))
-            .fold((0, f64::INFINITY), |best, x| if x.1 < best.1 { x } else { best })
+            .fold(
+                (0, f64::INFINITY),
+                |best, x| if x.1 < best.1 { x } else { best },
+            )
     };
     let (deepest, mut edge_separation) = lowest(n1, Vector2::zeros());
     let mut neighbour_owns = false;
@@ -448,7 +451,10 @@ mod tests {
         assert_eq!(m.count, 2);
         assert_eq!(m.normal, Vector2::new(0.0, 1.0));
         let xs = [m.points[0].point.x, m.points[1].point.x];
-        assert!(xs.iter().all(|x| (-1e-12..=0.8 + 1e-12).contains(x)), "{xs:?}");
+        assert!(
+            xs.iter().all(|x| (-1e-12..=0.8 + 1e-12).contains(x)),
+            "{xs:?}"
+        );
         // A box 0.1 m past the join, sunk 0.05 m (a corner caught on the
         // end): still the ground's normal, never the box side's.
         let xf = Isometry2::translation(-0.4, 0.45);
@@ -462,7 +468,10 @@ mod tests {
         let (v, n) = unit_box();
         // Below the ground, overlapping it: nothing.
         let xf = Isometry2::translation(0.5, -0.45);
-        assert_eq!(chain_segment_polygon_local(&flat(), &v, &n, &xf, 0.02).count, 0);
+        assert_eq!(
+            chain_segment_polygon_local(&flat(), &v, &n, &xf, 0.02).count,
+            0
+        );
         assert!(chain_segment_circle_local(&flat(), 0.5, Vector2::new(0.5, -0.1), 0.02).is_none());
         // Above it: a circle resting 1 mm deep.
         let c = chain_segment_circle_local(&flat(), 0.5, Vector2::new(0.5, 0.499), 0.02).unwrap();

@@ -44,8 +44,8 @@
 //!   −depth when they overlap, 0 when they touch.
 
 pub mod aabb;
-pub(crate) mod chain_segment;
 pub mod broad_phase;
+pub(crate) mod chain_segment;
 pub mod circle_circle;
 pub mod dynamic_tree;
 pub(crate) mod features;

@@ -135,8 +135,11 @@ mod tests {
 
     #[test]
     fn an_open_chain_of_n_points_has_n_minus_3_segments_with_its_ghosts() {
-        let chain = Chain::new(points(&[[3.0, 0.0], [2.0, 0.0], [1.0, 0.0], [0.0, 0.0]]), false)
-            .unwrap();
+        let chain = Chain::new(
+            points(&[[3.0, 0.0], [2.0, 0.0], [1.0, 0.0], [0.0, 0.0]]),
+            false,
+        )
+        .unwrap();
         let segments = chain.segments();
         assert_eq!(segments.len(), 1);
         let s = segments[0];
@@ -165,7 +168,10 @@ mod tests {
             e => panic!("unexpected {e}"),
         };
         assert_eq!(err(&[[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]], false).0, 3);
-        let (i, why) = err(&[[0.0, 0.0], [1.0, 0.0], [f64::NAN, 0.0], [3.0, 0.0]], false);
+        let (i, why) = err(
+            &[[0.0, 0.0], [1.0, 0.0], [f64::NAN, 0.0], [3.0, 0.0]],
+            false,
+        );
         assert_eq!((i, why), (2, "non-finite coordinate"));
         let close = [[0.0, 0.0], [1.0, 0.0], [1.004, 0.0], [3.0, 0.0]];
         assert_eq!(err(&close, false).0, 2);

@@ -44,7 +44,9 @@ pub(crate) struct Polygon {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) enum SolverShape {
     Polygon(Polygon),
-    Circle { radius: f64 },
+    Circle {
+        radius: f64,
+    },
     /// One segment of a chain with its ghost points (`shape/chain.rs`),
     /// in its body's frame.
     ChainSegment(ChainSegment),
