@@ -44,9 +44,9 @@ pub const CASE: Case = Case {
     scenes: &["bowl_32", "bowl_128", "bowl_512"],
     snapshots: Snapshots::HarnessOnly(
         "not for its weight (three short runs) but because two of its rows fail, an open \
-         finding of issue 19 stated in docs/cases.md#bowl: at N = 32 and N = 512 the period \
-         differs from the rigid polygon model by more than the soft step's derived error; the \
-         harness reports them",
+         finding of issue 19 (docs/cases.md#bowl): at N = 32 and N = 512 the period differs \
+         from the rigid polygon model by more than the soft step's derived error. \
+         harness/tests/chain_cases.rs runs it: the other rows pass and exactly those two fail",
     ),
     ..Case::new(
         "bowl",
