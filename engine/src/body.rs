@@ -319,7 +319,7 @@ impl Body {
             }
         }
         if let (Some(Shape::Chain(_)), false) = (&shape, def.kind == BodyKind::Static) {
-            return Err(chain_on_moving_body(&name));
+            return Err(chain_on_moving_body(name));
         }
         if def.kind != BodyKind::Dynamic {
             let body = Body {
