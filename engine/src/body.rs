@@ -318,6 +318,9 @@ impl Body {
                 }
             }
         }
+        if let (Some(Shape::Chain(_)), false) = (&shape, def.kind == BodyKind::Static) {
+            return Err(chain_on_moving_body(name));
+        }
         if def.kind != BodyKind::Dynamic {
             let body = Body {
                 name: name.clone(),
@@ -413,5 +416,14 @@ impl Body {
             0.5 * i * state.angular_velocity * state.angular_velocity
         });
         0.5 * self.mass * state.velocity.norm_squared() + rotational
+    }
+}
+
+/// The error of a chain shape on a body that is not static: a chain has
+/// no area, so no mass to move with.
+pub(crate) fn chain_on_moving_body(name: &str) -> EngineError {
+    EngineError::Unsupported {
+        what: format!("the chain shape of body '{name}'"),
+        reason: "a chain has no area and no mass: it goes on static bodies only",
     }
 }

@@ -26,6 +26,15 @@ pub enum EngineError {
         /// What is wrong with it.
         reason: &'static str,
     },
+    /// A chain with too few points, a non-finite point, or two consecutive
+    /// points closer than the linear slop (5 mm).
+    #[error("invalid chain: {reason} at point {point}")]
+    InvalidChain {
+        /// Index of the first offending point.
+        point: usize,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
     /// An outline that is not a simple counter-clockwise polygon, given
     /// to [`crate::Shape::simple_polygon`] or
     /// [`crate::shape::decompose::convex_parts`].

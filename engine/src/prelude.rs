@@ -25,7 +25,7 @@ pub use crate::forces::{
 pub use crate::integrators::Method;
 pub use crate::material::{MixingRule, ShapeOverrides};
 pub use crate::query::{RayHit, ShapeCastHit, ShapeDistance, ShapeRef};
-pub use crate::shape::{Circle, Compound, CompoundPart, ConvexPolygon, Shape};
+pub use crate::shape::{Chain, Circle, Compound, CompoundPart, ConvexPolygon, Shape};
 pub use crate::soft_step::SoftStepSettings;
 pub use crate::soft_step::joints::{
     Distance, JointDef, JointId, JointSpring, MotorJoint, Prismatic, PrismaticMotor, Revolute,

@@ -6,7 +6,10 @@
 //! the geometry. When a shape is attached to a body, the body's position is
 //! its centre of mass: a polygon is re-centred on its centroid.
 
+pub mod chain;
 pub mod decompose;
+
+pub use chain::{Chain, ChainSegment};
 
 use crate::error::{EngineError, Result, require_positive};
 use crate::material::ShapeOverrides;
@@ -443,6 +446,9 @@ pub enum Shape {
     /// Several polygons and circles making one rigid body (soft-step model
     /// only).
     Compound(Compound),
+    /// A one-sided polyline, open or a loop: ground and walls on static
+    /// bodies only (soft-step model only; no area, no mass).
+    Chain(Chain),
 }
 
 impl Shape {
@@ -456,6 +462,11 @@ impl Shape {
         Ok(Shape::Circle(Circle::new(radius)?))
     }
 
+    /// A chain through `points` (m), closed when `is_loop` (see [`Chain`]).
+    pub fn chain(points: Vec<Vector2<f64>>, is_loop: bool) -> Result<Self> {
+        Ok(Shape::Chain(Chain::new(points, is_loop)?))
+    }
+
     /// A convex polygon from vertices listed counter-clockwise (m).
     pub fn polygon(vertices: Vec<Vector2<f64>>) -> Result<Self> {
         Ok(Shape::Polygon(ConvexPolygon::new(vertices)?))
@@ -467,6 +478,7 @@ impl Shape {
             Shape::Polygon(p) => p.area(),
             Shape::Circle(c) => std::f64::consts::PI * c.radius * c.radius,
             Shape::Compound(c) => c.area(),
+            Shape::Chain(_) => 0.0,
         }
     }
 
@@ -477,6 +489,8 @@ impl Shape {
             Shape::Polygon(p) => p.polar_moment_about_centroid() / p.area(),
             Shape::Circle(c) => 0.5 * c.radius * c.radius,
             Shape::Compound(c) => c.polar_moment_about_centroid() / c.area(),
+            // No mass to spread: a chain is on a static body.
+            Shape::Chain(_) => 0.0,
         }
     }
 
@@ -485,6 +499,8 @@ impl Shape {
         match self {
             Shape::Polygon(p) => Shape::Polygon(p.centered()),
             Shape::Circle(c) => Shape::Circle(*c),
+            // No centroid: the chain stays where its static body puts it.
+            Shape::Chain(c) => Shape::Chain(c.clone()),
             Shape::Compound(c) => {
                 let centroid = c.centroid();
                 Shape::Compound(Compound {
@@ -502,9 +518,11 @@ impl Shape {
     }
 
     /// The convex pieces of the shape with their placement in the body
-    /// frame: the shape itself at the origin, or a compound's parts.
+    /// frame: the shape itself at the origin, or a compound's parts; none
+    /// for a chain (its segments are not shapes: see [`Chain::segments`]).
     pub fn pieces(&self) -> Vec<(Vector2<f64>, f64, &Shape)> {
         match self {
+            Shape::Chain(_) => Vec::new(),
             Shape::Compound(c) => c
                 .parts
                 .iter()

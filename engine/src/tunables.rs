@@ -222,3 +222,20 @@ pub(crate) const SOFT_ROLLING_RESISTANCE_DEFAULT: f64 = 0.0;
 /// [`crate::SoftStepSettings::hit_event_threshold`] default (m/s; 1).
 /// Source: Box2D v3.2's `hitEventThreshold`.
 pub(crate) const SOFT_HIT_EVENT_THRESHOLD_DEFAULT: f64 = 1.0;
+
+// ---------------------------------------------------------------------
+// Chains (engine/src/shape/chain.rs, engine/src/collision/chain_segment.rs)
+// ---------------------------------------------------------------------
+
+/// Sine of the smallest turn (about 0.57°) at which a chain's join counts
+/// as convex, so that its neighbour's normal widens the normals a segment
+/// admits (dimensionless; 0.01). A join that turns less is treated as flat:
+/// only the segment's own normal is admitted there. Source: Box2D v3.2's
+/// `convexTol` in `b2CollideChainSegmentAndPolygon`.
+pub(crate) const CHAIN_CONVEX_SIN: f64 = 0.01;
+
+/// Sine of the angle (about 0.57°) by which a contact normal may pass a
+/// convex neighbour's normal and still be admitted by a chain segment
+/// (dimensionless; 0.01). Source: Box2D v3.2's `sinTol` in
+/// `b2ClassifyNormal`.
+pub(crate) const CHAIN_ADMIT_SIN: f64 = 0.01;

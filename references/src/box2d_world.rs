@@ -293,6 +293,39 @@ impl Box2dWorld {
                 .filter(filter)
                 .build()
                 .map_err(|e| refused(i, e.to_string()))?;
+            if let Shape::Chain(chain) = &b.shape {
+                // Box2D's own chain: the same points, the same ghost
+                // convention (its segments are shapes of the body).
+                let points = chain
+                    .points()
+                    .iter()
+                    .map(|p| Ok([to_f32(i, "chain x", p.x)?, to_f32(i, "chain y", p.y)?]))
+                    .collect::<Result<Vec<[f32; 2]>, ManyBodyError>>()?;
+                let def = boxdd::shapes::chain::ChainDef::builder()
+                    .points(points)
+                    .is_loop(chain.is_loop())
+                    .filter(filter)
+                    .single_material(&material)
+                    .build()
+                    .map_err(|e| refused(i, e.to_string()))?;
+                let chain_id = world
+                    .body(id)
+                    .map_err(engine_error)?
+                    .create_chain(&def)
+                    .map_err(|e| refused(i, e.to_string()))?;
+                let segments = world
+                    .chain(chain_id)
+                    .map_err(engine_error)?
+                    .segments()
+                    .map_err(engine_error)?;
+                bodies.push(id);
+                shape_ids.push(
+                    *segments
+                        .first()
+                        .ok_or_else(|| refused(i, "Box2D made no segment"))?,
+                );
+                continue;
+            }
             let mut body = world.body(id).map_err(engine_error)?;
             // A compound becomes one Box2D shape per part, each placed in
             // the body frame (Box2D bodies take several shapes).
@@ -321,7 +354,9 @@ impl Box2dWorld {
                         };
                         body.create_polygon(&shape_def, &polygon(i, &placed)?)
                     }
-                    Shape::Compound(_) => unreachable!("a compound's pieces are not compounds"),
+                    Shape::Compound(_) | Shape::Chain(_) => {
+                        unreachable!("a compound's pieces are polygons and circles")
+                    }
                 }
                 .map_err(|e| refused(i, e.to_string()))?;
                 first.get_or_insert(shape);

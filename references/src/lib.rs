@@ -45,6 +45,7 @@
 #![warn(missing_docs)]
 
 pub mod angular_drag;
+pub mod bowl;
 pub mod box2d_world;
 pub mod catenary;
 pub mod double_pendulum;

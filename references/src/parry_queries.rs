@@ -74,6 +74,23 @@ pub fn to_parry_shape(shape: &Shape) -> SharedShape {
                 })
                 .collect(),
         ),
+        // parry's polyline is two-sided and has no ghost points: the
+        // chain's solid part (an open chain's first and last points only
+        // guide its end segments; a loop closes).
+        Shape::Chain(c) => {
+            let points = c.points();
+            let solid = if c.is_loop() {
+                points
+            } else {
+                &points[1..points.len() - 1]
+            };
+            let n = solid.len() as u32;
+            let mut indices: Vec<[u32; 2]> = (0..n - 1).map(|i| [i, i + 1]).collect();
+            if c.is_loop() {
+                indices.push([n - 1, 0]);
+            }
+            SharedShape::polyline(solid.iter().map(to_parry_vector).collect(), Some(indices))
+        }
     }
 }
 

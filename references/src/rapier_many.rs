@@ -112,7 +112,9 @@ pub fn benchmark_parameters(scene: &ManyBodyScene) -> IntegrationParameters {
 
 fn collider(i: usize, shape: &Shape) -> Result<ColliderBuilder, ManyBodyError> {
     Ok(match shape {
-        Shape::Compound(_) => ColliderBuilder::new(crate::parry_queries::to_parry_shape(shape)),
+        Shape::Compound(_) | Shape::Chain(_) => {
+            ColliderBuilder::new(crate::parry_queries::to_parry_shape(shape))
+        }
         Shape::Circle(c) => ColliderBuilder::ball(c.radius),
         Shape::Polygon(p) => {
             if let Some(([0.0, 0.0], hw, hh)) = axis_aligned_box(p) {

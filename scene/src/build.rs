@@ -764,6 +764,16 @@ fn body(path: &FieldPath, spec: &BodySpec) -> Checked<BodyDef> {
         .as_ref()
         .map(|s| shape(&path.key("shape"), s, name))
         .transpose()?;
+    if let (Some(ShapeSpec::Chain { .. }), false) = (&spec.shape, spec.kind == BodyKindSpec::Static)
+    {
+        return Err(Problem::new(
+            &path.key("shape").key("type"),
+            ErrorKind::InvalidValue,
+            format!(
+                "body '{name}' has a chain shape but is not static: a chain has no area and no mass, it goes on static bodies only"
+            ),
+        ));
+    }
     let state = BodyState {
         position: xy(&path.key("position"), &spec.position)?,
         angle: finite(&path.key("angle"), spec.angle)?,
@@ -888,6 +898,7 @@ fn derived_in_range(path: &FieldPath, spec: &BodySpec, body: &engine::Body) -> C
         Some(ShapeSpec::Polygon { .. }) => path.key("shape").key("vertices"),
         Some(ShapeSpec::HollowBox { .. }) => path.key("shape").key("wall"),
         Some(ShapeSpec::Compound { .. }) => path.key("shape").key("parts"),
+        Some(ShapeSpec::Chain { .. }) => path.key("shape").key("points"),
         None => path.key("inertia"),
     };
     let name = &spec.name;
@@ -1096,6 +1107,28 @@ fn shape(path: &FieldPath, spec: &ShapeSpec, body: &str) -> Checked<Shape> {
             })
         }
         ShapeSpec::Compound { parts } => compound(&path.key("parts"), parts, body),
+        ShapeSpec::Chain { points, is_loop } => {
+            let ppath = path.key("points");
+            let xys = points
+                .iter()
+                .enumerate()
+                .map(|(i, v)| xy(&ppath.index(i), v))
+                .collect::<Checked<Vec<_>>>()?;
+            Shape::chain(xys, *is_loop).map_err(|e| match e {
+                engine::EngineError::InvalidChain { point, .. } if point < points.len() => {
+                    Problem::new(
+                        &ppath.index(point),
+                        ErrorKind::InvalidValue,
+                        format!("chain of body '{body}': {e}"),
+                    )
+                }
+                _ => Problem::new(
+                    &ppath,
+                    ErrorKind::InvalidValue,
+                    format!("chain of body '{body}' has {} points: {e}", points.len()),
+                ),
+            })
+        }
     }
 }
 
@@ -1113,6 +1146,15 @@ fn compound(path: &FieldPath, parts: &[PartSpec], body: &str) -> Checked<Shape> 
     let mut placed = Vec::new();
     for (i, part) in parts.iter().enumerate() {
         let ppath = path.index(i);
+        if let ShapeSpec::Chain { .. } = part.shape {
+            return Err(Problem::new(
+                &ppath.key("shape").key("type"),
+                ErrorKind::InvalidValue,
+                format!(
+                    "part {i} of the compound shape of body '{body}' is a chain: a chain is a shape of its own, on a static body"
+                ),
+            ));
+        }
         if let ShapeSpec::Compound { .. } = part.shape {
             return Err(Problem::new(
                 &ppath.key("shape").key("type"),

@@ -230,6 +230,20 @@ pub enum ShapeSpec {
         /// The parts, at least one.
         parts: Vec<PartSpec>,
     },
+    /// `{ type = "chain", points = [[x, y], ...], loop = false }`: a
+    /// one-sided polyline ([`engine::Chain`]) on a static body: each
+    /// segment pushes shapes to the right of its direction (a ground listed
+    /// right to left is solid from above, a loop listed clockwise holds
+    /// shapes inside). At least 4 points, consecutive ones at least 5 mm
+    /// apart; in an open chain the first and last points only guide the
+    /// end segments. Soft-step contact model only.
+    Chain {
+        /// The points in order (m, body frame).
+        points: Vec<Xy>,
+        /// Whether the last point joins the first. Default false.
+        #[serde(default, rename = "loop")]
+        is_loop: bool,
+    },
 }
 
 /// One part of a `compound` shape.

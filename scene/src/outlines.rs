@@ -52,7 +52,10 @@ fn collect(body: &str, field: String, shape: &ShapeSpec, out: &mut Vec<CutOutlin
                 collect(body, format!("{field}.parts[{k}].shape"), &part.shape, out);
             }
         }
-        ShapeSpec::Box { .. } | ShapeSpec::Circle { .. } | ShapeSpec::HollowBox { .. } => {}
+        ShapeSpec::Box { .. }
+        | ShapeSpec::Circle { .. }
+        | ShapeSpec::HollowBox { .. }
+        | ShapeSpec::Chain { .. } => {}
     }
 }
 

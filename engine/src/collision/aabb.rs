@@ -59,6 +59,16 @@ impl Aabb {
                 .map(|p| Self::of_shape(&p.shape, &(pose * Isometry2::new(p.offset, p.angle))))
                 .reduce(|a, b| a.merged(&b))
                 .expect("a compound has at least one part"),
+            Shape::Chain(c) => {
+                let mut min = Vector2::repeat(f64::INFINITY);
+                let mut max = Vector2::repeat(f64::NEG_INFINITY);
+                for p in c.points() {
+                    let w = pose.transform_point(&nalgebra::Point2::from(*p)).coords;
+                    min = min.inf(&w);
+                    max = max.sup(&w);
+                }
+                Self { min, max }
+            }
         }
     }
 

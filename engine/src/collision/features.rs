@@ -247,6 +247,8 @@ pub(crate) fn collide_on_face(
             ))
         }
         (Shape::Compound(_), _) | (_, Shape::Compound(_)) => None,
+        // The exact model refuses chains (their pairs are the soft step's).
+        (Shape::Chain(_), _) | (_, Shape::Chain(_)) => None,
     }
 }
 

@@ -45,6 +45,7 @@
 
 pub mod aabb;
 pub mod broad_phase;
+pub(crate) mod chain_segment;
 pub mod circle_circle;
 pub mod dynamic_tree;
 pub(crate) mod features;

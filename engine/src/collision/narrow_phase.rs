@@ -50,6 +50,9 @@ pub fn collide(
         (Shape::Circle(ca), Shape::Circle(cb)) => {
             collide_circle_circle_with_margin(ca, pose_a, cb, pose_b, margin)
         }
+        // A chain is one-sided and smooth: the soft step collides its
+        // segments (`chain_segment.rs`); the exact model refuses it.
+        (Shape::Chain(_), _) | (_, Shape::Chain(_)) => None,
         (Shape::Compound(_), _) | (_, Shape::Compound(_)) => unreachable!("handled above"),
     }
 }
@@ -89,6 +92,14 @@ pub fn proximity(
             distance_polygon_circle(p, pose_b, c, pose_a).flipped()
         }
         (Shape::Circle(ca), Shape::Circle(cb)) => distance_circle_circle(ca, pose_a, cb, pose_b),
+        // Not measured: a chain bounds no region (it is one-sided), so it
+        // is reported infinitely far, with a placeholder normal.
+        (Shape::Chain(_), _) | (_, Shape::Chain(_)) => Proximity {
+            distance: f64::INFINITY,
+            normal: nalgebra::Vector2::x(),
+            point_a: pose_a.translation.vector,
+            point_b: pose_b.translation.vector,
+        },
         (Shape::Compound(_), _) | (_, Shape::Compound(_)) => unreachable!("handled above"),
     }
 }
@@ -113,6 +124,7 @@ pub fn inner_radius(shape: &Shape) -> f64 {
             .iter()
             .map(|p| inner_radius(&p.shape) - p.offset.norm())
             .fold(0.0, f64::max),
+        Shape::Chain(_) => 0.0,
     }
 }
 
@@ -139,6 +151,7 @@ pub fn rotation_radius(shape: &Shape) -> f64 {
                     }
             })
             .fold(0.0, f64::max),
+        Shape::Chain(c) => c.points().iter().map(|v| v.norm()).fold(0.0, f64::max),
     }
 }
 

@@ -141,6 +141,13 @@ impl ExactModel {
                  use the soft_step contact model",
             );
         }
+        if let Some(crate::shape::Shape::Chain(_)) = &body.shape {
+            return refuse(
+                format!("the chain shape of body '{}'", body.name),
+                "the exact contact model collides single polygons and circles; \
+                 use the soft_step contact model",
+            );
+        }
         if let (true, Some(crate::shape::Shape::Compound(_))) = (contacts, &body.shape) {
             return refuse(
                 format!("the compound shape of body '{}'", body.name),

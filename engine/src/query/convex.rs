@@ -45,6 +45,7 @@ impl ConvexProxy {
                 radius: 0.0,
             },
             Shape::Compound(_) => unreachable!("a compound is queried part by part"),
+            Shape::Chain(_) => unreachable!("a chain has no convex pieces to query"),
         }
     }
 
@@ -78,14 +79,19 @@ pub(crate) fn piece(shape: &Shape, part: usize) -> Option<(Isometry2<f64>, &Shap
             .parts()
             .get(part)
             .map(|p| (Isometry2::new(p.offset, p.angle), &p.shape)),
+        // Not queried yet: a chain's segments are one-sided, zero-radius
+        // cores the proxy does not model (docs/design.md, queries).
+        Shape::Chain(_) => None,
         other => (part == 0).then(|| (Isometry2::identity(), other)),
     }
 }
 
-/// How many convex pieces `shape` has (its parts for a compound, else 1).
+/// How many convex pieces `shape` has (its parts for a compound, none for
+/// a chain, else 1).
 pub(crate) fn piece_count(shape: &Shape) -> usize {
     match shape {
         Shape::Compound(c) => c.parts().len(),
+        Shape::Chain(_) => 0,
         _ => 1,
     }
 }

@@ -37,9 +37,12 @@ fn shape_filter(core: &WorldCore, shape: ShapeRef) -> Filter {
 }
 
 impl Source<'_> {
-    /// Whether the query's filter accepts the piece.
+    /// Whether the query's filter accepts the piece. Chains are not
+    /// queried (see `convex::piece`): their segments' colliders in the
+    /// soft step's trees are passed over.
     fn accepts(&self, shape: ShapeRef) -> bool {
-        self.filter.accepts(&shape_filter(self.core, shape))
+        let chain = matches!(self.core.bodies[shape.body].shape, Some(Shape::Chain(_)));
+        !chain && self.filter.accepts(&shape_filter(self.core, shape))
     }
 
     /// The piece's proxy at its body's current pose.

@@ -130,7 +130,8 @@ fn key(a: BodyId, b: BodyId) -> (BodyId, BodyId) {
 }
 
 /// Whether `(a, b)` must be swapped so that a polygon–circle pair has the
-/// polygon first; otherwise the lower id comes first.
+/// polygon first and a pair with a chain segment the segment first;
+/// otherwise the lower id comes first.
 pub(crate) fn ordered(
     (a, shape_a): (BodyId, &SolverShape),
     (b, shape_b): (BodyId, &SolverShape),
@@ -138,6 +139,9 @@ pub(crate) fn ordered(
     match (shape_a, shape_b) {
         (SolverShape::Circle { .. }, SolverShape::Polygon(_)) => (b, a),
         (SolverShape::Polygon(_), SolverShape::Circle { .. }) => (a, b),
+        (SolverShape::ChainSegment(_), SolverShape::ChainSegment(_)) => (a.min(b), a.max(b)),
+        (_, SolverShape::ChainSegment(_)) => (b, a),
+        (SolverShape::ChainSegment(_), _) => (a, b),
         _ => (a.min(b), a.max(b)),
     }
 }

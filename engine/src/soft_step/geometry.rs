@@ -9,7 +9,7 @@
 
 use crate::body::BodyId;
 use crate::collision::Aabb;
-use crate::shape::Shape;
+use crate::shape::{ChainSegment, Shape};
 use nalgebra::{Isometry2, Vector2};
 use smallvec::SmallVec;
 
@@ -44,7 +44,12 @@ pub(crate) struct Polygon {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) enum SolverShape {
     Polygon(Polygon),
-    Circle { radius: f64 },
+    Circle {
+        radius: f64,
+    },
+    /// One segment of a chain with its ghost points (`shape/chain.rs`),
+    /// in its body's frame.
+    ChainSegment(ChainSegment),
 }
 
 /// A convex shape fixed to a body.
@@ -64,6 +69,23 @@ impl Collider {
     /// One collider per convex piece of `shape` (its parts for a
     /// compound), all on `body`.
     pub(crate) fn of(body: BodyId, shape: &Shape) -> Vec<Collider> {
+        if let Shape::Chain(chain) = shape {
+            // One collider per segment, as Box2D makes each chain segment
+            // a shape: each has its own box in the broad phase.
+            return chain
+                .segments()
+                .into_iter()
+                .map(|segment| {
+                    let shape = SolverShape::ChainSegment(segment);
+                    Collider {
+                        body,
+                        offset: None,
+                        max_extent: shape.max_extent(),
+                        shape,
+                    }
+                })
+                .collect();
+        }
         shape
             .pieces()
             .into_iter()
@@ -107,6 +129,7 @@ impl SolverShape {
     pub(crate) fn new(shape: &Shape) -> Self {
         match shape {
             Shape::Compound(_) => unreachable!("compounds are split into colliders"),
+            Shape::Chain(_) => unreachable!("chains are split into colliders"),
             Shape::Circle(c) => SolverShape::Circle { radius: c.radius },
             Shape::Polygon(p) => {
                 let vertices: Points = p.vertices().iter().copied().collect();
@@ -128,6 +151,7 @@ impl SolverShape {
         match self {
             SolverShape::Circle { radius } => *radius,
             SolverShape::Polygon(p) => p.vertices.iter().map(|v| v.norm()).fold(0.0, f64::max),
+            SolverShape::ChainSegment(s) => s.point1.norm().max(s.point2.norm()),
         }
     }
 
@@ -143,6 +167,8 @@ impl SolverShape {
                 .zip(&p.normals)
                 .map(|(v, n)| n.dot(v))
                 .fold(f64::INFINITY, f64::min),
+            // No inside: a segment is thin (and static, never swept).
+            SolverShape::ChainSegment(_) => 0.0,
         }
     }
 
@@ -169,6 +195,13 @@ impl SolverShape {
                     max = max.sup(&w);
                 }
                 Aabb::new(min, max)
+            }
+            SolverShape::ChainSegment(segment) => {
+                let at = |v: Vector2<f64>| {
+                    Vector2::new(c * v.x - s * v.y + p.x, s * v.x + c * v.y + p.y)
+                };
+                let (a, b) = (at(segment.point1), at(segment.point2));
+                Aabb::new(a.inf(&b), a.sup(&b))
             }
         }
     }

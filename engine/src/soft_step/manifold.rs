@@ -23,6 +23,9 @@
 //! shape is called A; the normal points from A to B; lengths are in m.
 
 use super::geometry::{Polygon, SolverShape};
+use crate::collision::chain_segment::{
+    SegmentManifold, chain_segment_circle_local, chain_segment_polygon_local,
+};
 use crate::collision::circle_circle::circle_circle_local;
 use crate::collision::manifold::LocalProximity;
 use crate::collision::polygon_circle::polygon_circle_local;
@@ -93,6 +96,31 @@ pub(crate) fn collide(
         (SolverShape::Circle { .. }, SolverShape::Polygon(_)) => {
             unreachable!("pairs are ordered polygon first")
         }
+        (SolverShape::ChainSegment(s), SolverShape::Polygon(p)) => from_segment_manifold(
+            chain_segment_polygon_local(s, &p.vertices, &p.normals, xf, speculative),
+        ),
+        (SolverShape::ChainSegment(s), SolverShape::Circle { radius }) => {
+            chain_segment_circle_local(s, *radius, xf.translation.vector, speculative)
+                .map_or_else(LocalManifold::default, one_point)
+        }
+        // Chains are on static bodies, which never pair with each other.
+        (SolverShape::ChainSegment(_), SolverShape::ChainSegment(_)) => LocalManifold::default(),
+        (_, SolverShape::ChainSegment(_)) => unreachable!("pairs are ordered chain segment first"),
+    }
+}
+
+/// A chain segment's manifold (`collision/chain_segment.rs`) as the soft
+/// step's.
+fn from_segment_manifold(m: SegmentManifold) -> LocalManifold {
+    let point = |p: &crate::collision::chain_segment::SegmentPoint| LocalPoint {
+        point: p.point,
+        separation: p.separation,
+        id: p.id,
+    };
+    LocalManifold {
+        normal: m.normal,
+        count: m.count,
+        points: [point(&m.points[0]), point(&m.points[1])],
     }
 }
 

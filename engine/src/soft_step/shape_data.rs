@@ -44,6 +44,9 @@ impl ShapeData {
                 .iter()
                 .map(|p| (p.overrides, radius_of(&p.shape)))
                 .collect(),
+            // One collider per segment (`geometry.rs`), each with the body's
+            // filter and material.
+            Shape::Chain(c) => vec![(ShapeOverrides::default(), 0.0); c.segments().len()],
             other => vec![(ShapeOverrides::default(), radius_of(other))],
         };
         parts

@@ -15,7 +15,7 @@
 
 use super::Dynamics;
 use super::World;
-use crate::body::{Body, BodyId, BodyKind};
+use crate::body::{Body, BodyId, BodyKind, chain_on_moving_body};
 use crate::error::{EngineError, Result, require_finite, require_non_negative, require_positive};
 use crate::forces::{Force, ForceContext, Wrench};
 use crate::soft_step::joints::JointId;
@@ -386,6 +386,9 @@ impl World {
         let body = self.enabled_body(id, "the kind")?;
         if body.kind == kind {
             return Ok(());
+        }
+        if let Some(crate::shape::Shape::Chain(_)) = &body.shape {
+            return Err(chain_on_moving_body(&body.name));
         }
         let control = &self.core.controls[id];
         let mut changed = body.clone();

@@ -94,6 +94,8 @@ registry! {
     conveyor,
     rolling_resistance,
     filters,
+    ghost_collisions,
+    bowl,
 }
 
 /// The case with this id.

@@ -430,7 +430,9 @@ fn support(shape: &Shape, pose: &Isometry2<f64>, u: Vector2<f64>) -> f64 {
             .iter()
             .map(|v| v.dot(&u))
             .fold(f64::NEG_INFINITY, f64::max),
-        Shape::Compound(_) => unreachable!("the worlds hold no compounds"),
+        Shape::Compound(_) | Shape::Chain(_) => {
+            unreachable!("the worlds hold no compounds or chains")
+        }
     }
 }
 

@@ -88,7 +88,7 @@ fn engine_properties(shape: &Shape) -> MassProperties {
     let centroid = match shape {
         Shape::Polygon(p) => p.centroid(),
         Shape::Compound(c) => c.centroid(),
-        Shape::Circle(_) => Vector2::zeros(),
+        Shape::Circle(_) | Shape::Chain(_) => Vector2::zeros(),
     };
     MassProperties {
         area,

@@ -427,6 +427,8 @@ fn outline(shape: &Shape) -> Vec<Vector2<f64>> {
             })
             .collect(),
         Shape::Compound(_) => Vec::new(),
+        // An open line, drawn by `draw_body` (see `chain_line`).
+        Shape::Chain(_) => Vec::new(),
     }
 }
 
@@ -461,6 +463,22 @@ pub(crate) fn draw_body<DB: DrawingBackend>(
         }
         return Ok(());
     };
+    if let Shape::Chain(chain) = shape {
+        // A chain is a line, not a region: its points joined (a loop
+        // closed), ghosts included, in the outline's shade.
+        let rotation = Rotation2::new(state.angle);
+        let mut points: Vec<(i32, i32)> = chain
+            .points()
+            .iter()
+            .map(|v| view.to_px(state.position + rotation * v))
+            .collect();
+        if chain.is_loop() {
+            points.push(points[0]);
+        }
+        area.draw(&PathElement::new(points, edge.stroke_width(2)))
+            .map_err(plot_err)?;
+        return Ok(());
+    }
     let span = 2.0 * look.radius() * view.scale();
     let outlined = span >= OUTLINE_PX;
     let rotation = Rotation2::new(state.angle);

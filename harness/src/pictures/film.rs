@@ -38,7 +38,9 @@ pub fn shape_radius(shape: &Shape) -> f64 {
     match shape {
         Shape::Circle(c) => c.radius,
         Shape::Polygon(p) => p.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max),
-        Shape::Compound(_) => engine::validation::collision::narrow_phase::rotation_radius(shape),
+        Shape::Compound(_) | Shape::Chain(_) => {
+            engine::validation::collision::narrow_phase::rotation_radius(shape)
+        }
     }
 }
 
@@ -73,6 +75,8 @@ pub fn shape_width(shape: &Shape) -> f64 {
                 other => shape_width(other),
             })
             .fold(f64::INFINITY, f64::min),
+        // A line has no width: none to measure a picture's error against.
+        Shape::Chain(_) => f64::INFINITY,
     }
 }
 

@@ -41,7 +41,7 @@ fn inscribed(shape: &Shape) -> f64 {
                 })
                 .fold(f64::INFINITY, f64::min)
         }
-        Shape::Compound(_) => 0.0,
+        Shape::Compound(_) | Shape::Chain(_) => 0.0,
     }
 }
 
@@ -60,7 +60,9 @@ pub(crate) fn body_box(look: &BodyLook, state: &BodyState, view: &View) -> Boxed
                 (a.max(w.x.abs() * scale), b.max(w.y.abs() * scale))
             })
         }
-        Some(Shape::Compound(_)) => (look.radius() * scale, look.radius() * scale),
+        Some(Shape::Compound(_) | Shape::Chain(_)) => {
+            (look.radius() * scale, look.radius() * scale)
+        }
     };
     let (hx, hy) = (hx.ceil().min(1e6) as i32, hy.ceil().min(1e6) as i32);
     (

@@ -99,7 +99,7 @@ fn parts(shape: Option<&Shape>) -> Value {
                         .collect();
                     json!({ "polygon": flat })
                 }
-                Shape::Compound(_) => json!({ "polygon": [] }),
+                Shape::Compound(_) | Shape::Chain(_) => json!({ "polygon": [] }),
             }
         })
         .collect();

@@ -65,6 +65,16 @@ fn bounds(shape: &Shape, pose: &Isometry2<f64>) -> ([f64; 2], [f64; 2]) {
                 )
             })
             .expect("a compound has at least one part"),
+        Shape::Chain(c) => {
+            let mut lo = [f64::INFINITY; 2];
+            let mut hi = [f64::NEG_INFINITY; 2];
+            for v in c.points() {
+                let w = pose * nalgebra::Point2::from(*v);
+                lo = [lo[0].min(w.x), lo[1].min(w.y)];
+                hi = [hi[0].max(w.x), hi[1].max(w.y)];
+            }
+            (lo, hi)
+        }
     }
 }
 

@@ -240,7 +240,7 @@ pub fn ragdoll(
         let centroid = match &shape {
             Shape::Compound(c) => c.centroid(),
             Shape::Polygon(p) => p.centroid(),
-            Shape::Circle(_) => Vector2::zeros(),
+            Shape::Circle(_) | Shape::Chain(_) => Vector2::zeros(),
         };
         let origin = [px, py + bone.y * s];
         let mut body = SceneBody::dynamic(

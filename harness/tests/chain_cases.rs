@@ -1,0 +1,27 @@
+//! The chain cases' soft-step rows (issue 19): `ghost_collisions` run
+//! without the reference engines, every row passing; `bowl`, whose two
+//! open rows (docs/cases.md#bowl) must be exactly the ones failing.
+
+#[test]
+fn a_box_slides_over_a_chain_without_a_bump_and_is_thrown_by_boxes() {
+    let report = harness::cases::ghost_collisions::run_sized(false).expect("ghost_collisions runs");
+    let failed = harness::cases::failing_rows(&report.rows);
+    assert!(failed.is_empty(), "ghost_collisions: {}", failed.join("\n"));
+    // The chain's and the long box's rows (speed and spin) and the boxes'.
+    assert_eq!(report.rows.len(), 5);
+}
+
+#[test]
+fn a_disc_in_a_bowl_converges_with_two_rows_open() {
+    let report = harness::cases::bowl::run().expect("bowl runs");
+    assert_eq!(report.rows.len(), 5);
+    let failing: Vec<&str> = report
+        .rows
+        .iter()
+        .filter(|r| !r.pass)
+        .map(|r| r.check.as_str())
+        .collect();
+    // The open finding of docs/cases.md#bowl: a change either way (a fix,
+    // or another row failing) must update that section.
+    assert_eq!(failing, ["period_n32", "period_n512"]);
+}
