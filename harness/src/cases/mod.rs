@@ -94,6 +94,7 @@ registry! {
     conveyor,
     rolling_resistance,
     filters,
+    bullet_plate,
 }
 
 /// The case with this id.
