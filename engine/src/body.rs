@@ -104,6 +104,15 @@ pub struct BodyDef {
     /// Tangent speed (m/s) of this body's shapes' surface, a conveyor
     /// belt's; see [`crate::material`]. Default 0.
     pub tangent_speed: Option<f64>,
+    /// Whether this body is a bullet (Box2D's `isBullet`): under the soft
+    /// step, a fast dynamic bullet is also swept against the other
+    /// dynamic (non-bullet) bodies' end poses, not only the static ones,
+    /// so it cannot pass through a thin moving body in one step
+    /// (`engine/src/soft_step/bullets.rs`). Default false. No effect on a
+    /// static or kinematic body (kept for when it is made dynamic), nor
+    /// under the exact model, whose swept contact search already covers
+    /// every pair.
+    pub bullet: bool,
 }
 
 impl BodyDef {
@@ -126,6 +135,7 @@ impl BodyDef {
             sensor: false,
             rolling_resistance: None,
             tangent_speed: None,
+            bullet: false,
         }
     }
 
@@ -199,6 +209,12 @@ impl BodyDef {
         self
     }
 
+    /// Makes this body a bullet ([`BodyDef::bullet`]).
+    pub fn as_bullet(mut self) -> Self {
+        self.bullet = true;
+        self
+    }
+
     /// Sets the initial velocity (m/s).
     pub fn with_velocity(mut self, velocity: Vector2<f64>) -> Self {
         self.state.velocity = velocity;
@@ -246,6 +262,8 @@ pub struct Body {
     pub rolling_resistance: Option<f64>,
     /// Tangent speed of its shapes (m/s), if it has its own.
     pub tangent_speed: Option<f64>,
+    /// Whether it is a bullet ([`BodyDef::bullet`]).
+    pub bullet: bool,
 }
 
 /// The "never collide" group of [`BodyDef::with_collision_group`] in
@@ -334,6 +352,7 @@ impl Body {
                 sensor: def.sensor,
                 rolling_resistance: def.rolling_resistance,
                 tangent_speed: def.tangent_speed,
+                bullet: def.bullet,
             };
             let state = if def.kind == BodyKind::Static {
                 BodyState {
@@ -386,6 +405,7 @@ impl Body {
                 sensor: def.sensor,
                 rolling_resistance: def.rolling_resistance,
                 tangent_speed: def.tangent_speed,
+                bullet: def.bullet,
             },
             state,
         ))

@@ -100,6 +100,11 @@ pub(crate) trait ContactModelStep {
     /// Wakes body `id` (nothing sleeps under a model without sleeping).
     fn wake(&mut self, _id: BodyId) {}
 
+    /// Body `id`'s bullet flag ([`Body::bullet`]) changed. The exact model
+    /// ignores it (its swept contact search covers every pair); the soft
+    /// step copies it into its body record.
+    fn bullet_changed(&mut self, _core: &WorldCore, _id: BodyId) {}
+
     /// The joints of body `id` that are not removed, with the other body
     /// of each (`None`: the world).
     fn joints_of(&self, _id: BodyId) -> Vec<(JointId, Option<BodyId>)> {

@@ -393,3 +393,68 @@ fn events_hooks_and_contact_data_step_without_allocating() {
     }
     assert!(impulse > 0.0);
 }
+
+#[test]
+fn a_circling_bullet_steps_without_allocating() {
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    // A bullet on a revolute joint to the world at the origin, circling at
+    // r = 1 m and 60 rad/s (1 m per step at 60 Hz, twenty times half its
+    // 0.1 m side: swept every step), around a dynamic box at the centre
+    // that its chords' boxes overlap now and then (the bullet pass lists
+    // it, queries the trees and sweeps it against the box every step).
+    use etalon2d::{JointDef, Revolute};
+    let mut world = World::with_model(
+        Method::SemiImplicitEuler,
+        ContactModel::SoftStep(SoftStepSettings::default()),
+    )
+    .unwrap();
+    world
+        .add_body(BodyDef::rigid(
+            "centre",
+            1.0,
+            Shape::rectangle(0.3, 0.3).unwrap(),
+        ))
+        .unwrap();
+    let bullet = world
+        .add_body(
+            BodyDef::rigid("bullet", 0.1, Shape::rectangle(0.1, 0.1).unwrap())
+                .with_position(Vector2::new(1.0, 0.0))
+                .with_velocity(Vector2::new(0.0, 60.0))
+                .with_rotation(0.0, 60.0)
+                .as_bullet(),
+        )
+        .unwrap();
+    world
+        .add_joint(JointDef::revolute(
+            "pivot",
+            None,
+            Some(bullet),
+            Vector2::zeros(),
+            Revolute::default(),
+        ))
+        .unwrap();
+    let dt = 1.0 / 60.0;
+    for _ in 0..120 {
+        world.step(dt).unwrap();
+    }
+    let before = ALLOCATIONS.with(Cell::get);
+    for _ in 0..100 {
+        world.step(dt).unwrap();
+    }
+    let made = ALLOCATIONS.with(Cell::get) - before;
+    assert_eq!(made, 0, "{made} allocations in 100 steps with a bullet");
+    // Still swept at the end (the joint's soft rows slow the orbit): it
+    // moves more than FAST_FRACTION (0.5) of its smallest extent (0.05 m)
+    // per step, and still about the origin.
+    let s = world.states()[bullet];
+    assert!(
+        s.velocity.norm() * dt > 0.5 * 0.05,
+        "bullet at {} m/s",
+        s.velocity.norm()
+    );
+    assert!(
+        (s.position.norm() - 1.0).abs() < 0.1,
+        "radius {}",
+        s.position.norm()
+    );
+}

@@ -386,6 +386,21 @@ impl Box2dWorld {
             .map_err(engine_error)
     }
 
+    /// Makes body `index` a bullet (or not), `b2Body_SetBullet`: a fast
+    /// dynamic bullet is swept against the dynamic bodies too
+    /// (`b2SolveContinuous`), not only the static ones (the configuration
+    /// above has none). Returns Box2D's own reading of the flag after the
+    /// call. For the harness's `bullet_plate` case.
+    pub fn set_bullet(&mut self, index: usize, bullet: bool) -> Result<bool, ManyBodyError> {
+        let id = *self
+            .bodies
+            .get(index)
+            .ok_or_else(|| refused(index, "no such body"))?;
+        let mut body = self.world.body(id).map_err(engine_error)?;
+        body.set_bullet(bullet).map_err(engine_error)?;
+        body.is_bullet().map_err(engine_error)
+    }
+
     /// Box2D's own reading of joint `index`: `b2Joint_GetLinearSeparation`
     /// (m) and `b2Joint_GetAngularSeparation` (rad), from its f32 state
     /// (for diagnostics; the comparison between engines uses

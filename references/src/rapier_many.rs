@@ -203,6 +203,18 @@ impl RapierManyWorld {
         self.world.integration_parameters.contact_recycling = false;
     }
 
+    /// Turns rapier's continuous collision on (or off) for body `index`
+    /// (`RigidBody::enable_ccd`; off by default, the configuration above):
+    /// a CCD body's motion is swept against the colliders it may cross,
+    /// dynamic ones included. Returns rapier's reading of the flag after
+    /// the call; `None` for an index that is not a body. For the harness's
+    /// `bullet_plate` case.
+    pub fn enable_ccd(&mut self, index: usize, ccd: bool) -> Option<bool> {
+        let body = self.world.bodies.get_mut(*self.bodies.get(index)?)?;
+        body.enable_ccd(ccd);
+        Some(body.is_ccd_enabled())
+    }
+
     /// The rapier world (for diagnostics and tests).
     pub fn world(&self) -> &PhysicsWorld {
         &self.world

@@ -876,6 +876,7 @@ fn body(path: &FieldPath, spec: &BodySpec) -> Checked<BodyDef> {
         sensor: spec.sensor.unwrap_or(false),
         rolling_resistance,
         tangent_speed,
+        bullet: spec.bullet.unwrap_or(false),
     };
     // The engine's own check, so that building the world cannot fail.
     let (built, _) = engine::Body::from_def(&def).map_err(|e| Problem::engine(path, e))?;

@@ -173,6 +173,13 @@ pub struct BodySpec {
     /// sensor events and neither pushes nor is pushed. Default false.
     /// Soft-step contact model only.
     pub sensor: Option<bool>,
+    /// Whether this body is a bullet (Box2D's `isBullet`): moving fast
+    /// under the soft step, it is swept against the other dynamic bodies'
+    /// end poses too, not only the static ones, so it cannot pass through
+    /// a thin moving body in one step. Default false. No effect on a
+    /// static or kinematic body, nor under the exact model (whose swept
+    /// contact search covers every pair).
+    pub bullet: Option<bool>,
     /// Colour for pictures, `"#rrggbb"` (also accepted as `color`).
     /// Default: grey ([`crate::Colour::STATIC`]) for a static body; for the
     /// others the next colour of the matplotlib "tab10" cycle without its

@@ -1003,6 +1003,7 @@ pub(crate) fn generated_body(
         sensor: false,
         rolling_resistance: None,
         tangent_speed: None,
+        bullet: false,
     }
 }
 

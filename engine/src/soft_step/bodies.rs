@@ -170,6 +170,9 @@ pub(crate) struct BodySim {
     pub rotation: UnitComplex<f64>,
     /// Whether the body sleeps (its island is at rest).
     pub asleep: bool,
+    /// Whether it is a dynamic bullet ([`Body::bullet`]): its sweep waits
+    /// for the other bodies' end poses (`bullets.rs`).
+    pub bullet: bool,
     /// How long (s) the body has been slower than the sleep threshold.
     pub sleep_time: f64,
 }
@@ -208,6 +211,7 @@ impl BodySim {
             min_extent,
             rotation: UnitComplex::new(angle),
             asleep: false,
+            bullet: dynamic && body.bullet,
             sleep_time: 0.0,
         }
     }

@@ -292,6 +292,18 @@ impl BroadPhase {
         self.static_tree.proxy_count() > 0
     }
 
+    /// Calls `f(collider)` for every collider whose fat box overlaps `aabb`,
+    /// in the static tree, then the kinematic tree, then the dynamic tree
+    /// (each in its own order): a bullet's candidates (`bullets.rs`).
+    pub(crate) fn query_all(&self, aabb: &Aabb, mut f: impl FnMut(BodyId)) {
+        for tree in self.trees() {
+            tree.query(aabb, |_, id| {
+                f(id as usize);
+                true
+            });
+        }
+    }
+
     /// Calls `f(body)` for every body whose shape's fat box overlaps
     /// `aabb` in the static tree.
     pub(crate) fn query_static(&self, aabb: &Aabb, mut f: impl FnMut(BodyId)) {

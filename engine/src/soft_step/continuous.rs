@@ -10,9 +10,9 @@
 //!
 //! Pairs already within the linear slop at the start of the step are left
 //! to the speculative contacts (sweeping them would freeze the body where
-//! it is); moving bodies are not swept against each other. Static sensor
-//! shapes and static shapes the body's filters refuse are not swept
-//! against; the pre-solve hook is not asked (a one-way platform lets
+//! it is); moving bodies are not swept against each other (a bullet is
+//! swept against them: `bullets.rs`). Static sensor shapes and static
+//! shapes the body's filters refuse are not swept against; the pre-solve hook is not asked (a one-way platform lets
 //! through only bodies slower than half their size per step, or runs with
 //! `continuous` off).
 

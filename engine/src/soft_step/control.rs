@@ -45,6 +45,15 @@ impl SoftStep {
         self.wake_with_partners(id);
     }
 
+    /// Body `id`'s bullet flag changed: its record takes it (a dynamic
+    /// body's; a static or kinematic one's waits in its [`crate::Body`]
+    /// until it is made dynamic). Nothing else changes, as with Box2D's
+    /// `b2Body_SetBullet`.
+    pub(crate) fn bullet_changed(&mut self, core: &WorldCore, id: BodyId) {
+        let body = &core.bodies[id];
+        self.sims[id].bullet = body.kind == BodyKind::Dynamic && body.bullet;
+    }
+
     /// Body `id`'s [`crate::Body`] in `core` changed (kind, mass, inertia,
     /// shape set or cleared): its record is rebuilt from it, its proxies
     /// go into the tree of its kind, its contacts end (the broad phase

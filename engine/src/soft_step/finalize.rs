@@ -3,6 +3,10 @@
 //! (`continuous.rs`), its colliders' bounding boxes at that pose; then the
 //! boxes into the broad phase.
 //!
+//! A fast bullet is not swept here: the loop lists it, and once every
+//! other body's end pose is final and in the broad phase, `bullets.rs`
+//! sweeps the listed bullets against them, serially in body order.
+//!
 //! The first part is per body ([`finalize_body`]): it reads the body's
 //! solver record, its colliders, the world's states and the broad phase's
 //! static tree, and writes only the body's own timer, rotation, corrected
@@ -101,13 +105,9 @@ fn finalize_body(
     let mut rotation = UnitComplex::new(state.angle);
     let mut position = state.position;
     let mut corrected = None;
-    let motion = r.dp.norm() + sim.max_extent * r.dtheta.abs();
-    // Only static shapes are swept against: none, nothing to do.
-    if settings.continuous
-        && sim.kind == BodyKind::Dynamic
-        && inputs.broad.has_static()
-        && motion > continuous::FAST_FRACTION * sim.min_extent
-    {
+    // Only static shapes are swept against: none, nothing to do. A fast
+    // bullet's sweep waits for the other bodies' end poses (`bullets.rs`).
+    if inputs.broad.has_static() && is_fast(settings, sim, &r) && !sim.bullet {
         let sweep = continuous::Sweep {
             start: (state.position - r.dp, state.angle - r.dtheta),
             end: (state.position, state.angle),
@@ -159,10 +159,25 @@ fn finalize_body(
     Some((pose, corrected))
 }
 
+/// Whether dynamic body `sim`, of solver record `r`, moved fast this step
+/// (more than [`continuous::FAST_FRACTION`] of its smallest extent) with
+/// continuous collision on: then its motion is swept.
+#[inline(always)]
+pub(super) fn is_fast(settings: &SoftStepSettings, sim: &BodySim, r: &SolverBody) -> bool {
+    settings.continuous
+        && sim.kind == BodyKind::Dynamic
+        && r.dp.norm() + sim.max_extent * r.dtheta.abs()
+            > continuous::FAST_FRACTION * sim.min_extent
+}
+
 /// `collider`'s box at its body's `pose`, grown by the speculative
 /// distance (m): what the broad phase is given.
 #[inline(always)]
-fn speculative_box(collider: &Collider, pose: &Isometry2<f64>, speculative: f64) -> Aabb {
+pub(super) fn speculative_box(
+    collider: &Collider,
+    pose: &Isometry2<f64>,
+    speculative: f64,
+) -> Aabb {
     collider
         .shape
         .aabb_at(&collider.pose(pose))
@@ -185,6 +200,10 @@ impl SoftStep {
         for id in 0..self.sims.len() {
             if !self.sims[id].moving() {
                 continue;
+            }
+            if self.sims[id].bullet && is_fast(&self.settings, &self.sims[id], &self.bodies[id + 1])
+            {
+                self.fast_bullets.push(id);
             }
             if pool.is_some() {
                 // The threads' results, in body order.
@@ -219,6 +238,9 @@ impl SoftStep {
                 let aabb = speculative_box(collider, &pose, speculative);
                 self.broad.update(c, &aabb, collider.aabb_margin(margin));
             }
+        }
+        if !self.fast_bullets.is_empty() {
+            self.sweep_bullets(core, dt);
         }
     }
 

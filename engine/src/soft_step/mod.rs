@@ -38,7 +38,8 @@
 //!    bounce with their restitution (overflow, then records);
 //! 6. **store**: impulses back into the contacts, states into the world;
 //! 7. **continuous** (`finalize.rs`): bounding boxes into the broad phase,
-//!    fast bodies swept against static ones (`continuous.rs`);
+//!    fast bodies swept against static ones (`continuous.rs`), then fast
+//!    bullets against every body's final pose (`bullets.rs`);
 //! 8. **sleep** (when on): islands at rest fall asleep (`islands.rs`;
 //!    jointed bodies share an island).
 //!
@@ -66,6 +67,7 @@
 
 mod bodies;
 mod broad_phase;
+mod bullets;
 mod collide;
 mod colouring;
 pub mod contact_events;
@@ -237,6 +239,10 @@ pub struct SoftStep {
     /// threads').
     #[cfg_attr(feature = "serde", serde(skip))]
     impacts: Vec<Option<finalize::Impact>>,
+    /// The fast bullets of the step, in body order, whose sweeps wait for
+    /// the other bodies' end poses (`bullets.rs`).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    fast_bullets: Vec<BodyId>,
 }
 
 impl SoftStep {
@@ -276,6 +282,7 @@ impl SoftStep {
             collided: Vec::new(),
             collider_boxes: Vec::new(),
             impacts: Vec::new(),
+            fast_bullets: Vec::new(),
         };
         for id in 0..core.bodies.len() {
             model.body_added(core, id);

@@ -38,6 +38,10 @@ impl ContactModelStep for SoftStep {
         SoftStep::velocity_changed(self, id);
     }
 
+    fn bullet_changed(&mut self, core: &WorldCore, id: BodyId) {
+        SoftStep::bullet_changed(self, core, id);
+    }
+
     fn joints_of(&self, id: BodyId) -> Vec<(JointId, Option<BodyId>)> {
         SoftStep::joints_of(self, id)
     }

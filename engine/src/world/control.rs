@@ -612,6 +612,32 @@ impl World {
         Ok(self.core.controls[id].fixed_rotation)
     }
 
+    /// Makes body `id` a bullet (or not), Box2D's `b2Body_SetBullet`
+    /// ([`crate::BodyDef::bullet`]): under the soft step a fast dynamic
+    /// bullet is also swept against the other dynamic bodies' end poses.
+    /// Kept on a static or kinematic body for when it is made dynamic;
+    /// accepted and without effect under the exact model, whose swept
+    /// contact search already covers every pair. Refused (typed error,
+    /// world unchanged) for an unknown, removed or disabled body.
+    pub fn set_bullet(&mut self, id: BodyId, bullet: bool) -> Result<()> {
+        self.enabled_body(id, "the bullet flag")?;
+        if self.core.bodies[id].bullet == bullet {
+            return Ok(());
+        }
+        self.core.bodies[id].bullet = bullet;
+        self.model.bullet_changed(&self.core, id);
+        Ok(())
+    }
+
+    /// Whether body `id` is a bullet ([`World::set_bullet`]).
+    pub fn is_bullet(&self, id: BodyId) -> Result<bool> {
+        self.check_body(id)?;
+        let c = &self.core.controls[id];
+        Ok(c.disabled
+            .as_ref()
+            .map_or(self.core.bodies[id].bullet, |(body, _, _)| body.bullet))
+    }
+
     /// Replaces body `id`'s mass (kg, > 0) and moment of inertia about its
     /// centre of mass (kg·m², > 0; `None` only for a body without a shape:
     /// a particle, with no rotation), Box2D's `b2Body_SetMassData` (the

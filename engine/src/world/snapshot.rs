@@ -97,7 +97,7 @@ impl World {
 
 /// The bytes' format number: bumped whenever what is written changes.
 #[cfg(feature = "serde")]
-const FORMAT: u32 = 1;
+const FORMAT: u32 = 2;
 
 #[cfg(feature = "serde")]
 mod bytes {

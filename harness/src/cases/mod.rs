@@ -96,6 +96,7 @@ registry! {
     filters,
     ghost_collisions,
     bowl,
+    bullet_plate,
 }
 
 /// The case with this id.
