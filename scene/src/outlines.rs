@@ -34,7 +34,7 @@ pub fn cut_outlines(file: &SceneFile) -> Vec<CutOutline> {
 
 fn collect(body: &str, field: String, shape: &ShapeSpec, out: &mut Vec<CutOutline>) {
     match shape {
-        ShapeSpec::Polygon { vertices } => {
+        ShapeSpec::Polygon { vertices, .. } => {
             let points: Vec<_> = vertices.iter().map(|v| v.vector()).collect();
             if let Ok(parts) = convex_parts(&points) {
                 if parts.len() > 1 {
@@ -52,7 +52,11 @@ fn collect(body: &str, field: String, shape: &ShapeSpec, out: &mut Vec<CutOutlin
                 collect(body, format!("{field}.parts[{k}].shape"), &part.shape, out);
             }
         }
-        ShapeSpec::Box { .. } | ShapeSpec::Circle { .. } | ShapeSpec::HollowBox { .. } => {}
+        ShapeSpec::Box { .. }
+        | ShapeSpec::Circle { .. }
+        | ShapeSpec::HollowBox { .. }
+        | ShapeSpec::Capsule { .. }
+        | ShapeSpec::Segment { .. } => {}
     }
 }
 

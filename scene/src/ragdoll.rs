@@ -208,6 +208,7 @@ fn centroid(shape: &Shape) -> Vector2<f64> {
     match shape {
         Shape::Polygon(p) => p.centroid(),
         Shape::Compound(c) => c.centroid(),
+        Shape::Rounded(r) => r.centroid(),
         Shape::Circle(_) => Vector2::zeros(),
     }
 }

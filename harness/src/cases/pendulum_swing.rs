@@ -264,6 +264,7 @@ pub fn pendulums(js: &JointScene) -> Result<Vec<Spec>> {
                     PhysicalPendulum::polygon(&vertices, body_pivot)
                 }
                 Shape::Compound(_) => bail!("body '{name}' is a compound"),
+                Shape::Rounded(r) => bail!("body '{name}' is a {}", r.kind().name()),
             };
             physical.pendulum(g, amplitude)
         };

@@ -430,6 +430,14 @@ fn support(shape: &Shape, pose: &Isometry2<f64>, u: Vector2<f64>) -> f64 {
             .iter()
             .map(|v| v.dot(&u))
             .fold(f64::NEG_INFINITY, f64::max),
+        // The core's support plus the radius.
+        Shape::Rounded(r) => {
+            r.core()
+                .iter()
+                .map(|v| (pose * nalgebra::Point2::from(*v)).coords.dot(&u))
+                .fold(f64::NEG_INFINITY, f64::max)
+                + r.radius()
+        }
         Shape::Compound(_) => unreachable!("the worlds hold no compounds"),
     }
 }

@@ -42,6 +42,7 @@ fn inscribed(shape: &Shape) -> f64 {
                 .fold(f64::INFINITY, f64::min)
         }
         Shape::Compound(_) => 0.0,
+        Shape::Rounded(_) => engine::validation::collision::narrow_phase::inner_radius(shape),
     }
 }
 
@@ -58,6 +59,16 @@ pub(crate) fn body_box(look: &BodyLook, state: &BodyState, view: &View) -> Boxed
             p.vertices().iter().fold((0.0f64, 0.0f64), |(a, b), v| {
                 let w = rotation * v;
                 (a.max(w.x.abs() * scale), b.max(w.y.abs() * scale))
+            })
+        }
+        Some(Shape::Rounded(r)) => {
+            let rotation = nalgebra::Rotation2::new(state.angle);
+            r.core().iter().fold((0.0f64, 0.0f64), |(a, b), v| {
+                let w = rotation * v;
+                (
+                    a.max((w.x.abs() + r.radius()) * scale),
+                    b.max((w.y.abs() + r.radius()) * scale),
+                )
             })
         }
         Some(Shape::Compound(_)) => (look.radius() * scale, look.radius() * scale),

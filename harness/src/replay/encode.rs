@@ -99,6 +99,23 @@ fn parts(shape: Option<&Shape>) -> Value {
                         .collect();
                     json!({ "polygon": flat })
                 }
+                // The inscribed outline (48 chords a turn); a segment's two
+                // ends and back, a closed polygon of no area that draws as
+                // its line.
+                Shape::Rounded(r) => {
+                    let mut outline = r.outline(48);
+                    if outline.len() == 2 {
+                        outline.push(outline[0]);
+                    }
+                    let flat: Vec<f64> = outline
+                        .iter()
+                        .flat_map(|v| {
+                            let (x, y) = place(v.x, v.y);
+                            [x, y]
+                        })
+                        .collect();
+                    json!({ "polygon": flat })
+                }
                 Shape::Compound(_) => json!({ "polygon": [] }),
             }
         })

@@ -240,6 +240,7 @@ pub fn ragdoll(
         let centroid = match &shape {
             Shape::Compound(c) => c.centroid(),
             Shape::Polygon(p) => p.centroid(),
+            Shape::Rounded(r) => r.centroid(),
             Shape::Circle(_) => Vector2::zeros(),
         };
         let origin = [px, py + bone.y * s];
