@@ -52,6 +52,7 @@ pub mod manifold;
 pub mod narrow_phase;
 pub mod polygon_circle;
 pub mod polygon_polygon;
+mod rounded_proximity;
 pub mod time_of_impact;
 
 #[cfg(test)]

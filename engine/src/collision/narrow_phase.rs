@@ -20,10 +20,10 @@ use nalgebra::Isometry2;
 /// only, > 0 for speculative contacts whose depth is then negative).
 /// The normal points from A to B.
 ///
-/// # Panics
-/// On a segment, capsule or rounded polygon ([`Shape::Rounded`]): their
-/// radius-aware collision core is not written yet (the contact models
-/// refuse them); [`crate::World`]'s queries do take them.
+/// A pair with a segment, capsule or rounded polygon ([`Shape::Rounded`])
+/// gets a one-point manifold from its exact proximity: their clipped
+/// manifold belongs to the radius-aware collision core, not written yet
+/// (the contact models refuse these shapes).
 pub fn collide(
     a: &Shape,
     pose_a: &Isometry2<f64>,
@@ -56,16 +56,37 @@ pub fn collide(
             collide_circle_circle_with_margin(ca, pose_a, cb, pose_b, margin)
         }
         (Shape::Compound(_), _) | (_, Shape::Compound(_)) => unreachable!("handled above"),
-        (Shape::Rounded(r), _) | (_, Shape::Rounded(r)) => not_collided_yet(r),
+        (Shape::Rounded(_), _) | (_, Shape::Rounded(_)) => {
+            rounded_pair(a, pose_a, b, pose_b, margin)
+        }
     }
 }
 
-/// The panic of [`collide`] and [`proximity`] on a rounded shape.
-fn not_collided_yet(shape: &crate::shape::RoundedConvex) -> ! {
-    panic!(
-        "collision of a {} is not written yet (the contact models refuse it)",
-        shape.kind().name()
-    )
+/// The exact proximity of a pair with a segment, capsule or rounded
+/// polygon (neither a compound), through their "core + radius" views.
+fn rounded_proximity(
+    a: &Shape,
+    pose_a: &Isometry2<f64>,
+    b: &Shape,
+    pose_b: &Isometry2<f64>,
+) -> Proximity {
+    let core = |s: &Shape| s.convex_core().expect("compounds are handled above");
+    super::rounded_proximity::proximity_of_cores(&core(a), pose_a, &core(b), pose_b)
+}
+
+/// The contact of a pair with a segment, capsule or rounded polygon: one
+/// point, from the exact proximity, when closer than `margin` (the
+/// clipped two-point manifold is the radius-aware core's, not written
+/// yet; the contact models refuse these shapes until then).
+fn rounded_pair(
+    a: &Shape,
+    pose_a: &Isometry2<f64>,
+    b: &Shape,
+    pose_b: &Isometry2<f64>,
+    margin: f64,
+) -> Option<Manifold> {
+    let p = rounded_proximity(a, pose_a, b, pose_b);
+    (p.distance <= margin).then(|| p.one_point_manifold())
 }
 
 /// The pose of a compound's part, given the compound's.
@@ -75,10 +96,9 @@ fn part_pose(pose: &Isometry2<f64>, part: &crate::shape::CompoundPart) -> Isomet
 
 /// The exact signed distance of two shapes (m): the gap when apart, 0 when
 /// touching, −(penetration depth) when overlapping, with its normal from A
-/// to B and witness points.
-///
-/// # Panics
-/// On a segment, capsule or rounded polygon, as [`collide`].
+/// to B and witness points. Exact for every pair of shapes, segments,
+/// capsules and rounded polygons included (those by brute force over their
+/// cores).
 pub fn proximity(
     a: &Shape,
     pose_a: &Isometry2<f64>,
@@ -107,7 +127,7 @@ pub fn proximity(
         }
         (Shape::Circle(ca), Shape::Circle(cb)) => distance_circle_circle(ca, pose_a, cb, pose_b),
         (Shape::Compound(_), _) | (_, Shape::Compound(_)) => unreachable!("handled above"),
-        (Shape::Rounded(r), _) | (_, Shape::Rounded(r)) => not_collided_yet(r),
+        (Shape::Rounded(_), _) | (_, Shape::Rounded(_)) => rounded_proximity(a, pose_a, b, pose_b),
     }
 }
 
