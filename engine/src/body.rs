@@ -365,6 +365,19 @@ impl Body {
             };
             return Ok((body, state));
         }
+        if let Some(shape) = &shape
+            && shape.area() == 0.0
+            && (def.mass.is_none() || def.inertia.is_none())
+        {
+            // As in Box2D, a segment has no mass: it cannot give a dynamic
+            // body its mass or inertia.
+            return Err(EngineError::InvalidParameter {
+                what: format!("shape of dynamic body '{name}'"),
+                value: 0.0,
+                reason: "a segment has no area, hence no mass or inertia: put it on a static \
+                         or kinematic body, or give the dynamic body both a mass and an inertia",
+            });
+        }
         let mass = match (def.mass, def.density, &shape) {
             (Some(m), _, _) => require_positive(format!("mass of body '{name}'"), m)?,
             (None, Some(rho), Some(shape)) => {

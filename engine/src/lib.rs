@@ -151,7 +151,10 @@ pub use material::{MixingRule, ShapeOverrides};
 pub use ode::{FnSystem, OdeSystem, Structure};
 pub use profile::StepProfile;
 pub use query::{RayHit, ShapeCastHit, ShapeDistance, ShapeRef};
-pub use shape::{Chain, ChainSegment, Circle, Compound, CompoundPart, ConvexPolygon, Shape};
+pub use shape::{
+    Chain, ChainSegment, Circle, Compound, CompoundPart, ConvexCore, ConvexPolygon, RoundedConvex,
+    RoundedKind, Shape,
+};
 pub use soft_step::SoftStepSettings;
 pub use soft_step::joints::{
     self as joints, Anchor, Distance, JointDef, JointId, JointKind, JointSpring, JointState,

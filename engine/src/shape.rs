@@ -5,9 +5,16 @@
 //! construction; mass properties (area, centroid, second moment) come from
 //! the geometry. When a shape is attached to a body, the body's position is
 //! its centre of mass: a polygon is re-centred on its centroid.
+//!
+//! Segments, capsules and rounded polygons are one type, a convex core
+//! inflated by a radius ([`rounded`]); every convex shape has the
+//! "core + radius" view [`Shape::convex_core`].
 
 pub mod chain;
 pub mod decompose;
+pub mod rounded;
+
+pub use rounded::{ConvexCore, RoundedConvex, RoundedKind};
 
 pub use chain::{Chain, ChainSegment};
 
@@ -300,7 +307,7 @@ pub struct CompoundPart {
     pub offset: Vector2<f64>,
     /// The part's orientation in the body frame (rad), counter-clockwise.
     pub angle: f64,
-    /// The part, in its own frame: a polygon or a circle, not a compound.
+    /// The part, in its own frame: any shape but a compound.
     pub shape: Shape,
     /// What the part sets for itself instead of taking its body's (filter,
     /// sensor flag, material); the default inherits everything.
@@ -335,6 +342,7 @@ impl CompoundPart {
     pub fn centroid(&self) -> Vector2<f64> {
         match &self.shape {
             Shape::Polygon(p) => self.to_body(p.centroid()),
+            Shape::Rounded(r) => self.to_body(r.centroid()),
             _ => self.offset,
         }
     }
@@ -350,7 +358,8 @@ pub struct Compound {
 }
 
 impl Compound {
-    /// A compound of at least one part; parts are polygons or circles with
+    /// A compound of at least one part; parts are any shape but a compound
+    /// (polygons, circles, segments, capsules, rounded polygons), with
     /// finite offsets and angles.
     pub fn new(parts: Vec<CompoundPart>) -> Result<Self> {
         if parts.is_empty() {
@@ -365,7 +374,7 @@ impl Compound {
                 return Err(EngineError::InvalidParameter {
                     what: format!("part {i} of a compound shape"),
                     value: f64::NAN,
-                    reason: "a part must be a polygon or a circle, not a compound",
+                    reason: "a part cannot be a compound itself",
                 });
             }
             for v in [p.offset.x, p.offset.y, p.angle] {
@@ -375,7 +384,15 @@ impl Compound {
                 )?;
             }
         }
-        Ok(Self { parts })
+        let compound = Self { parts };
+        if compound.area() == 0.0 {
+            return Err(EngineError::InvalidParameter {
+                what: "compound shape".into(),
+                value: 0.0,
+                reason: "its parts have no area (segments only): it would have no centroid",
+            });
+        }
+        Ok(compound)
     }
 
     /// A hollow rectangle: four walls of thickness `wall` (m) around an
@@ -449,6 +466,11 @@ pub enum Shape {
     /// A one-sided polyline, open or a loop: ground and walls on static
     /// bodies only (soft-step model only; no area, no mass).
     Chain(Chain),
+    /// A segment, capsule or rounded polygon: a convex core inflated by a
+    /// radius ([`RoundedConvex`]). Not collided yet by either contact model
+    /// (they refuse it while contacts are on); it gives a body its mass
+    /// properties and answers world queries.
+    Rounded(RoundedConvex),
 }
 
 impl Shape {
@@ -472,18 +494,84 @@ impl Shape {
         Ok(Shape::Polygon(ConvexPolygon::new(vertices)?))
     }
 
-    /// Area (m²).
+    /// A capsule: cap centres `length` (m) apart on the x axis, `radius`
+    /// (m); both finite and > 0.
+    pub fn capsule(length: f64, radius: f64) -> Result<Self> {
+        Ok(Shape::Rounded(RoundedConvex::capsule(length, radius)?))
+    }
+
+    /// The segment from `a` to `b` (m), two distinct finite points. It has
+    /// no area, so no mass: a dynamic body needs another shape, or an
+    /// explicit mass and inertia.
+    pub fn segment(a: Vector2<f64>, b: Vector2<f64>) -> Result<Self> {
+        Ok(Shape::Rounded(RoundedConvex::segment(a, b)?))
+    }
+
+    /// The convex polygon of `vertices` (counter-clockwise, m) inflated by
+    /// `radius` (m, finite and > 0).
+    pub fn rounded_polygon(vertices: Vec<Vector2<f64>>, radius: f64) -> Result<Self> {
+        Ok(Shape::Rounded(RoundedConvex::rounded_polygon(
+            ConvexPolygon::new(vertices)?,
+            radius,
+        )?))
+    }
+
+    /// The box `width × height` (m) centred on the origin inflated by
+    /// `radius` (m): outer size `width + 2 radius` by `height + 2 radius`.
+    pub fn rounded_box(width: f64, height: f64, radius: f64) -> Result<Self> {
+        Ok(Shape::Rounded(RoundedConvex::rounded_polygon(
+            ConvexPolygon::rectangle(width, height)?,
+            radius,
+        )?))
+    }
+
+    /// The "convex core + radius" view of a convex shape (a circle is one
+    /// vertex at its centre, a polygon has radius 0); `None` for a
+    /// compound (take its parts) and a chain (take its segments).
+    pub fn convex_core(&self) -> Option<ConvexCore> {
+        match self {
+            Shape::Circle(c) => Some(ConvexCore {
+                vertices: smallvec::smallvec![Vector2::zeros()],
+                radius: c.radius,
+            }),
+            Shape::Polygon(p) => Some(ConvexCore {
+                vertices: p.vertices().iter().copied().collect(),
+                radius: 0.0,
+            }),
+            Shape::Rounded(r) => Some(ConvexCore {
+                vertices: r.core().iter().copied().collect(),
+                radius: r.radius(),
+            }),
+            Shape::Compound(_) | Shape::Chain(_) => None,
+        }
+    }
+
+    /// The kind's name in messages: "polygon", "circle", "compound",
+    /// "chain", "segment", "capsule" or "rounded polygon".
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            Shape::Polygon(_) => "polygon",
+            Shape::Circle(_) => "circle",
+            Shape::Compound(_) => "compound",
+            Shape::Chain(_) => "chain",
+            Shape::Rounded(r) => r.kind().name(),
+        }
+    }
+
+    /// Area (m²); 0 for a segment.
     pub fn area(&self) -> f64 {
         match self {
             Shape::Polygon(p) => p.area(),
             Shape::Circle(c) => std::f64::consts::PI * c.radius * c.radius,
             Shape::Compound(c) => c.area(),
             Shape::Chain(_) => 0.0,
+            Shape::Rounded(r) => r.area(),
         }
     }
 
     /// Moment of inertia about the centroid per unit mass (m²): `I / m`.
-    /// A box b × h gives (b² + h²)/12.
+    /// A box b × h gives (b² + h²)/12. A segment, which has no mass,
+    /// gives 0 (so it adds nothing inside a compound).
     pub fn inertia_per_unit_mass(&self) -> f64 {
         match self {
             Shape::Polygon(p) => p.polar_moment_about_centroid() / p.area(),
@@ -491,6 +579,10 @@ impl Shape {
             Shape::Compound(c) => c.polar_moment_about_centroid() / c.area(),
             // No mass to spread: a chain is on a static body.
             Shape::Chain(_) => 0.0,
+            Shape::Rounded(r) => match r.area() {
+                0.0 => 0.0,
+                area => r.polar_moment_about_centroid() / area,
+            },
         }
     }
 
@@ -501,6 +593,7 @@ impl Shape {
             Shape::Circle(c) => Shape::Circle(*c),
             // No centroid: the chain stays where its static body puts it.
             Shape::Chain(c) => Shape::Chain(c.clone()),
+            Shape::Rounded(r) => Shape::Rounded(r.centered()),
             Shape::Compound(c) => {
                 let centroid = c.centroid();
                 Shape::Compound(Compound {

@@ -81,7 +81,7 @@ use boxdd::{
     BodyId, BodyType, Filter, Foundation, JointId, Polygon, ShapeDef, ShapeId, SurfaceMaterial,
     World, shapes,
 };
-use engine::{ConvexPolygon, Shape};
+use engine::{ConvexPolygon, RoundedKind, Shape};
 
 /// Engine name used in errors and reports.
 const ENGINE: &str = "Box2D 3.2 (boxdd 0.6)";
@@ -357,9 +357,65 @@ impl Box2dWorld {
                     Shape::Compound(_) | Shape::Chain(_) => {
                         unreachable!("a compound's pieces are polygons and circles")
                     }
+                    // Box2D's own kinds. Its mass of a rounded polygon is
+                    // an approximation (b2ComputePolygonMass pushes each
+                    // core vertex out by 1.412 r along its corner's
+                    // bisector), replaced below by the exact one.
+                    Shape::Rounded(r) => {
+                        let mut ends = Vec::with_capacity(r.core().len());
+                        for &v in r.core() {
+                            let v = place(v);
+                            ends.push([to_f32(i, "vertex x", v.x)?, to_f32(i, "vertex y", v.y)?]);
+                        }
+                        let radius = to_f32(i, "radius", r.radius())?;
+                        match r.kind() {
+                            RoundedKind::Segment => {
+                                let segment = shapes::segment(ends[0], ends[1])
+                                    .map_err(|e| refused(i, e.to_string()))?;
+                                body.create_segment(&shape_def, &segment)
+                            }
+                            RoundedKind::Capsule => {
+                                let capsule = shapes::capsule(ends[0], ends[1], radius)
+                                    .map_err(|e| refused(i, e.to_string()))?;
+                                body.create_capsule(&shape_def, &capsule)
+                            }
+                            RoundedKind::RoundedPolygon => {
+                                let n = ends.len();
+                                let polygon = shapes::polygon_from_points(ends, radius)
+                                    .map_err(|e| refused(i, e.to_string()))?;
+                                if polygon.count() != n {
+                                    return Err(refused(
+                                        i,
+                                        format!(
+                                            "Box2D's hull kept {} of the rounded polygon's {n} \
+                                             core vertices",
+                                            polygon.count()
+                                        ),
+                                    ));
+                                }
+                                body.create_polygon(&shape_def, &polygon)
+                            }
+                        }
+                    }
                 }
                 .map_err(|e| refused(i, e.to_string()))?;
                 first.get_or_insert(shape);
+            }
+            // Box2D's mass of a rounded polygon approximates the rounding
+            // (its core pushed out by the radius); the body gets the
+            // scene's exact mass and inertia instead, so a comparison
+            // measures the contact dynamics, not that approximation.
+            if b.kind == BodyKind::Dynamic
+                && crate::many_body::holds_rounded(&b.shape, RoundedKind::RoundedPolygon)
+            {
+                let data = boxdd::MassData::new(
+                    b.mass() as f32,
+                    boxdd::Vec2::new(0.0, 0.0),
+                    b.inertia() as f32,
+                )
+                .map_err(|e| refused(i, e.to_string()))?;
+                body.set_mass_data(data)
+                    .map_err(|e| refused(i, e.to_string()))?;
             }
             bodies.push(id);
             shape_ids.push(first.expect("every shape has at least one piece"));

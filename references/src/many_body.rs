@@ -598,3 +598,15 @@ pub const ENGINE_DIFFERENCES: &[&str] = &[
      position motor along the coupled linear axes at rapier's joint softness, kept \
      in the relax pass",
 ];
+
+/// Whether `shape` is or holds a rounded shape of `kind`: the adapters
+/// give some of them their exact mass properties explicitly (parry gives a
+/// round polygon its core's and a capsule an inertia built on the 3D
+/// hemisphere's centroid offset 3r/8 instead of the half disc's 4r/3π;
+/// Box2D approximates a rounded polygon's).
+pub fn holds_rounded(shape: &Shape, kind: engine::RoundedKind) -> bool {
+    shape
+        .pieces()
+        .into_iter()
+        .any(|(_, _, piece)| matches!(piece, Shape::Rounded(r) if r.kind() == kind))
+}

@@ -23,7 +23,7 @@
 //!
 //! Units are SI: m, s, rad, m/s, rad/s.
 
-use engine::Shape;
+use engine::{RoundedKind, Shape};
 use nalgebra::{Isometry2, Vector2};
 use parry2d_f64::math::{Pose, Rotation, Vector};
 use parry2d_f64::query::{
@@ -65,6 +65,17 @@ pub fn to_parry_shape(shape: &Shape) -> SharedShape {
             SharedShape::new(polygon)
         }
         Shape::Circle(c) => SharedShape::new(Ball::new(c.radius)),
+        // A segment, capsule or rounded polygon: parry's shape of each kind
+        // (a rounded polygon is parry's convex polygon with a border).
+        Shape::Rounded(r) => {
+            let core: Vec<_> = r.core().iter().map(to_parry_vector).collect();
+            match r.kind() {
+                RoundedKind::Segment => SharedShape::segment(core[0], core[1]),
+                RoundedKind::Capsule => SharedShape::capsule(core[0], core[1], r.radius()),
+                RoundedKind::RoundedPolygon => SharedShape::round_convex_polyline(core, r.radius())
+                    .expect("an engine rounded polygon's core has at least 3 distinct vertices"),
+            }
+        }
         Shape::Compound(c) => SharedShape::compound(
             c.parts()
                 .iter()

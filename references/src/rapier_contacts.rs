@@ -128,7 +128,7 @@ pub struct RapierContactRun {
 
 fn collider(shape: &Shape, e: f64, mu: f64) -> Result<ColliderBuilder, RapierError> {
     let builder = match shape {
-        Shape::Compound(_) | Shape::Chain(_) => {
+        Shape::Compound(_) | Shape::Chain(_) | Shape::Rounded(_) => {
             ColliderBuilder::new(crate::parry_queries::to_parry_shape(shape))
         }
         Shape::Circle(c) => ColliderBuilder::ball(c.radius),

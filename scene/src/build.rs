@@ -32,7 +32,8 @@ use engine::error::readable;
 use engine::forces::{AngularDrag, Gravity, PointForce, QuadraticDrag, Spring, TimeWindow, Torque};
 use engine::{
     BodyDef, BodyKind, BodyState, Circle, Compound, CompoundPart, ContactModel, ContactSettings,
-    EventSpec, Force, MAX_RUN_STEPS, Method, Shape, SoftStepSettings, ToiMethod, Tolerance, World,
+    EventSpec, Force, MAX_RUN_STEPS, Method, RoundedConvex, Shape, SoftStepSettings, ToiMethod,
+    Tolerance, World,
 };
 use nalgebra::Vector2;
 
@@ -493,6 +494,29 @@ fn model_allows_body(
     spec: &BodySpec,
     model: Option<ContactModelSpec>,
 ) -> Checked<()> {
+    let rounded = def
+        .shape
+        .iter()
+        .flat_map(Shape::pieces)
+        .find_map(|(_, _, piece)| matches!(piece, Shape::Rounded(_)).then(|| piece.kind_name()));
+    if let (Some(model), Some(kind)) = (model, rounded) {
+        let model = match model {
+            ContactModelSpec::SoftStep => "soft_step",
+            ContactModelSpec::Exact => "exact",
+        };
+        let field = match &spec.shape {
+            Some(ShapeSpec::Compound { .. }) => path.key("shape"),
+            _ => path.key("shape").key("type"),
+        };
+        return Err(Problem::new(
+            &field,
+            ErrorKind::InvalidValue,
+            format!(
+                "body '{}': a {kind} is not collided by the {model} contact model: no contact model collides segments, capsules or rounded polygons yet (their radius-aware collision core is not written yet); remove [contact] to run the scene without contacts",
+                spec.name
+            ),
+        ));
+    }
     if model == Some(ContactModelSpec::SoftStep) {
         return Ok(());
     }
@@ -878,6 +902,17 @@ fn body(path: &FieldPath, spec: &BodySpec) -> Checked<BodyDef> {
         tangent_speed,
         bullet: spec.bullet.unwrap_or(false),
     };
+    if let (BodyKind::Dynamic, Some(ShapeSpec::Segment { .. })) = (kind, &spec.shape)
+        && (def.mass.is_none() || def.inertia.is_none())
+    {
+        return Err(Problem::new(
+            &path.key("shape").key("type"),
+            ErrorKind::InvalidValue,
+            format!(
+                "dynamic body '{name}' has a segment, which has no area, hence no mass or inertia (as in Box2D): make the body static or kinematic, or give it both mass and inertia"
+            ),
+        ));
+    }
     // The engine's own check, so that building the world cannot fail.
     let (built, _) = engine::Body::from_def(&def).map_err(|e| Problem::engine(path, e))?;
     derived_in_range(path, spec, &built)?;
@@ -900,6 +935,8 @@ fn derived_in_range(path: &FieldPath, spec: &BodySpec, body: &engine::Body) -> C
         Some(ShapeSpec::HollowBox { .. }) => path.key("shape").key("wall"),
         Some(ShapeSpec::Compound { .. }) => path.key("shape").key("parts"),
         Some(ShapeSpec::Chain { .. }) => path.key("shape").key("points"),
+        Some(ShapeSpec::Capsule { .. }) => path.key("shape").key("radius"),
+        Some(ShapeSpec::Segment { .. }) => path.key("shape").key("type"),
         None => path.key("inertia"),
     };
     let name = &spec.name;
@@ -1024,7 +1061,11 @@ fn mass_or_density(path: &FieldPath, spec: &BodySpec) -> Checked<(Option<f64>, O
 
 fn shape(path: &FieldPath, spec: &ShapeSpec, body: &str) -> Checked<Shape> {
     match spec {
-        ShapeSpec::Box { width, height } => {
+        ShapeSpec::Box {
+            width,
+            height,
+            radius,
+        } => {
             let w = positive(
                 &path.key("width"),
                 *width,
@@ -1037,7 +1078,47 @@ fn shape(path: &FieldPath, spec: &ShapeSpec, body: &str) -> Checked<Shape> {
                 &format!("box height of body '{body}'"),
                 "m",
             )?;
-            Shape::rectangle(w, h).map_err(|e| Problem::engine(path, e))
+            let r = non_negative(
+                &path.key("radius"),
+                *radius,
+                &format!("box radius of body '{body}'"),
+                "m",
+            )?;
+            if r > 0.0 {
+                Shape::rounded_box(w, h, r).map_err(|e| Problem::engine(path, e))
+            } else {
+                Shape::rectangle(w, h).map_err(|e| Problem::engine(path, e))
+            }
+        }
+        ShapeSpec::Capsule { length, radius } => {
+            let l = positive(
+                &path.key("length"),
+                *length,
+                &format!("capsule length of body '{body}'"),
+                "m",
+            )?;
+            let r = positive(
+                &path.key("radius"),
+                *radius,
+                &format!("capsule radius of body '{body}'"),
+                "m",
+            )?;
+            Shape::capsule(l, r).map_err(|e| Problem::engine(path, e))
+        }
+        ShapeSpec::Segment { a, b } => {
+            let (pa, pb) = (xy(&path.key("a"), a)?, xy(&path.key("b"), b)?);
+            if pa == pb {
+                return Err(Problem::new(
+                    &path.key("b"),
+                    ErrorKind::InvalidValue,
+                    format!(
+                        "segment of body '{body}': b = a = [{}, {}]; a segment needs two distinct ends",
+                        readable(pa.x),
+                        readable(pa.y)
+                    ),
+                ));
+            }
+            Shape::segment(pa, pb).map_err(|e| Problem::engine(path, e))
         }
         ShapeSpec::Circle { radius } => {
             let r = positive(
@@ -1077,14 +1158,20 @@ fn shape(path: &FieldPath, spec: &ShapeSpec, body: &str) -> Checked<Shape> {
                 Compound::hollow_box(w, h, t).map_err(|e| Problem::engine(path, e))?,
             ))
         }
-        ShapeSpec::Polygon { vertices } => {
+        ShapeSpec::Polygon { vertices, radius } => {
             let vpath = path.key("vertices");
+            let r = non_negative(
+                &path.key("radius"),
+                *radius,
+                &format!("polygon radius of body '{body}'"),
+                "m",
+            )?;
             let points = vertices
                 .iter()
                 .enumerate()
                 .map(|(i, v)| xy(&vpath.index(i), v))
                 .collect::<Checked<Vec<_>>>()?;
-            Shape::simple_polygon(&points).map_err(|e| match e.vertex() {
+            let shape = Shape::simple_polygon(&points).map_err(|e| match e.vertex() {
                 Some(vertex) if vertex < vertices.len() => {
                     let v = vertices[vertex];
                     Problem::new(
@@ -1105,7 +1192,21 @@ fn shape(path: &FieldPath, spec: &ShapeSpec, body: &str) -> Checked<Shape> {
                         vertices.len()
                     ),
                 ),
-            })
+            })?;
+            match shape {
+                _ if r == 0.0 => Ok(shape),
+                Shape::Polygon(p) => Ok(Shape::Rounded(
+                    RoundedConvex::rounded_polygon(p, r).map_err(|e| Problem::engine(path, e))?,
+                )),
+                _ => Err(Problem::new(
+                    &path.key("radius"),
+                    ErrorKind::InvalidValue,
+                    format!(
+                        "polygon of body '{body}' is concave: only a convex polygon can be rounded (radius = {})",
+                        readable(r)
+                    ),
+                )),
+            }
         }
         ShapeSpec::Compound { parts } => compound(&path.key("parts"), parts, body),
         ShapeSpec::Chain { points, is_loop } => {

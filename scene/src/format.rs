@@ -194,12 +194,19 @@ pub struct BodySpec {
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum ShapeSpec {
     /// `{ type = "box", width, height }`: an axis-aligned rectangle
-    /// centred on the body's position; width and height (m) > 0.
+    /// centred on the body's position; width and height (m) > 0. With
+    /// `radius = r` (m, ≥ 0) the rectangle is the core of a rounded box,
+    /// every point within r of it: outer size `width + 2r` by
+    /// `height + 2r`, corners rounded (not collided yet by either contact
+    /// model).
     Box {
         /// Extent along the body's x axis (m), > 0.
         width: f64,
         /// Extent along the body's y axis (m), > 0.
         height: f64,
+        /// Rounding radius (m), ≥ 0; 0 or absent: a sharp box.
+        #[serde(default)]
+        radius: f64,
     },
     /// `{ type = "polygon", vertices = [[x, y], ...] }`: a simple polygon,
     /// at least 3 vertices, counter-clockwise (m), no edges crossing or
@@ -208,9 +215,37 @@ pub enum ShapeSpec {
     /// convex parts ([`engine::shape::decompose`]): one rigid body of
     /// several shapes, soft-step contact model only. The engine re-centres
     /// it on its centroid, so `position` is the centre of mass.
+    ///
+    /// With `radius = r` (m, ≥ 0) a convex polygon is the core of a
+    /// rounded polygon, every point within r of it (not collided yet by
+    /// either contact model); a concave one cannot be rounded.
     Polygon {
         /// Vertices counter-clockwise (m).
         vertices: Vec<Xy>,
+        /// Rounding radius (m), ≥ 0; 0 or absent: sharp corners.
+        #[serde(default)]
+        radius: f64,
+    },
+    /// `{ type = "capsule", length, radius }`: two half discs of `radius`
+    /// whose centres are `length` apart on the body's x axis, joined by
+    /// their tangents; centred on the body (m), both > 0. Not collided
+    /// yet by either contact model.
+    Capsule {
+        /// Distance between the two cap centres (m), > 0.
+        length: f64,
+        /// Radius (m), > 0.
+        radius: f64,
+    },
+    /// `{ type = "segment", a = [x, y], b = [x, y] }`: the line segment
+    /// from `a` to `b` (m, distinct). It has no area, hence no mass (as in
+    /// Box2D): on a static or kinematic body, or on a dynamic body given
+    /// both `mass` and `inertia`. Re-centred on its midpoint like any
+    /// shape on its centroid. Not collided yet by either contact model.
+    Segment {
+        /// First end (m).
+        a: Xy,
+        /// Second end (m).
+        b: Xy,
     },
     /// `{ type = "circle", radius }`: a disc centred on the body (m), > 0.
     Circle {

@@ -34,7 +34,7 @@ pub fn cut_outlines(file: &SceneFile) -> Vec<CutOutline> {
 
 fn collect(body: &str, field: String, shape: &ShapeSpec, out: &mut Vec<CutOutline>) {
     match shape {
-        ShapeSpec::Polygon { vertices } => {
+        ShapeSpec::Polygon { vertices, .. } => {
             let points: Vec<_> = vertices.iter().map(|v| v.vector()).collect();
             if let Ok(parts) = convex_parts(&points) {
                 if parts.len() > 1 {
@@ -55,7 +55,9 @@ fn collect(body: &str, field: String, shape: &ShapeSpec, out: &mut Vec<CutOutlin
         ShapeSpec::Box { .. }
         | ShapeSpec::Circle { .. }
         | ShapeSpec::HollowBox { .. }
-        | ShapeSpec::Chain { .. } => {}
+        | ShapeSpec::Chain { .. }
+        | ShapeSpec::Capsule { .. }
+        | ShapeSpec::Segment { .. } => {}
     }
 }
 

@@ -209,6 +209,7 @@ fn centroid(shape: &Shape) -> Vector2<f64> {
         Shape::Polygon(p) => p.centroid(),
         Shape::Compound(c) => c.centroid(),
         Shape::Circle(_) | Shape::Chain(_) => Vector2::zeros(),
+        Shape::Rounded(r) => r.centroid(),
     }
 }
 

@@ -53,6 +53,21 @@ impl Aabb {
         match shape {
             Shape::Polygon(p) => Self::of_polygon(p, pose),
             Shape::Circle(c) => Self::of_circle(c, pose),
+            Shape::Rounded(r) => {
+                let points = r.core().iter().map(|v| pose * nalgebra::Point2::from(*v));
+                let (min, max) = points.fold(
+                    (
+                        Vector2::repeat(f64::INFINITY),
+                        Vector2::repeat(f64::NEG_INFINITY),
+                    ),
+                    |(min, max), p| (min.inf(&p.coords), max.sup(&p.coords)),
+                );
+                let radius = Vector2::repeat(r.radius());
+                Self {
+                    min: min - radius,
+                    max: max + radius,
+                }
+            }
             Shape::Compound(c) => c
                 .parts()
                 .iter()

@@ -54,6 +54,7 @@ pub mod narrow_phase;
 pub mod polygon_circle;
 pub mod polygon_polygon;
 pub(crate) mod polygon_polygon_local;
+mod rounded_proximity;
 pub(crate) mod segment_distance;
 pub mod time_of_impact;
 

@@ -19,6 +19,11 @@ use nalgebra::Isometry2;
 /// they touch, overlap, or are closer than `margin` (m; 0 for touching
 /// only, > 0 for speculative contacts whose depth is then negative).
 /// The normal points from A to B.
+///
+/// A pair with a segment, capsule or rounded polygon ([`Shape::Rounded`])
+/// gets a one-point manifold from its exact proximity: their clipped
+/// manifold belongs to the radius-aware collision core, not written yet
+/// (the contact models refuse these shapes).
 pub fn collide(
     a: &Shape,
     pose_a: &Isometry2<f64>,
@@ -54,7 +59,37 @@ pub fn collide(
         // segments (`chain_segment.rs`); the exact model refuses it.
         (Shape::Chain(_), _) | (_, Shape::Chain(_)) => None,
         (Shape::Compound(_), _) | (_, Shape::Compound(_)) => unreachable!("handled above"),
+        (Shape::Rounded(_), _) | (_, Shape::Rounded(_)) => {
+            rounded_pair(a, pose_a, b, pose_b, margin)
+        }
     }
+}
+
+/// The exact proximity of a pair with a segment, capsule or rounded
+/// polygon (neither a compound), through their "core + radius" views.
+fn rounded_proximity(
+    a: &Shape,
+    pose_a: &Isometry2<f64>,
+    b: &Shape,
+    pose_b: &Isometry2<f64>,
+) -> Proximity {
+    let core = |s: &Shape| s.convex_core().expect("compounds are handled above");
+    super::rounded_proximity::proximity_of_cores(&core(a), pose_a, &core(b), pose_b)
+}
+
+/// The contact of a pair with a segment, capsule or rounded polygon: one
+/// point, from the exact proximity, when closer than `margin` (the
+/// clipped two-point manifold is the radius-aware core's, not written
+/// yet; the contact models refuse these shapes until then).
+fn rounded_pair(
+    a: &Shape,
+    pose_a: &Isometry2<f64>,
+    b: &Shape,
+    pose_b: &Isometry2<f64>,
+    margin: f64,
+) -> Option<Manifold> {
+    let p = rounded_proximity(a, pose_a, b, pose_b);
+    (p.distance <= margin).then(|| p.one_point_manifold())
 }
 
 /// The pose of a compound's part, given the compound's.
@@ -64,7 +99,9 @@ fn part_pose(pose: &Isometry2<f64>, part: &crate::shape::CompoundPart) -> Isomet
 
 /// The exact signed distance of two shapes (m): the gap when apart, 0 when
 /// touching, −(penetration depth) when overlapping, with its normal from A
-/// to B and witness points.
+/// to B and witness points. Exact for every pair of shapes, segments,
+/// capsules and rounded polygons included (those by brute force over their
+/// cores).
 pub fn proximity(
     a: &Shape,
     pose_a: &Isometry2<f64>,
@@ -101,6 +138,7 @@ pub fn proximity(
             point_b: pose_b.translation.vector,
         },
         (Shape::Compound(_), _) | (_, Shape::Compound(_)) => unreachable!("handled above"),
+        (Shape::Rounded(_), _) | (_, Shape::Rounded(_)) => rounded_proximity(a, pose_a, b, pose_b),
     }
 }
 
@@ -125,6 +163,24 @@ pub fn inner_radius(shape: &Shape) -> f64 {
             .map(|p| inner_radius(&p.shape) - p.offset.norm())
             .fold(0.0, f64::max),
         Shape::Chain(_) => 0.0,
+        // The core's own inner radius (a 2-vertex core is thin: minus the
+        // origin's distance to it) plus the rounding.
+        Shape::Rounded(r) => {
+            let v = r.core();
+            let core = if v.len() >= 3 {
+                (0..v.len())
+                    .map(|i| {
+                        super::polygon_circle::edge_normal(v[i], v[(i + 1) % v.len()]).dot(&v[i])
+                    })
+                    .fold(f64::INFINITY, f64::min)
+                    .max(0.0)
+            } else {
+                let (a, b) = (v[0], v[1]);
+                let t = (-a.dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
+                -(a + t * (b - a)).norm()
+            };
+            (core + r.radius()).max(0.0)
+        }
     }
 }
 
@@ -137,6 +193,8 @@ pub fn rotation_radius(shape: &Shape) -> f64 {
     match shape {
         Shape::Polygon(p) => p.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max),
         Shape::Circle(_) => 0.0,
+        // Boundary points lie within the radius of a core vertex's arc.
+        Shape::Rounded(r) => r.core().iter().map(|v| v.norm()).fold(0.0, f64::max) + r.radius(),
         // A part turns about the body origin: its farthest point is at most
         // its offset plus its own extent (a circle's radius counts here,
         // since its centre moves).

@@ -44,6 +44,14 @@ impl ConvexProxy {
                     .collect(),
                 radius: 0.0,
             },
+            Shape::Rounded(r) => Self {
+                vertices: r
+                    .core()
+                    .iter()
+                    .map(|v| pose.transform_point(&Point2::from(*v)).coords)
+                    .collect(),
+                radius: r.radius(),
+            },
             Shape::Compound(_) => unreachable!("a compound is queried part by part"),
             Shape::Chain(_) => unreachable!("a chain has no convex pieces to query"),
         }

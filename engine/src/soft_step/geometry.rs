@@ -130,6 +130,9 @@ impl SolverShape {
         match shape {
             Shape::Compound(_) => unreachable!("compounds are split into colliders"),
             Shape::Chain(_) => unreachable!("chains are split into colliders"),
+            Shape::Rounded(_) => unreachable!(
+                "the soft step refuses rounded shapes (soft_step::world_seam::check_body_shape)"
+            ),
             Shape::Circle(c) => SolverShape::Circle { radius: c.radius },
             Shape::Polygon(p) => {
                 let vertices: Points = p.vertices().iter().copied().collect();

@@ -120,6 +120,7 @@ impl PairMaterial {
 fn radius_of(shape: &Shape) -> f64 {
     match shape {
         Shape::Circle(c) => c.radius,
+        Shape::Rounded(r) => r.radius(),
         _ => 0.0,
     }
 }

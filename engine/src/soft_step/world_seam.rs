@@ -14,6 +14,10 @@ use crate::world_core::WorldCore;
 use nalgebra::Vector2;
 
 impl ContactModelStep for SoftStep {
+    fn check_body(&self, body: &Body) -> Result<()> {
+        crate::shape::rounded::refuse_uncollided(body, "soft_step")
+    }
+
     fn body_added(&mut self, core: &WorldCore, id: BodyId) {
         SoftStep::body_added(self, core, id);
     }

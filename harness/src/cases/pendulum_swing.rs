@@ -265,6 +265,7 @@ pub fn pendulums(js: &JointScene) -> Result<Vec<Spec>> {
                 }
                 Shape::Compound(_) => bail!("body '{name}' is a compound"),
                 Shape::Chain(_) => bail!("body '{name}' is a chain"),
+                Shape::Rounded(r) => bail!("body '{name}' is a {}", r.kind().name()),
             };
             physical.pendulum(g, amplitude)
         };

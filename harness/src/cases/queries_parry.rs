@@ -433,6 +433,14 @@ fn support(shape: &Shape, pose: &Isometry2<f64>, u: Vector2<f64>) -> f64 {
         Shape::Compound(_) | Shape::Chain(_) => {
             unreachable!("the worlds hold no compounds or chains")
         }
+        // The core's support plus the radius.
+        Shape::Rounded(r) => {
+            r.core()
+                .iter()
+                .map(|v| (pose * nalgebra::Point2::from(*v)).coords.dot(&u))
+                .fold(f64::NEG_INFINITY, f64::max)
+                + r.radius()
+        }
     }
 }
 

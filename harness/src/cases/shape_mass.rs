@@ -8,7 +8,10 @@
 //! its convex parts, each about its own centroid by fanned triangles, then
 //! the parallel axis theorem; these formulas take the outline's edges
 //! about the origin in one pass); a compound of a disc and a turned box
-//! against the parallel axis theorem on the two closed forms.
+//! against the parallel axis theorem on the two closed forms; a capsule and
+//! a rounded box against their textbook decompositions into rectangles,
+//! half or quarter discs and the parallel axis theorem (the engine sums
+//! its core, one rectangle per edge and one sector per vertex instead).
 //!
 //! Tolerances are worst-case round-off bounds, not fitted: each side sums
 //! at most m terms of a few rounded operations, so its error is at most
@@ -21,7 +24,10 @@
 //! the division by A carries the area's error times |c| ≤ R), and 5 m R⁴
 //! for the polar moment (terms about the centroid at most 4 R⁴, plus the
 //! parallel-axis term A R²). m counts the outline's vertices plus two for
-//! each diagonal the cut adds.
+//! each diagonal the cut adds. A rounded shape's engine side sums a
+//! rectangle and a sector per core vertex besides its core (each term at
+//! most 5 R⁴ with R the farthest boundary point, through libm's sin, cos,
+//! atan2 within an ulp): m = 2 n + 4 for a core of n vertices.
 
 use super::{Case, CaseReport};
 use crate::row::{RowKind, RowSink};
@@ -89,6 +95,7 @@ fn engine_properties(shape: &Shape) -> MassProperties {
         Shape::Polygon(p) => p.centroid(),
         Shape::Compound(c) => c.centroid(),
         Shape::Circle(_) | Shape::Chain(_) => Vector2::zeros(),
+        Shape::Rounded(r) => r.centroid(),
     };
     MassProperties {
         area,
@@ -291,6 +298,63 @@ pub fn run() -> Result<CaseReport> {
             radius: disc_at.norm() + rd,
         },
         "disc and turned box: the parallel axis theorem on π r², b h and their moments",
+    );
+
+    // Capsule, cap centres L apart, radius r: the rectangle L × 2r plus two
+    // half discs. A half disc (area πr²/2) has its centroid 4r/(3π) from
+    // its flat side and the moment πr⁴/4 about the flat side's midpoint,
+    // so πr⁴/4 − (πr²/2)(4r/3π)² about its centroid; moved to the
+    // capsule's centre, (L/2 + 4r/3π) away (parallel axis theorem).
+    let (length, r) = (1.5, 0.4);
+    let half_disc = PI * r * r / 2.0;
+    let bulge = 4.0 * r / (3.0 * PI);
+    let own = PI * r.powi(4) / 4.0 - half_disc * bulge * bulge;
+    let rect = 2.0 * r * length;
+    compare(
+        &mut sink,
+        "capsule",
+        engine_properties(&Shape::capsule(length, r)?),
+        MassProperties {
+            area: rect + 2.0 * half_disc,
+            centroid: Vector2::zeros(),
+            polar_moment: rect * (length * length + 4.0 * r * r) / 12.0
+                + 2.0 * (own + half_disc * (length / 2.0 + bulge).powi(2)),
+        },
+        Scale {
+            terms: 2 * 2 + 4,
+            radius: length / 2.0 + r,
+        },
+        "rectangle L × 2r and two half discs by the parallel axis theorem",
+    );
+
+    // Rounded box, core w × h, radius r: the rectangle (w + 2r) × h, two
+    // rectangles w × r above and below, and four quarter discs (area πr²/4,
+    // centroid 4r/(3π) from both straight sides, moment πr⁴/8 about the
+    // corner, so πr⁴/8 − (πr²/4)·2(4r/3π)² about its centroid) at the
+    // corners (±w/2, ±h/2).
+    let (w, h, r) = (1.2, 0.6, 0.15);
+    let middle = (w + 2.0 * r) * h;
+    let band = w * r;
+    let quarter = PI * r * r / 4.0;
+    let bulge = 4.0 * r / (3.0 * PI);
+    let quarter_own = PI * r.powi(4) / 8.0 - quarter * 2.0 * bulge * bulge;
+    let quarter_at = Vector2::new(w / 2.0 + bulge, h / 2.0 + bulge);
+    compare(
+        &mut sink,
+        "rounded_box",
+        engine_properties(&Shape::rounded_box(w, h, r)?),
+        MassProperties {
+            area: middle + 2.0 * band + 4.0 * quarter,
+            centroid: Vector2::zeros(),
+            polar_moment: middle * ((w + 2.0 * r).powi(2) + h * h) / 12.0
+                + 2.0 * (band * (w * w + r * r) / 12.0 + band * (h / 2.0 + r / 2.0).powi(2))
+                + 4.0 * (quarter_own + quarter * quarter_at.norm_squared()),
+        },
+        Scale {
+            terms: 2 * 4 + 4,
+            radius: 0.5 * (w * w + h * h).sqrt() + r,
+        },
+        "rectangles and four quarter discs by the parallel axis theorem",
     );
 
     // Concave outlines, cut into convex parts.

@@ -415,11 +415,13 @@ fn draw_spring<DB: DrawingBackend>(
     Ok(())
 }
 
-/// The outline of a polygon or circle in its own frame (m); a compound
-/// has one per part (see [`Shape::pieces`]).
+/// The outline of a polygon, circle, capsule or rounded polygon in its own
+/// frame (m), a segment's two ends; a compound has one per part (see
+/// [`Shape::pieces`]).
 fn outline(shape: &Shape) -> Vec<Vector2<f64>> {
     match shape {
         Shape::Polygon(p) => p.vertices().to_vec(),
+        Shape::Rounded(r) => r.outline(48),
         Shape::Circle(c) => (0..48)
             .map(|j| {
                 let a = std::f64::consts::TAU * j as f64 / 48.0;
@@ -522,6 +524,12 @@ pub(crate) fn draw_body<DB: DrawingBackend>(
                     area.draw(&PathElement::new(closed, edge.stroke_width(1)))
                         .map_err(plot_err)?;
                 }
+            }
+            // A segment: a line two pixels wide in the outline's colour.
+            _ if corners.len() == 2 => {
+                let ends: Vec<(i32, i32)> = corners.into_iter().map(round_px).collect();
+                area.draw(&PathElement::new(ends, edge.stroke_width(2)))
+                    .map_err(plot_err)?;
             }
             _ => {}
         }

@@ -38,7 +38,7 @@ pub fn shape_radius(shape: &Shape) -> f64 {
     match shape {
         Shape::Circle(c) => c.radius,
         Shape::Polygon(p) => p.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max),
-        Shape::Compound(_) | Shape::Chain(_) => {
+        Shape::Compound(_) | Shape::Chain(_) | Shape::Rounded(_) => {
             engine::validation::collision::narrow_phase::rotation_radius(shape)
         }
     }
@@ -66,6 +66,14 @@ pub fn shape_width(shape: &Shape) -> f64 {
                     })
                 })
                 .fold(f64::INFINITY, f64::min)
+        }
+        // The core's width plus the two roundings (a segment's is 0).
+        Shape::Rounded(r) => {
+            let core = match r.core_polygon() {
+                Some(p) => shape_width(&Shape::Polygon(p)),
+                None => 0.0,
+            };
+            core + 2.0 * r.radius()
         }
         Shape::Compound(_) => shape
             .pieces()

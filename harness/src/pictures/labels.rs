@@ -42,6 +42,7 @@ fn inscribed(shape: &Shape) -> f64 {
                 .fold(f64::INFINITY, f64::min)
         }
         Shape::Compound(_) | Shape::Chain(_) => 0.0,
+        Shape::Rounded(_) => engine::validation::collision::narrow_phase::inner_radius(shape),
     }
 }
 
@@ -62,6 +63,16 @@ pub(crate) fn body_box(look: &BodyLook, state: &BodyState, view: &View) -> Boxed
         }
         Some(Shape::Compound(_) | Shape::Chain(_)) => {
             (look.radius() * scale, look.radius() * scale)
+        }
+        Some(Shape::Rounded(r)) => {
+            let rotation = nalgebra::Rotation2::new(state.angle);
+            r.core().iter().fold((0.0f64, 0.0f64), |(a, b), v| {
+                let w = rotation * v;
+                (
+                    a.max((w.x.abs() + r.radius()) * scale),
+                    b.max((w.y.abs() + r.radius()) * scale),
+                )
+            })
         }
     };
     let (hx, hy) = (hx.ceil().min(1e6) as i32, hy.ceil().min(1e6) as i32);

@@ -100,6 +100,23 @@ fn parts(shape: Option<&Shape>) -> Value {
                     json!({ "polygon": flat })
                 }
                 Shape::Compound(_) | Shape::Chain(_) => json!({ "polygon": [] }),
+                // The inscribed outline (48 chords a turn); a segment's two
+                // ends and back, a closed polygon of no area that draws as
+                // its line.
+                Shape::Rounded(r) => {
+                    let mut outline = r.outline(48);
+                    if outline.len() == 2 {
+                        outline.push(outline[0]);
+                    }
+                    let flat: Vec<f64> = outline
+                        .iter()
+                        .flat_map(|v| {
+                            let (x, y) = place(v.x, v.y);
+                            [x, y]
+                        })
+                        .collect();
+                    json!({ "polygon": flat })
+                }
             }
         })
         .collect();

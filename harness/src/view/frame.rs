@@ -46,6 +46,13 @@ impl BodyLook {
                         .polygons
                         .push(p.vertices().iter().map(|v| offset + rotation * v).collect()),
                     Shape::Circle(c) => look.circles.push((offset, c.radius)),
+                    // Drawn as its inscribed outline (48 chords a turn).
+                    Shape::Rounded(r) => look.polygons.push(
+                        r.outline(48)
+                            .iter()
+                            .map(|v| offset + rotation * v)
+                            .collect(),
+                    ),
                     // A compound's parts are polygons and circles.
                     Shape::Compound(_) => {}
                 }

@@ -222,3 +222,43 @@ fn scene_values_beyond_f32_are_refused_as_scene_values() {
         "{e}"
     );
 }
+
+/// A static segment, a dynamic capsule and a dynamic rounded box are held
+/// by Box2D. The capsule's mass and inertia are Box2D's own (its capsule
+/// formula: rectangle plus two half discs, in f32), against the engine's
+/// exact ones: about twenty f32 roundings of values of this size, so
+/// 32·2⁻²⁴ relative. The rounded box gets the engine's mass data
+/// explicitly (Box2D approximates a rounded polygon's): one f32 rounding.
+#[test]
+fn capsule_segment_and_rounded_box_are_held_with_their_mass() {
+    let mut scene = pyramid(0);
+    scene.bodies.push(SceneBody::fixed(
+        Shape::segment(Vector2::new(-5.0, 3.0), Vector2::new(5.0, 3.0)).unwrap(),
+        [0.0, 0.0],
+    ));
+    let capsule = Shape::capsule(1.0, 0.25).unwrap();
+    let rounded = Shape::rounded_box(0.8, 0.4, 0.05).unwrap();
+    scene
+        .bodies
+        .push(SceneBody::dynamic(capsule.clone(), [0.0, 5.0], 2.0));
+    scene
+        .bodies
+        .push(SceneBody::dynamic(rounded.clone(), [2.0, 5.0], 2.0));
+    let mut w = Box2dWorld::new(&scene).unwrap();
+    let masses = w.mass_properties().unwrap();
+    for (body, shape, roundings) in [(2, &capsule, 32.0), (3, &rounded, 2.0)] {
+        let mass = 2.0 * shape.area();
+        let inertia = mass * shape.inertia_per_unit_mass();
+        let got = masses[body];
+        assert!(
+            (got.mass - mass).abs() <= roundings * EPS32 * mass,
+            "{body}: {} vs {mass}",
+            got.mass
+        );
+        assert!(
+            (got.inertia - inertia).abs() <= roundings * EPS32 * inertia,
+            "{body}: {} vs {inertia}",
+            got.inertia
+        );
+    }
+}

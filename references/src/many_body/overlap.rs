@@ -54,6 +54,17 @@ fn bounds(shape: &Shape, pose: &Isometry2<f64>) -> ([f64; 2], [f64; 2]) {
             }
             (lo, hi)
         }
+        // The core's box grown by the radius.
+        Shape::Rounded(r) => {
+            let mut lo = [f64::INFINITY; 2];
+            let mut hi = [f64::NEG_INFINITY; 2];
+            for v in r.core() {
+                let w = pose * nalgebra::Point2::from(*v);
+                lo = [lo[0].min(w.x - r.radius()), lo[1].min(w.y - r.radius())];
+                hi = [hi[0].max(w.x + r.radius()), hi[1].max(w.y + r.radius())];
+            }
+            (lo, hi)
+        }
         Shape::Compound(c) => c
             .parts()
             .iter()

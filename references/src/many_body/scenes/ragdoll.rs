@@ -241,6 +241,7 @@ pub fn ragdoll(
             Shape::Compound(c) => c.centroid(),
             Shape::Polygon(p) => p.centroid(),
             Shape::Circle(_) | Shape::Chain(_) => Vector2::zeros(),
+            Shape::Rounded(r) => r.centroid(),
         };
         let origin = [px, py + bone.y * s];
         let mut body = SceneBody::dynamic(
