@@ -103,11 +103,7 @@ impl SoftStep {
                     .merged(&collider.shape.aabb_at(&collider.pose(&end)))
             })
             .reduce(|a, b| a.merged(&b))?;
-        let motion = Motion::new(
-            start,
-            (sweep.end.0 - sweep.start.0) / sweep.dt,
-            (sweep.end.1 - sweep.start.1) / sweep.dt,
-        );
+        let motion = sweep.motion(start);
         let options = ToiOptions {
             tolerance: LINEAR_SLOP,
             max_iterations: SWEEP_MAX_ITERATIONS,

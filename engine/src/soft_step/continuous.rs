@@ -35,6 +35,18 @@ pub(crate) struct Sweep {
     pub dt: f64,
 }
 
+impl Sweep {
+    /// The constant-velocity motion from `start` (this sweep's start pose,
+    /// `Isometry2::new(self.start.0, self.start.1)`) to its end over `dt`.
+    pub(crate) fn motion(&self, start: Isometry2<f64>) -> Motion {
+        Motion::new(
+            start,
+            (self.end.0 - self.start.0) / self.dt,
+            (self.end.1 - self.start.1) / self.dt,
+        )
+    }
+}
+
 /// The earliest time of impact in [0, dt] (s) of `body` moving along
 /// `sweep` (whose start pose is `start`, the caller's
 /// `Isometry2::new(sweep.start.0, sweep.start.1)`) with any static shape
@@ -56,11 +68,7 @@ pub(crate) fn first_impact(
     blocks: impl Fn(usize) -> Option<usize>,
 ) -> Option<f64> {
     let shape = body.shape.as_ref()?;
-    let motion = Motion::new(
-        start,
-        (sweep.end.0 - sweep.start.0) / sweep.dt,
-        (sweep.end.1 - sweep.start.1) / sweep.dt,
-    );
+    let motion = sweep.motion(start);
     let options = ToiOptions {
         tolerance: LINEAR_SLOP,
         max_iterations: MAX_ITERATIONS,

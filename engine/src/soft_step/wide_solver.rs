@@ -71,6 +71,24 @@ pub(crate) const STATIC_SOFT: u32 = 1 << 30;
 /// [`FIXED`] and [`STATIC_SOFT`]).
 pub(crate) const INDEX: u32 = STATIC_SOFT - 1;
 
+/// A lane's word for body `i`: its index, with [`FIXED`] when the body has
+/// zero inverse mass and inertia (the world, a static or kinematic body:
+/// read, never written back, so that the threads solving one colour write
+/// disjoint bodies even when several of its constraints share such a
+/// body).
+#[inline]
+pub(crate) fn lane_index(i: usize, inv_mass: f64, inv_inertia: f64) -> u32 {
+    let index = u32::try_from(i)
+        .ok()
+        .filter(|&i| i <= INDEX)
+        .expect("fewer than 2³⁰ bodies");
+    if inv_mass == 0.0 && inv_inertia == 0.0 {
+        index | FIXED
+    } else {
+        index
+    }
+}
+
 /// The two softnesses of a step's contacts: prepare gives each constraint
 /// one of them (`[0]` between two moving bodies or with a kinematic one,
 /// `[1]` with a static body, twice as stiff), so the records keep a bit
@@ -161,27 +179,14 @@ pub(crate) fn set_lane(
     c: &ContactConstraint,
     softness: &StepSoftness,
 ) {
-    let index = |i: usize| {
-        u32::try_from(i)
-            .ok()
-            .filter(|&i| i <= INDEX)
-            .expect("fewer than 2³⁰ bodies")
-    };
-    let fixed = |inv_mass: f64, inv_inertia: f64| {
-        if inv_mass == 0.0 && inv_inertia == 0.0 {
-            FIXED
-        } else {
-            0
-        }
-    };
     let static_soft = if c.softness == softness[1] {
         STATIC_SOFT
     } else {
         assert!(c.softness == softness[0], "a softness of the step");
         0
     };
-    w.a[l] = index(c.a) | fixed(c.inv_mass_a, c.inv_inertia_a) | static_soft;
-    w.b[l] = index(c.b) | fixed(c.inv_mass_b, c.inv_inertia_b);
+    w.a[l] = lane_index(c.a, c.inv_mass_a, c.inv_inertia_a) | static_soft;
+    w.b[l] = lane_index(c.b, c.inv_mass_b, c.inv_inertia_b);
     w.normal_x.set_lane(l, c.normal.x);
     w.normal_y.set_lane(l, c.normal.y);
     w.friction.set_lane(l, c.friction);

@@ -28,9 +28,7 @@ use super::revolute::RevoluteRows;
 use super::wrap_angle;
 use crate::soft_step::bodies::SolverBody;
 use crate::soft_step::lanes::{F64x8, LANES, Lanes, dispatch};
-use crate::soft_step::wide_solver::{
-    Bodies, FIXED, INDEX, WideBody, gather, gather_motion, scatter,
-};
+use crate::soft_step::wide_solver::{Bodies, WideBody, gather, gather_motion, lane_index, scatter};
 
 /// Four revolute joints' point rows: what every pass reads.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -115,25 +113,11 @@ pub(crate) fn set_lane(
     (frame, rows): (&JointFrame, &RevoluteRows),
     h: f64,
 ) {
-    let index = |i: usize| {
-        u32::try_from(i)
-            .ok()
-            .filter(|&i| i <= INDEX)
-            .expect("fewer than 2³⁰ bodies")
-    };
     // A body with zero inverse mass and inertia (the world, the static
-    // dummy, a kinematic body) is read but never written back: the lanes'
-    // `FIXED` bit, as the contacts', so that the threads solving one colour
-    // write disjoint bodies (several joints of a colour may share it).
-    let fixed = |inv_mass: f64, inv_inertia: f64| {
-        if inv_mass == 0.0 && inv_inertia == 0.0 {
-            FIXED
-        } else {
-            0
-        }
-    };
-    w.a[l] = index(frame.a) | fixed(frame.ma, frame.ia);
-    w.b[l] = index(frame.b) | fixed(frame.mb, frame.ib);
+    // dummy, a kinematic body) is read but never written back, as in the
+    // contacts' lanes (`lane_index`).
+    w.a[l] = lane_index(frame.a, frame.ma, frame.ia);
+    w.b[l] = lane_index(frame.b, frame.mb, frame.ib);
     w.ma.set_lane(l, frame.ma);
     w.ia.set_lane(l, frame.ia);
     w.mb.set_lane(l, frame.mb);
