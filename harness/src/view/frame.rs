@@ -53,6 +53,16 @@ impl BodyLook {
                             .map(|v| offset + rotation * v)
                             .collect(),
                     ),
+                    // A chain is a line: each solid segment a polygon of
+                    // its two ends, drawn as its outline.
+                    Shape::Chain(c) => {
+                        for segment in c.segments() {
+                            look.polygons.push(vec![
+                                offset + rotation * segment.point1,
+                                offset + rotation * segment.point2,
+                            ]);
+                        }
+                    }
                     // A compound's parts are polygons and circles.
                     Shape::Compound(_) => {}
                 }
