@@ -95,6 +95,15 @@ fn thread_cpu() -> Option<f64> {
     }
 }
 
+/// The expected cost (s) of the job `label` from a table of measured
+/// costs, `default` for a job the table does not list.
+pub fn estimated_cost(table: &[(&str, f64)], label: &str, default: f64) -> f64 {
+    table
+        .iter()
+        .find(|(l, _)| *l == label)
+        .map_or(default, |(_, s)| *s)
+}
+
 /// The order in which `costs` start: decreasing cost, ties in the order
 /// given (longest processing time first).
 pub fn start_order(costs: &[f64]) -> Vec<usize> {

@@ -117,10 +117,7 @@ const REPLAY_COSTS: &[(&str, f64)] = &[
 
 /// The expected cost (s) of replay job `label`.
 fn job_cost(label: &str) -> f64 {
-    REPLAY_COSTS
-        .iter()
-        .find(|(l, _)| *l == label)
-        .map_or(0.1, |(_, s)| *s)
+    crate::pool::estimated_cost(REPLAY_COSTS, label, 0.1)
 }
 
 /// Writes the replays `drawn` of the scenes `ids` (those of

@@ -91,10 +91,7 @@ pub fn cost(unit: &Unit) -> f64 {
         // the cases' numbers below, their sweeps at 3 timing runs.
         Unit::Studies => 50.0,
         Unit::Bench => BENCH_COST,
-        Unit::Case(id) => CASE_COSTS
-            .iter()
-            .find(|(c, _)| c == id)
-            .map_or(DEFAULT_COST, |(_, s)| *s),
+        Unit::Case(id) => crate::pool::estimated_cost(CASE_COSTS, id, DEFAULT_COST),
     }
 }
 

@@ -310,10 +310,7 @@ const DEFAULT_STUDY_COST: f64 = 0.1;
 
 /// The expected cost (s) of the study job `label`.
 pub fn job_cost(label: &str) -> f64 {
-    STUDY_COSTS
-        .iter()
-        .find(|(l, _)| *l == label)
-        .map_or(DEFAULT_STUDY_COST, |(_, s)| *s)
+    crate::pool::estimated_cost(STUDY_COSTS, label, DEFAULT_STUDY_COST)
 }
 
 /// The studies as independent jobs, in the order their results are

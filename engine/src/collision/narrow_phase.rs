@@ -13,7 +13,7 @@ use super::manifold::{Manifold, Proximity};
 use super::polygon_circle::{collide_polygon_circle_with_margin, distance_polygon_circle};
 use super::polygon_polygon::{collide_polygon_polygon_with_margin, distance_polygon_polygon};
 use crate::shape::Shape;
-use nalgebra::Isometry2;
+use nalgebra::{Isometry2, Vector2};
 
 /// The contact manifold of shapes `a` at `pose_a` and `b` at `pose_b` when
 /// they touch, overlap, or are closer than `margin` (m; 0 for touching
@@ -150,13 +150,7 @@ pub fn proximity(
 pub fn inner_radius(shape: &Shape) -> f64 {
     match shape {
         Shape::Circle(c) => c.radius,
-        Shape::Polygon(p) => {
-            let v = p.vertices();
-            (0..v.len())
-                .map(|i| super::polygon_circle::edge_normal(v[i], v[(i + 1) % v.len()]).dot(&v[i]))
-                .fold(f64::INFINITY, f64::min)
-                .max(0.0)
-        }
+        Shape::Polygon(p) => polygon_inner_radius(p.vertices()),
         Shape::Compound(c) => c
             .parts()
             .iter()
@@ -168,12 +162,7 @@ pub fn inner_radius(shape: &Shape) -> f64 {
         Shape::Rounded(r) => {
             let v = r.core();
             let core = if v.len() >= 3 {
-                (0..v.len())
-                    .map(|i| {
-                        super::polygon_circle::edge_normal(v[i], v[(i + 1) % v.len()]).dot(&v[i])
-                    })
-                    .fold(f64::INFINITY, f64::min)
-                    .max(0.0)
+                polygon_inner_radius(v)
             } else {
                 let (a, b) = (v[0], v[1]);
                 let t = (-a.dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
@@ -182,6 +171,16 @@ pub fn inner_radius(shape: &Shape) -> f64 {
             (core + r.radius()).max(0.0)
         }
     }
+}
+
+/// The inner radius (m) of a convex polygon with vertices `v`
+/// (counter-clockwise, body frame): the least distance from the origin to
+/// an edge's line, 0 when the origin is outside.
+fn polygon_inner_radius(v: &[Vector2<f64>]) -> f64 {
+    (0..v.len())
+        .map(|i| super::polygon_circle::edge_normal(v[i], v[(i + 1) % v.len()]).dot(&v[i]))
+        .fold(f64::INFINITY, f64::min)
+        .max(0.0)
 }
 
 /// The largest distance (m) from the body origin (the centre of rotation)

@@ -198,10 +198,7 @@ const DEFAULT_BENCH_COST: f64 = 1.0;
 
 /// The expected cost (s) of the benchmark job `label`.
 pub fn job_cost(label: &str) -> f64 {
-    BENCH_COSTS
-        .iter()
-        .find(|(l, _)| *l == label)
-        .map_or(DEFAULT_BENCH_COST, |(_, s)| *s)
+    crate::pool::estimated_cost(BENCH_COSTS, label, DEFAULT_BENCH_COST)
 }
 
 /// The short benchmark of a run (every scene, no memory runs) as

@@ -80,10 +80,7 @@ const PICTURE_COSTS: &[(&str, f64)] = &[
 
 /// The expected cost (s) of drawing job `label`.
 fn job_cost(label: &str) -> f64 {
-    PICTURE_COSTS
-        .iter()
-        .find(|(l, _)| *l == label)
-        .map_or(0.2, |(_, s)| *s)
+    crate::pool::estimated_cost(PICTURE_COSTS, label, 0.2)
 }
 
 /// Writes the pictures `drawn` of the cases `ids` (in their order) into

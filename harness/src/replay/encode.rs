@@ -84,21 +84,21 @@ fn parts(shape: Option<&Shape>) -> Value {
         .map(|(offset, angle, piece)| {
             let (s, c) = angle.sin_cos();
             let place = |x: f64, y: f64| (offset.x + c * x - s * y, offset.y + s * x + c * y);
+            // A piece's points placed in the body's frame, as x0, y0, x1, ...
+            let flat = |points: &[nalgebra::Vector2<f64>]| -> Vec<f64> {
+                points
+                    .iter()
+                    .flat_map(|v| {
+                        let (x, y) = place(v.x, v.y);
+                        [x, y]
+                    })
+                    .collect()
+            };
             match piece {
                 Shape::Circle(circle) => {
                     json!({ "circle": [offset.x, offset.y, circle.radius] })
                 }
-                Shape::Polygon(p) => {
-                    let flat: Vec<f64> = p
-                        .vertices()
-                        .iter()
-                        .flat_map(|v| {
-                            let (x, y) = place(v.x, v.y);
-                            [x, y]
-                        })
-                        .collect();
-                    json!({ "polygon": flat })
-                }
+                Shape::Polygon(p) => json!({ "polygon": flat(p.vertices()) }),
                 Shape::Compound(_) | Shape::Chain(_) => json!({ "polygon": [] }),
                 // The inscribed outline (48 chords a turn); a segment's two
                 // ends and back, a closed polygon of no area that draws as
@@ -108,14 +108,7 @@ fn parts(shape: Option<&Shape>) -> Value {
                     if outline.len() == 2 {
                         outline.push(outline[0]);
                     }
-                    let flat: Vec<f64> = outline
-                        .iter()
-                        .flat_map(|v| {
-                            let (x, y) = place(v.x, v.y);
-                            [x, y]
-                        })
-                        .collect();
-                    json!({ "polygon": flat })
+                    json!({ "polygon": flat(&outline) })
                 }
             }
         })
