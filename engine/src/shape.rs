@@ -467,8 +467,8 @@ pub enum Shape {
     /// bodies only (soft-step model only; no area, no mass).
     Chain(Chain),
     /// A segment, capsule or rounded polygon: a convex core inflated by a
-    /// radius ([`RoundedConvex`]). Not collided yet by either contact model
-    /// (they refuse it while contacts are on); it gives a body its mass
+    /// radius ([`RoundedConvex`]). Collided by the exact contact model; the
+    /// soft step refuses it while contacts are on. It gives a body its mass
     /// properties and answers world queries.
     Rounded(RoundedConvex),
 }

@@ -499,11 +499,8 @@ fn model_allows_body(
         .iter()
         .flat_map(Shape::pieces)
         .find_map(|(_, _, piece)| matches!(piece, Shape::Rounded(_)).then(|| piece.kind_name()));
-    if let (Some(model), Some(kind)) = (model, rounded) {
-        let model = match model {
-            ContactModelSpec::SoftStep => "soft_step",
-            ContactModelSpec::Exact => "exact",
-        };
+    // The exact model collides them; the soft step not yet.
+    if let (Some(ContactModelSpec::SoftStep), Some(kind)) = (model, rounded) {
         let field = match &spec.shape {
             Some(ShapeSpec::Compound { .. }) => path.key("shape"),
             _ => path.key("shape").key("type"),
@@ -512,7 +509,7 @@ fn model_allows_body(
             &field,
             ErrorKind::InvalidValue,
             format!(
-                "body '{}': a {kind} is not collided by the {model} contact model: no contact model collides segments, capsules or rounded polygons yet (their radius-aware collision core is not written yet); remove [contact] to run the scene without contacts",
+                "body '{}': a {kind} is not collided by the soft_step contact model (it does not collide segments, capsules or rounded polygons yet); set model = \"exact\" under [contact], or remove [contact] to run the scene without contacts",
                 spec.name
             ),
         ));

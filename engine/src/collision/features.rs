@@ -25,8 +25,8 @@
 
 use super::manifold::Manifold;
 use super::polygon_circle::{PolygonFeature, closest_polygon_circle, edge_normal};
-use super::polygon_polygon::{Face, IncidentPoint, clip_polygon_polygon_on, equally_deep_faces};
-use crate::shape::Shape;
+use super::polygon_polygon::{Face, IncidentPoint, clip_polygon_polygon_on};
+use crate::shape::{Circle, ConvexPolygon};
 use nalgebra::{Isometry2, Point2, Vector2};
 
 /// The features of one contact manifold, in the shapes' frames (m).
@@ -124,11 +124,33 @@ impl ContactFeatures {
     }
 }
 
+/// The bit of a [`FeatureId`] that marks a vertex–vertex contact of two
+/// cores (a capsule's cap against a box's corner, `rounded_pair.rs`): its
+/// id is this bit, A's vertex index shifted by 20 and B's. Bit 63 holds a
+/// face's reference side, bits 61–62 a retained point's side, the edge
+/// index bits 40–59.
+pub(crate) const VERTEX_PAIR: FeatureId = 1 << 60;
+
 fn incident_code(p: IncidentPoint) -> u64 {
     match p {
         IncidentPoint::Vertex(i) => 2 + i as u64,
         IncidentPoint::Clip(side) => side as u64,
     }
+}
+
+/// The id of points of the incident shape clipped against reference edge
+/// `edge` of A (`reference_is_a`) or B, the first and last from `first`
+/// and `last`.
+pub(crate) fn face_id(
+    reference_is_a: bool,
+    edge: usize,
+    first: IncidentPoint,
+    last: IncidentPoint,
+) -> FeatureId {
+    ((reference_is_a as u64) << 63)
+        | ((edge as u64) << 40)
+        | (incident_code(first) << 20)
+        | incident_code(last)
 }
 
 fn polygon_feature_code(f: PolygonFeature) -> u64 {
@@ -138,127 +160,129 @@ fn polygon_feature_code(f: PolygonFeature) -> u64 {
     }
 }
 
-/// The manifold of shapes `a` at `pose_a` and `b` at `pose_b` within
-/// `margin` (m), as [`super::collide`] gives it, with its features.
-/// `None` when they are apart, or for a compound shape (the exact model,
-/// the only user, refuses compounds).
-pub(crate) fn collide_with_features(
-    a: &Shape,
+/// The features of two polygons' manifold clipped on reference face
+/// `face` (the SAT's best when `None`), as `polygon_polygon.rs` finds it.
+pub(crate) fn polygon_polygon_features(
+    pa: &ConvexPolygon,
     pose_a: &Isometry2<f64>,
-    b: &Shape,
-    pose_b: &Isometry2<f64>,
-    margin: f64,
-) -> Option<(Manifold, ContactFeatures)> {
-    collide_on_face(a, pose_a, b, pose_b, margin, None)
-}
-
-/// The faces along which two polygons are equally deep, to `tolerance` (m),
-/// best first, each with its normal from A to B ([`equally_deep_faces`]);
-/// empty unless both shapes are polygons.
-pub(crate) fn equally_deep(
-    a: &Shape,
-    pose_a: &Isometry2<f64>,
-    b: &Shape,
-    pose_b: &Isometry2<f64>,
-    tolerance: f64,
-) -> Vec<(Face, Vector2<f64>)> {
-    match (a, b) {
-        (Shape::Polygon(pa), Shape::Polygon(pb)) => {
-            equally_deep_faces(pa, pose_a, pb, pose_b, tolerance)
-        }
-        _ => Vec::new(),
-    }
-}
-
-/// [`collide_with_features`] with two polygons clipped on the reference
-/// face `face` instead of the SAT's best (ignored for circles).
-pub(crate) fn collide_on_face(
-    a: &Shape,
-    pose_a: &Isometry2<f64>,
-    b: &Shape,
+    pb: &ConvexPolygon,
     pose_b: &Isometry2<f64>,
     margin: f64,
     face: Option<Face>,
 ) -> Option<(Manifold, ContactFeatures)> {
-    match (a, b) {
-        (Shape::Polygon(pa), Shape::Polygon(pb)) => {
-            let (m, f) = clip_polygon_polygon_on(pa, pose_a, pb, pose_b, margin, face)?;
-            let (reference, incident_pose) = if f.reference_is_a {
-                (pa, pose_b)
-            } else {
-                (pb, pose_a)
-            };
-            let v = reference.vertices();
-            let (v1, v2) = (v[f.edge], v[(f.edge + 1) % v.len()]);
-            // The points are in A's frame: to the incident frame.
-            let to_incident = |p: Vector2<f64>| {
-                if f.reference_is_a {
-                    let world = pose_a.transform_point(&Point2::from(p));
-                    incident_pose.inverse_transform_point(&world).coords
-                } else {
-                    p
-                }
-            };
-            let id = ((f.reference_is_a as u64) << 63)
-                | ((f.edge as u64) << 40)
-                | (incident_code(f.ids[0]) << 20)
-                | incident_code(f.ids[f.count - 1]);
-            Some((
-                m,
-                ContactFeatures::Face {
-                    reference_is_a: f.reference_is_a,
-                    normal: edge_normal(v1, v2),
-                    face_point: v1,
-                    points: [to_incident(f.points[0]), to_incident(f.points[1])],
-                    count: f.count,
-                    radius: 0.0,
-                    id,
-                },
-            ))
+    let (m, f) = clip_polygon_polygon_on(pa, pose_a, pb, pose_b, margin, face)?;
+    let (reference, incident_pose) = if f.reference_is_a {
+        (pa, pose_b)
+    } else {
+        (pb, pose_a)
+    };
+    let v = reference.vertices();
+    let (v1, v2) = (v[f.edge], v[(f.edge + 1) % v.len()]);
+    // The points are in A's frame: to the incident frame.
+    let to_incident = |p: Vector2<f64>| {
+        if f.reference_is_a {
+            let world = pose_a.transform_point(&Point2::from(p));
+            incident_pose.inverse_transform_point(&world).coords
+        } else {
+            p
         }
-        (Shape::Polygon(p), Shape::Circle(c)) => {
-            let (proximity, feature) = closest_polygon_circle(p, pose_a, c, pose_b);
-            // A NaN distance (non-finite input) reports no contact.
-            (proximity.distance <= margin).then_some(())?;
-            Some((
-                proximity.one_point_manifold(),
-                polygon_circle_features(p.vertices(), feature, c.radius, true),
-            ))
-        }
-        (Shape::Circle(c), Shape::Polygon(p)) => {
-            let (proximity, feature) = closest_polygon_circle(p, pose_b, c, pose_a);
-            (proximity.distance <= margin).then_some(())?;
-            Some((
-                proximity.one_point_manifold().flipped(),
-                polygon_circle_features(p.vertices(), feature, c.radius, false),
-            ))
-        }
-        (Shape::Circle(ca), Shape::Circle(cb)) => {
-            let m = super::collide_circle_circle_with_margin(ca, pose_a, cb, pose_b, margin)?;
-            Some((
-                m,
-                ContactFeatures::Round {
-                    point_a: Vector2::zeros(),
-                    radius_a: ca.radius,
-                    point_b: Vector2::zeros(),
-                    radius_b: cb.radius,
-                    id: 0,
-                },
-            ))
-        }
-        (Shape::Compound(_), _) | (_, Shape::Compound(_)) => None,
-        // The exact model refuses chains (their pairs are the soft step's).
-        (Shape::Chain(_), _) | (_, Shape::Chain(_)) => None,
-        // No features until the radius-aware core lands (the contact
-        // models refuse these shapes).
-        (Shape::Rounded(_), _) | (_, Shape::Rounded(_)) => None,
+    };
+    Some((
+        m,
+        ContactFeatures::Face {
+            reference_is_a: f.reference_is_a,
+            normal: edge_normal(v1, v2),
+            face_point: v1,
+            points: [to_incident(f.points[0]), to_incident(f.points[1])],
+            count: f.count,
+            radius: 0.0,
+            id: face_id(f.reference_is_a, f.edge, f.ids[0], f.ids[f.count - 1]),
+        },
+    ))
+}
+
+/// The features of a polygon (A) and a circle (B) within `margin` (m).
+pub(crate) fn polygon_circle_contact(
+    p: &ConvexPolygon,
+    pose_a: &Isometry2<f64>,
+    c: &Circle,
+    pose_b: &Isometry2<f64>,
+    margin: f64,
+) -> Option<(Manifold, ContactFeatures)> {
+    let (proximity, feature) = closest_polygon_circle(p, pose_a, c, pose_b);
+    // A NaN distance (non-finite input) reports no contact.
+    (proximity.distance <= margin).then_some(())?;
+    Some((
+        proximity.one_point_manifold(),
+        polygon_circle_features(p.vertices(), 0.0, feature, c.radius, true),
+    ))
+}
+
+/// The features of two circles within `margin` (m).
+pub(crate) fn circle_circle_contact(
+    ca: &Circle,
+    pose_a: &Isometry2<f64>,
+    cb: &Circle,
+    pose_b: &Isometry2<f64>,
+    margin: f64,
+) -> Option<(Manifold, ContactFeatures)> {
+    let m = super::collide_circle_circle_with_margin(ca, pose_a, cb, pose_b, margin)?;
+    Some((
+        m,
+        ContactFeatures::Round {
+            point_a: Vector2::zeros(),
+            radius_a: ca.radius,
+            point_b: Vector2::zeros(),
+            radius_b: cb.radius,
+            id: 0,
+        },
+    ))
+}
+
+/// The features flipped to the pair seen with A and B swapped (the same
+/// id: a pair is always asked in one order).
+pub(crate) fn flipped(features: ContactFeatures) -> ContactFeatures {
+    match features {
+        ContactFeatures::Face {
+            reference_is_a,
+            normal,
+            face_point,
+            points,
+            count,
+            radius,
+            id,
+        } => ContactFeatures::Face {
+            reference_is_a: !reference_is_a,
+            normal,
+            face_point,
+            points,
+            count,
+            radius,
+            id,
+        },
+        ContactFeatures::Round {
+            point_a,
+            radius_a,
+            point_b,
+            radius_b,
+            id,
+        } => ContactFeatures::Round {
+            point_a: point_b,
+            radius_a: radius_b,
+            point_b: point_a,
+            radius_b: radius_a,
+            id,
+        },
     }
 }
 
-/// The features of a polygon touching a circle at `feature`;
-/// `polygon_is_a` says which of the pair the polygon is.
-fn polygon_circle_features(
+/// The features of a polygon (or a rounded core of `core_radius`, m)
+/// touching a circle of `radius` (m) at `feature`; `polygon_is_a` says
+/// which of the pair the polygon is. A rounded core's face is its edge
+/// moved out by its radius.
+pub(crate) fn polygon_circle_features(
     vertices: &[Vector2<f64>],
+    core_radius: f64,
     feature: PolygonFeature,
     radius: f64,
     polygon_is_a: bool,
@@ -267,10 +291,11 @@ fn polygon_circle_features(
     match feature {
         PolygonFeature::Edge(i) => {
             let (v1, v2) = (vertices[i], vertices[(i + 1) % vertices.len()]);
+            let normal = edge_normal(v1, v2);
             ContactFeatures::Face {
                 reference_is_a: polygon_is_a,
-                normal: edge_normal(v1, v2),
-                face_point: v1,
+                normal,
+                face_point: v1 + core_radius * normal,
                 points: [Vector2::zeros(); 2],
                 count: 1,
                 radius,
@@ -278,7 +303,7 @@ fn polygon_circle_features(
             }
         }
         PolygonFeature::Vertex(i) => {
-            let (vertex, centre) = ((vertices[i], 0.0), (Vector2::zeros(), radius));
+            let (vertex, centre) = ((vertices[i], core_radius), (Vector2::zeros(), radius));
             let ((point_a, radius_a), (point_b, radius_b)) = if polygon_is_a {
                 (vertex, centre)
             } else {

@@ -51,10 +51,11 @@ pub mod dynamic_tree;
 pub(crate) mod features;
 pub mod manifold;
 pub mod narrow_phase;
+pub(crate) mod pair_table;
 pub mod polygon_circle;
 pub mod polygon_polygon;
 pub(crate) mod polygon_polygon_local;
-mod rounded_proximity;
+pub(crate) mod rounded_pair;
 pub(crate) mod segment_distance;
 pub mod time_of_impact;
 

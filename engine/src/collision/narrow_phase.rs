@@ -2,28 +2,23 @@
 //! of shapes (seed §7.2: once the broad phase has named the candidates, "the
 //! second phase decides whether each pair interpenetrates").
 //!
-//! One function per pair of shape kinds does the work
-//! ([`collide_polygon_polygon`](super::collide_polygon_polygon),
-//! [`collide_polygon_circle`](super::collide_polygon_circle),
-//! [`collide_circle_circle`](super::collide_circle_circle)); a circle against
-//! a polygon is the polygon against the circle with the result flipped.
+//! A compound is split into its parts here; every pair of single shapes is
+//! answered by its cell of the one pair table (`pair_table.rs`): the exact
+//! manifold ([`collide`]), the manifold with the features the exact model's
+//! persistent contacts follow, and the signed distance ([`proximity`]).
 
-use super::circle_circle::{collide_circle_circle_with_margin, distance_circle_circle};
+use super::features::ContactFeatures;
 use super::manifold::{Manifold, Proximity};
-use super::polygon_circle::{collide_polygon_circle_with_margin, distance_polygon_circle};
-use super::polygon_polygon::{collide_polygon_polygon_with_margin, distance_polygon_polygon};
+use super::pair_table::pair;
+use super::polygon_polygon::{Face, equally_deep_faces};
 use crate::shape::Shape;
 use nalgebra::{Isometry2, Vector2};
 
 /// The contact manifold of shapes `a` at `pose_a` and `b` at `pose_b` when
 /// they touch, overlap, or are closer than `margin` (m; 0 for touching
 /// only, > 0 for speculative contacts whose depth is then negative).
-/// The normal points from A to B.
-///
-/// A pair with a segment, capsule or rounded polygon ([`Shape::Rounded`])
-/// gets a one-point manifold from its exact proximity: their clipped
-/// manifold belongs to the radius-aware collision core, not written yet
-/// (the contact models refuse these shapes).
+/// The normal points from A to B. A compound's deepest part speaks for
+/// it; a chain (one-sided, the soft step's) reports none.
 pub fn collide(
     a: &Shape,
     pose_a: &Isometry2<f64>,
@@ -42,54 +37,55 @@ pub fn collide(
     if let Shape::Compound(_) = b {
         return collide(b, pose_b, a, pose_a, margin).map(|m| m.flipped());
     }
-    match (a, b) {
-        (Shape::Polygon(pa), Shape::Polygon(pb)) => {
-            collide_polygon_polygon_with_margin(pa, pose_a, pb, pose_b, margin)
-        }
-        (Shape::Polygon(p), Shape::Circle(c)) => {
-            collide_polygon_circle_with_margin(p, pose_a, c, pose_b, margin)
-        }
-        (Shape::Circle(c), Shape::Polygon(p)) => {
-            collide_polygon_circle_with_margin(p, pose_b, c, pose_a, margin).map(|m| m.flipped())
-        }
-        (Shape::Circle(ca), Shape::Circle(cb)) => {
-            collide_circle_circle_with_margin(ca, pose_a, cb, pose_b, margin)
-        }
-        // A chain is one-sided and smooth: the soft step collides its
-        // segments (`chain_segment.rs`); the exact model refuses it.
-        (Shape::Chain(_), _) | (_, Shape::Chain(_)) => None,
-        (Shape::Compound(_), _) | (_, Shape::Compound(_)) => unreachable!("handled above"),
-        (Shape::Rounded(_), _) | (_, Shape::Rounded(_)) => {
-            rounded_pair(a, pose_a, b, pose_b, margin)
-        }
-    }
+    let cell = pair(a, b).expect("compounds are split above");
+    (cell.manifold)(a, pose_a, b, pose_b, margin)
 }
 
-/// The exact proximity of a pair with a segment, capsule or rounded
-/// polygon (neither a compound), through their "core + radius" views.
-fn rounded_proximity(
-    a: &Shape,
-    pose_a: &Isometry2<f64>,
-    b: &Shape,
-    pose_b: &Isometry2<f64>,
-) -> Proximity {
-    let core = |s: &Shape| s.convex_core().expect("compounds are handled above");
-    super::rounded_proximity::proximity_of_cores(&core(a), pose_a, &core(b), pose_b)
-}
-
-/// The contact of a pair with a segment, capsule or rounded polygon: one
-/// point, from the exact proximity, when closer than `margin` (the
-/// clipped two-point manifold is the radius-aware core's, not written
-/// yet; the contact models refuse these shapes until then).
-fn rounded_pair(
+/// The manifold of shapes `a` at `pose_a` and `b` at `pose_b` within
+/// `margin` (m), as [`collide`] gives it, with its features. `None` when
+/// they are apart, or for a compound shape (the exact model, the only
+/// user, refuses compounds).
+pub(crate) fn collide_with_features(
     a: &Shape,
     pose_a: &Isometry2<f64>,
     b: &Shape,
     pose_b: &Isometry2<f64>,
     margin: f64,
-) -> Option<Manifold> {
-    let p = rounded_proximity(a, pose_a, b, pose_b);
-    (p.distance <= margin).then(|| p.one_point_manifold())
+) -> Option<(Manifold, ContactFeatures)> {
+    collide_on_face(a, pose_a, b, pose_b, margin, None)
+}
+
+/// [`collide_with_features`] clipped on the reference face `face` instead
+/// of the best one (faces of polygons and rounded cores; ignored for a
+/// circle's pairs).
+pub(crate) fn collide_on_face(
+    a: &Shape,
+    pose_a: &Isometry2<f64>,
+    b: &Shape,
+    pose_b: &Isometry2<f64>,
+    margin: f64,
+    face: Option<Face>,
+) -> Option<(Manifold, ContactFeatures)> {
+    let cell = pair(a, b)?;
+    (cell.features)(a, pose_a, b, pose_b, margin, face)
+}
+
+/// The faces along which two polygons are equally deep, to `tolerance` (m),
+/// best first, each with its normal from A to B ([`equally_deep_faces`]);
+/// empty unless both shapes are polygons.
+pub(crate) fn equally_deep(
+    a: &Shape,
+    pose_a: &Isometry2<f64>,
+    b: &Shape,
+    pose_b: &Isometry2<f64>,
+    tolerance: f64,
+) -> Vec<(Face, Vector2<f64>)> {
+    match (a, b) {
+        (Shape::Polygon(pa), Shape::Polygon(pb)) => {
+            equally_deep_faces(pa, pose_a, pb, pose_b, tolerance)
+        }
+        _ => Vec::new(),
+    }
 }
 
 /// The pose of a compound's part, given the compound's.
@@ -99,9 +95,10 @@ fn part_pose(pose: &Isometry2<f64>, part: &crate::shape::CompoundPart) -> Isomet
 
 /// The exact signed distance of two shapes (m): the gap when apart, 0 when
 /// touching, −(penetration depth) when overlapping, with its normal from A
-/// to B and witness points. Exact for every pair of shapes, segments,
-/// capsules and rounded polygons included (those by brute force over their
-/// cores).
+/// to B and witness points. Exact for every pair of convex shapes
+/// (segments, capsules and rounded polygons through their cores, less
+/// their radii); a compound's nearest (or deepest) part speaks for it; a
+/// chain (one-sided, bounding no region) is infinitely far.
 pub fn proximity(
     a: &Shape,
     pose_a: &Isometry2<f64>,
@@ -120,26 +117,8 @@ pub fn proximity(
     if let Shape::Compound(_) = b {
         return proximity(b, pose_b, a, pose_a).flipped();
     }
-    match (a, b) {
-        (Shape::Polygon(pa), Shape::Polygon(pb)) => {
-            distance_polygon_polygon(pa, pose_a, pb, pose_b)
-        }
-        (Shape::Polygon(p), Shape::Circle(c)) => distance_polygon_circle(p, pose_a, c, pose_b),
-        (Shape::Circle(c), Shape::Polygon(p)) => {
-            distance_polygon_circle(p, pose_b, c, pose_a).flipped()
-        }
-        (Shape::Circle(ca), Shape::Circle(cb)) => distance_circle_circle(ca, pose_a, cb, pose_b),
-        // Not measured: a chain bounds no region (it is one-sided), so it
-        // is reported infinitely far, with a placeholder normal.
-        (Shape::Chain(_), _) | (_, Shape::Chain(_)) => Proximity {
-            distance: f64::INFINITY,
-            normal: nalgebra::Vector2::x(),
-            point_a: pose_a.translation.vector,
-            point_b: pose_b.translation.vector,
-        },
-        (Shape::Compound(_), _) | (_, Shape::Compound(_)) => unreachable!("handled above"),
-        (Shape::Rounded(_), _) | (_, Shape::Rounded(_)) => rounded_proximity(a, pose_a, b, pose_b),
-    }
+    let cell = pair(a, b).expect("compounds are split above");
+    (cell.proximity)(a, pose_a, b, pose_b)
 }
 
 /// The radius (m) of the largest circle about the body origin (the centre

@@ -128,11 +128,11 @@ impl ExactModel {
         })
     }
 
-    /// Refuses a body this model cannot simulate. A compound shape, a
-    /// segment, a capsule or a rounded polygon is refused only when
-    /// `contacts` are on (the model collides single polygons and circles);
-    /// without contacts a shape only gives the body its mass properties,
-    /// and any shape integrates.
+    /// Refuses a body this model cannot simulate. A compound shape is
+    /// refused only when `contacts` are on (the model collides single
+    /// polygons, circles, segments, capsules and rounded polygons); without
+    /// contacts a shape only gives the body its mass properties, and any
+    /// shape but a chain integrates.
     pub(crate) fn check_body(body: &Body, contacts: bool) -> Result<()> {
         let refuse = |what: String, reason| Err(EngineError::Unsupported { what, reason });
         if body.kind == BodyKind::Kinematic {
@@ -145,19 +145,16 @@ impl ExactModel {
         if let Some(crate::shape::Shape::Chain(_)) = &body.shape {
             return refuse(
                 format!("the chain shape of body '{}'", body.name),
-                "the exact contact model collides single polygons and circles; \
+                "the exact contact model collides single convex shapes; \
                  use the soft_step contact model",
             );
         }
         if let (true, Some(crate::shape::Shape::Compound(_))) = (contacts, &body.shape) {
             return refuse(
                 format!("the compound shape of body '{}'", body.name),
-                "the exact contact model collides single polygons and circles; \
+                "the exact contact model collides single convex shapes; \
                  use the soft_step contact model",
             );
-        }
-        if contacts {
-            crate::shape::rounded::refuse_uncollided(body, "exact")?;
         }
         if body.friction.is_some() || body.restitution.is_some() {
             return refuse(

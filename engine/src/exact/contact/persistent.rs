@@ -205,7 +205,7 @@ pub(crate) fn follow(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::collision::features::collide_with_features;
+    use crate::collision::narrow_phase::collide_with_features;
     use crate::collision::{collide, proximity};
     use crate::shape::{Circle, Shape};
 
@@ -216,6 +216,18 @@ mod tests {
         let square = Shape::rectangle(1.0, 1.0).unwrap();
         let ground = Shape::rectangle(10.0, 1.0).unwrap();
         let ball = Shape::Circle(Circle::new(0.5).unwrap());
+        // A plank of core 10 × 0.5 rounded by 0.25 (its top surface 0.5
+        // above its centre), a capsule of cap radius 0.3.
+        let plank = Shape::rounded_box(10.0, 0.5, 0.25).unwrap();
+        let pill = Shape::capsule(1.0, 0.3).unwrap();
+        // The capsule's first cap centre 0.3 − 1e-12 from the square's
+        // corner (0.5, 0.5), along a direction 0.1 rad past the diagonal,
+        // the capsule pointing away along it.
+        let diagonal = Vector2::new(
+            (std::f64::consts::FRAC_PI_4 + 0.1).cos(),
+            (std::f64::consts::FRAC_PI_4 + 0.1).sin(),
+        );
+        let cap = Vector2::new(0.5, 0.5) + (0.3 - 1e-12) * diagonal;
         let cases = [
             (
                 &ground,
@@ -259,6 +271,40 @@ mod tests {
                 &square,
                 Isometry2::new(Vector2::new(0.4, 0.99), 0.05),
             ),
+            // Rounded shapes: a capsule lying on a rounded plank (a face of
+            // a rounded reference), on a box (the capsule as A, the box's
+            // face the reference), its cap on a box's corner (a vertex
+            // pair), a disc at a rounded box's corner and on a capsule.
+            (
+                &plank,
+                Isometry2::new(Vector2::new(0.0, -0.5), 0.0),
+                &pill,
+                Isometry2::new(Vector2::new(0.3, 0.3 - 1e-12), 0.0),
+            ),
+            (
+                &pill,
+                Isometry2::new(Vector2::new(0.3, 0.3 - 1e-12), 0.0),
+                &square,
+                Isometry2::new(Vector2::new(0.2, -0.5), 0.0),
+            ),
+            (
+                &square,
+                Isometry2::new(Vector2::zeros(), 0.0),
+                &pill,
+                Isometry2::new(cap + 0.5 * diagonal, std::f64::consts::FRAC_PI_4 + 0.1),
+            ),
+            (
+                &plank,
+                Isometry2::new(Vector2::new(0.0, -0.5), 0.0),
+                &ball,
+                Isometry2::new(Vector2::new(5.0, -0.75) + (0.75 - 1e-12) * diagonal, 0.0),
+            ),
+            (
+                &ball,
+                Isometry2::new(Vector2::new(0.2, 0.8 - 1e-12), 0.0),
+                &pill,
+                Isometry2::new(Vector2::zeros(), 0.0),
+            ),
         ];
         for (sa, pa, sb, pb) in cases {
             let (m, features) = collide_with_features(sa, &pa, sb, &pb, 1e-6).expect("touching");
@@ -288,7 +334,54 @@ mod tests {
         let ball = Shape::Circle(Circle::new(0.5).unwrap());
         // (shape, pose, velocity, omega, acceleration, alpha) per body.
         type Motion = (Vector2<f64>, f64, Vector2<f64>, f64, Vector2<f64>, f64);
-        let cases: [(&Shape, Motion, &Shape, Motion); 5] = [
+        let plank = Shape::rounded_box(10.0, 0.5, 0.25).unwrap();
+        let pill = Shape::capsule(1.0, 0.25).unwrap();
+        // The direction of the box's corner (0.5, 0.5) at its angle 0.2.
+        let corner = std::f64::consts::FRAC_PI_4 + 0.2;
+        let cases: [(&Shape, Motion, &Shape, Motion); 7] = [
+            // A tilted capsule spinning on a turning rounded plank: its
+            // core's end against the plank's core face moved out by 0.25.
+            (
+                &plank,
+                (
+                    Vector2::new(0.0, -0.5),
+                    -0.05,
+                    Vector2::new(0.0, 0.3),
+                    -1.5,
+                    Vector2::new(0.2, 0.1),
+                    0.3,
+                ),
+                &pill,
+                (
+                    Vector2::new(0.2, 0.42),
+                    0.3,
+                    Vector2::new(1.0, 0.5),
+                    4.0,
+                    Vector2::new(0.1, -3.0),
+                    -2.0,
+                ),
+            ),
+            // A capsule's cap at a turning box's corner: a vertex pair.
+            (
+                &square,
+                (
+                    Vector2::zeros(),
+                    0.2,
+                    Vector2::new(0.3, -0.1),
+                    2.0,
+                    Vector2::new(0.1, 0.2),
+                    0.5,
+                ),
+                &pill,
+                (
+                    (0.5f64.hypot(0.5) + 0.3 + 0.5) * Vector2::new(corner.cos(), corner.sin()),
+                    corner,
+                    Vector2::new(0.2, 0.3),
+                    3.0,
+                    Vector2::new(0.2, 0.0),
+                    -1.0,
+                ),
+            ),
             // A disc rolling and spinning on a turning plank.
             (
                 &ground,
