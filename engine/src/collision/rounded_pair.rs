@@ -265,7 +265,7 @@ fn vertex_pair(
     let qb = pose_b.transform_point(&Point2::from(point_b)).coords;
     let length = (qb - qa).norm();
     let distance = length - a.radius - b.radius;
-    if !(distance <= margin) || length == 0.0 {
+    if distance.is_nan() || distance > margin || length == 0.0 {
         return None;
     }
     let n = (qb - qa) / length;
@@ -334,7 +334,7 @@ fn clip_on(
         let p = vertices[deepest];
         let s = n.dot(&(p - on_reference));
         let separation = s - reference.radius - incident.radius;
-        if !(separation <= margin) {
+        if separation.is_nan() || separation > margin {
             return None;
         }
         let point = p - 0.5 * (s - reference.radius + incident.radius) * n;
