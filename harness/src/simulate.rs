@@ -579,7 +579,8 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         eprintln!("{warning}");
     }
     if let Some((t, a, b)) = overlap.as_ref().and_then(contacts_off::OverlapWatch::first) {
-        // Segments, capsules and rounded polygons: no model collides them.
+        // Segments, capsules and rounded polygons: the exact model alone
+        // collides them.
         let rounded = [a, b].iter().any(|&i| {
             scene.bodies()[i].shape.iter().any(|s| {
                 s.pieces()
@@ -588,7 +589,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
             })
         });
         let advice = if rounded {
-            "no contact model collides segments, capsules or rounded polygons yet"
+            "add `[contact]` with model = \"exact\" to make them collide (the soft step does not collide segments, capsules or rounded polygons yet)"
         } else {
             "add `[contact]` (model = \"soft_step\", the default, or \"exact\") to make them collide"
         };
