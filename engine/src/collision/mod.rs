@@ -80,5 +80,6 @@ pub use polygon_polygon::{
     distance_polygon_polygon, separation_polygon_polygon,
 };
 pub use time_of_impact::{
-    Impact, Motion, ToiError, ToiOptions, toi_bisection, toi_conservative_advancement,
+    Impact, Motion, ToiError, ToiOptions, toi_bisection, toi_chain_segment,
+    toi_conservative_advancement,
 };
