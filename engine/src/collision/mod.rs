@@ -47,14 +47,17 @@ pub mod aabb;
 pub mod broad_phase;
 pub(crate) mod chain_segment;
 pub mod circle_circle;
+pub(crate) mod convex;
 pub mod dynamic_tree;
 pub(crate) mod features;
 pub mod manifold;
+pub(crate) mod minkowski;
 pub mod narrow_phase;
 pub(crate) mod pair_table;
 pub mod polygon_circle;
 pub mod polygon_polygon;
 pub(crate) mod polygon_polygon_local;
+pub(crate) mod ray;
 pub(crate) mod rounded_pair;
 pub(crate) mod segment_distance;
 pub mod time_of_impact;
@@ -78,5 +81,6 @@ pub use polygon_polygon::{
     distance_polygon_polygon, separation_polygon_polygon,
 };
 pub use time_of_impact::{
-    Impact, Motion, ToiError, ToiOptions, toi_bisection, toi_conservative_advancement,
+    Impact, Motion, ToiError, ToiOptions, toi_bisection, toi_chain_segment,
+    toi_conservative_advancement,
 };

@@ -20,7 +20,8 @@
 //! ```
 //!
 //! **What is searched.** Every convex piece of every body's shape (a
-//! compound's parts one by one, named by a [`ShapeRef`]) that the query's
+//! compound's parts one by one, a chain's solid segments one by one, each
+//! named by a [`ShapeRef`]) that the query's
 //! [`QueryFilter`](crate::QueryFilter) accepts. Under the soft step the
 //! candidates come from its broad phase, the dynamic AABB trees it keeps
 //! anyway (a ray walks the trees nearer child first, both axes of its box
@@ -31,12 +32,21 @@
 //! box, a linear scan. The fat boxes only select candidates: every answer
 //! is computed on the exact geometry at the bodies' current poses.
 //!
-//! **How.** Every piece, and every query shape, becomes one convex proxy:
-//! a core (a point, a segment or a convex polygon) inflated by a radius
-//! (a circle is a point of radius r, a polygon its vertices with radius 0;
-//! capsules and rounded polygons would fit unchanged). A ray meets a proxy
-//! in closed form (module `ray`); two proxies are compared through
-//! their Minkowski difference built explicitly (module `minkowski`): the
+//! **Chains.** A chain's segment is a core of its two points with radius
+//! 0. Rays hit it only from its solid side, as Box2D's
+//! (see [`World::cast_ray`](crate::World::cast_ray)); the other queries
+//! see it as a two-sided line, as Box2D's shape casts and overlap tests
+//! do (a swept shape coming from behind a ground chain stops on it; the
+//! soft step would push it through, but a query answers geometry). A point
+//! is inside a segment only on it: a chain bounds no area.
+//!
+//! **How.** Every piece, and every query shape, becomes one convex proxy
+//! (`collision::convex`, shared with the continuous collision): a core (a
+//! point, a segment or a convex polygon) inflated by a radius (a circle is
+//! a point of radius r, a polygon its vertices with radius 0, a capsule or
+//! a rounded polygon its core with its radius). A ray meets a proxy in
+//! closed form (module `collision::ray`); two proxies are compared through
+//! their Minkowski difference built explicitly (`collision::minkowski`): the
 //! signed distance, the witness points and the time of impact of a swept
 //! shape are then a point-to-polygon distance and a ray cast, exact up to
 //! rounding without iterations. The harness case `queries_parry` checks
@@ -68,9 +78,6 @@
 //! ([`QueryFilter::accepts`](crate::QueryFilter::accepts), Box2D's
 //! `b2QueryFilter`).
 
-pub(crate) mod convex;
-pub(crate) mod minkowski;
-pub(crate) mod ray;
 mod source;
 mod world_queries;
 
@@ -86,7 +93,9 @@ use nalgebra::Vector2;
 pub struct ShapeRef {
     /// The body.
     pub body: BodyId,
-    /// The index of the compound part; 0 for a polygon or a circle.
+    /// The index of the compound part or of the chain's solid segment
+    /// ([`Chain::segment`](crate::shape::Chain::segment)); 0 for any other
+    /// shape.
     pub part: usize,
 }
 

@@ -5,8 +5,8 @@
 //! the exact geometry by the caller.
 
 use super::ShapeRef;
-use super::convex::{ConvexProxy, piece, piece_count};
 use crate::collision::Aabb;
+use crate::collision::convex::{ConvexProxy, piece_count, piece_proxy};
 use crate::collision::dynamic_tree::ray::ray_box;
 use crate::filter::{Filter, QueryFilter};
 use crate::shape::Shape;
@@ -37,12 +37,15 @@ fn shape_filter(core: &WorldCore, shape: ShapeRef) -> Filter {
 }
 
 impl Source<'_> {
-    /// Whether the query's filter accepts the piece. Chains are not
-    /// queried (see `convex::piece`): their segments' colliders in the
-    /// soft step's trees are passed over.
+    /// Whether the query's filter accepts the piece.
     fn accepts(&self, shape: ShapeRef) -> bool {
-        let chain = matches!(self.core.bodies[shape.body].shape, Some(Shape::Chain(_)));
-        !chain && self.filter.accepts(&shape_filter(self.core, shape))
+        self.filter.accepts(&shape_filter(self.core, shape))
+    }
+
+    /// Whether the piece is a chain's segment (one-sided: see
+    /// [`World::cast_ray`](crate::World::cast_ray)).
+    pub(crate) fn is_chain_segment(&self, shape: ShapeRef) -> bool {
+        matches!(self.core.bodies[shape.body].shape, Some(Shape::Chain(_)))
     }
 
     /// The piece's proxy at its body's current pose.
@@ -50,9 +53,8 @@ impl Source<'_> {
         let body = &self.core.bodies[shape.body];
         let state = &self.core.states[shape.body];
         let whole = body.shape.as_ref().expect("a candidate has a shape");
-        let (placement, convex) = piece(whole, shape.part).expect("a candidate's part exists");
-        let pose = Isometry2::new(state.position, state.angle) * placement;
-        ConvexProxy::of(convex, &pose)
+        let pose = Isometry2::new(state.position, state.angle);
+        piece_proxy(whole, shape.part, &pose).expect("a candidate's part exists")
     }
 
     /// Every piece of every body with a shape, for the linear scan.

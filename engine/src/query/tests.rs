@@ -2,10 +2,10 @@
 //! must not lose a hit), the tree against the linear scan, and the input
 //! errors.
 
-use super::convex::ConvexProxy;
-use super::minkowski::{overlap, separation};
-use super::ray::{contains, ray_cast};
 use super::{RayHit, ShapeRef};
+use crate::collision::convex::ConvexProxy;
+use crate::collision::minkowski::{overlap, separation};
+use crate::collision::ray::{contains, ray_cast};
 use crate::collision::test_rng::Rng;
 use crate::prelude::*;
 use nalgebra::Isometry2;
@@ -70,10 +70,10 @@ fn pieces(world: &World) -> Vec<(ShapeRef, ConvexProxy)> {
     for (body, b) in world.bodies().iter().enumerate() {
         let Some(shape) = &b.shape else { continue };
         let s = world.states()[body];
-        for part in 0..super::convex::piece_count(shape) {
-            let (placement, convex) = super::convex::piece(shape, part).unwrap();
-            let pose = Isometry2::new(s.position, s.angle) * placement;
-            out.push((ShapeRef { body, part }, ConvexProxy::of(convex, &pose)));
+        for part in 0..crate::collision::convex::piece_count(shape) {
+            let pose = Isometry2::new(s.position, s.angle);
+            let proxy = crate::collision::convex::piece_proxy(shape, part, &pose).unwrap();
+            out.push((ShapeRef { body, part }, proxy));
         }
     }
     out
@@ -342,4 +342,164 @@ fn queries_read_each_shapes_own_filter() {
         );
         assert_eq!(ray(1), None, "no shape is in category 1; soft = {soft}");
     }
+}
+
+/// A soft-step world with a ground chain listed right to left (solid from
+/// above, one solid segment from (10, 0) to (−10, 0), its end points
+/// ghosts) and a unit box at rest above it, centred at (0, 3).
+fn chain_world() -> (World, BodyId, BodyId) {
+    let mut world = World::with_model(
+        Method::SemiImplicitEuler,
+        ContactModel::SoftStep(SoftStepSettings::default()),
+    )
+    .unwrap();
+    let points = [[11.0, 0.0], [10.0, 0.0], [-10.0, 0.0], [-11.0, 0.0]]
+        .iter()
+        .map(|p| Vector2::new(p[0], p[1]))
+        .collect();
+    let chain = Shape::chain(points, false).unwrap();
+    let ground = world
+        .add_body(BodyDef::fixed("ground", Vector2::zeros(), Some(chain)))
+        .unwrap();
+    let square = Shape::rectangle(1.0, 1.0).unwrap();
+    let box_id = world
+        .add_body(BodyDef::fixed("box", Vector2::new(0.0, 3.0), Some(square)))
+        .unwrap();
+    (world, ground, box_id)
+}
+
+#[test]
+fn a_ray_hits_a_chain_from_its_solid_side_only() {
+    let (world, ground, box_id) = chain_world();
+    let all = QueryFilter::DEFAULT;
+    let segment = ShapeRef {
+        body: ground,
+        part: 0,
+    };
+    // From above (the solid side), straight down beside the box.
+    let hit = world
+        .cast_ray(Vector2::new(4.0, 5.0), -Vector2::y(), 100.0, all)
+        .unwrap()
+        .unwrap();
+    assert_eq!(hit.shape, segment);
+    assert_eq!((hit.distance, hit.normal), (5.0, Vector2::y()));
+    // From below (behind): the ray passes the chain and meets the box's
+    // bottom face at y = 2.5.
+    let hit = world
+        .cast_ray(Vector2::new(0.0, -5.0), Vector2::y(), 100.0, all)
+        .unwrap()
+        .unwrap();
+    assert_eq!(hit.shape.body, box_id);
+    assert_eq!((hit.distance, hit.normal), (7.5, -Vector2::y()));
+    let through = world
+        .cast_ray_all(Vector2::new(0.0, -5.0), Vector2::y(), 100.0, all)
+        .unwrap();
+    assert_eq!(through.len(), 1);
+    // Past the solid segment's end (over a ghost stretch): nothing.
+    assert!(
+        world
+            .cast_ray(Vector2::new(10.5, 5.0), -Vector2::y(), 100.0, all)
+            .unwrap()
+            .is_none()
+    );
+}
+
+#[test]
+fn a_loop_listed_clockwise_is_hit_from_inside() {
+    let mut world = World::with_model(
+        Method::SemiImplicitEuler,
+        ContactModel::SoftStep(SoftStepSettings::default()),
+    )
+    .unwrap();
+    let points = [[-2.0, -2.0], [-2.0, 2.0], [2.0, 2.0], [2.0, -2.0]]
+        .iter()
+        .map(|p| Vector2::new(p[0], p[1]))
+        .collect();
+    let ring = world
+        .add_body(BodyDef::fixed(
+            "ring",
+            Vector2::zeros(),
+            Some(Shape::chain(points, true).unwrap()),
+        ))
+        .unwrap();
+    let all = QueryFilter::DEFAULT;
+    // From the centre towards +x: the right wall, segment 2 ((2, 2) to
+    // (2, −2)), its normal pointing in.
+    let hit = world
+        .cast_ray(Vector2::zeros(), Vector2::x(), 10.0, all)
+        .unwrap()
+        .unwrap();
+    assert_eq!(
+        hit.shape,
+        ShapeRef {
+            body: ring,
+            part: 2
+        }
+    );
+    assert_eq!((hit.distance, hit.normal), (2.0, -Vector2::x()));
+    // From outside on the right towards −x: through the right wall (seen
+    // from behind), onto the left wall (segment 0) from inside.
+    let hit = world
+        .cast_ray(Vector2::new(5.0, 0.0), -Vector2::x(), 10.0, all)
+        .unwrap()
+        .unwrap();
+    assert_eq!(
+        hit.shape,
+        ShapeRef {
+            body: ring,
+            part: 0
+        }
+    );
+    assert_eq!((hit.distance, hit.normal), (7.0, Vector2::x()));
+}
+
+#[test]
+fn shape_casts_overlaps_and_distances_see_chain_segments() {
+    let (world, ground, _) = chain_world();
+    let all = QueryFilter::DEFAULT;
+    let segment = ShapeRef {
+        body: ground,
+        part: 0,
+    };
+    let ball = Shape::circle(0.5).unwrap();
+    // A ball of radius 0.5 dropped from y = 5 beside the box touches the
+    // chain after 4.5 m of a 10 m translation.
+    let hit = world
+        .cast_shape(
+            &ball,
+            Isometry2::translation(4.0, 5.0),
+            Vector2::new(0.0, -10.0),
+            all,
+        )
+        .unwrap()
+        .unwrap();
+    assert_eq!(hit.shape, segment);
+    assert!((hit.fraction - 0.45).abs() < 1e-15, "{}", hit.fraction);
+    assert_eq!(hit.normal, Vector2::y());
+    // Nearest shape to a ball at (4, 3): the chain, 2.5 m away.
+    let near = world
+        .closest_shape(&ball, Isometry2::translation(4.0, 3.0), 10.0, all)
+        .unwrap()
+        .unwrap();
+    assert_eq!(near.shape, segment);
+    assert!((near.distance - 2.5).abs() < 1e-15);
+    assert_eq!(near.normal, Vector2::y());
+    // A box across the chain overlaps it; one above it does not.
+    let across = world
+        .overlap_aabb(Vector2::new(-1.0, -1.0), Vector2::new(1.0, 1.0), all)
+        .unwrap();
+    assert_eq!(across, vec![segment]);
+    let above = world
+        .overlap_aabb(Vector2::new(3.0, 0.1), Vector2::new(4.0, 1.0), all)
+        .unwrap();
+    assert!(above.is_empty());
+    let overlapping = world
+        .overlap_shape(&ball, Isometry2::translation(-3.0, 0.2), all)
+        .unwrap();
+    assert_eq!(overlapping, vec![segment]);
+    // A point on the segment touches it; a point off it is in no shape.
+    let on = world.shapes_at_point(Vector2::new(1.0, 0.0), all).unwrap();
+    assert_eq!(on, vec![segment]);
+    let off = world.shapes_at_point(Vector2::new(1.0, 0.5), all).unwrap();
+    assert!(off.is_empty());
 }

@@ -1,13 +1,13 @@
 //! The queries as methods of [`World`]: input checks, candidates from
-//! [`super::source`], exact answers from [`super::ray`] and
-//! [`super::minkowski`].
+//! [`super::source`], exact answers from [`crate::collision::ray`] and
+//! [`crate::collision::minkowski`].
 
-use super::convex::{ConvexProxy, piece, piece_count};
-use super::minkowski::{overlap, separation, shape_cast};
-use super::ray::{contains, ray_cast};
 use super::source::Source;
 use super::{RayHit, ShapeCastHit, ShapeDistance, ShapeRef};
 use crate::collision::Aabb;
+use crate::collision::convex::{ConvexProxy, piece_count, piece_proxy};
+use crate::collision::minkowski::{overlap, separation, shape_cast};
+use crate::collision::ray::{ProxyRayHit, contains, ray_cast, starts_behind};
 use crate::error::{EngineError, Result, require_finite};
 use crate::filter::QueryFilter;
 use crate::shape::Shape;
@@ -62,10 +62,7 @@ fn unit_direction(direction: Vector2<f64>) -> Result<Vector2<f64>> {
 /// for a circle or a polygon: no allocation).
 fn query_proxies(shape: &Shape, pose: &Isometry2<f64>) -> SmallVec<[ConvexProxy; 1]> {
     (0..piece_count(shape))
-        .map(|k| {
-            let (placement, convex) = piece(shape, k).expect("k < piece count");
-            ConvexProxy::of(convex, &(pose * placement))
-        })
+        .map(|k| piece_proxy(shape, k, pose).expect("k < piece count"))
         .collect()
 }
 
@@ -87,7 +84,17 @@ impl World {
     /// The nearest shape the ray from `origin` (m) along `direction` (any
     /// non-zero length; normalized) meets within `max_distance` (m, ≥ 0;
     /// may be infinite), with the filter's approval. Shapes containing the
-    /// origin are skipped. Errors: a non-finite origin or direction, a
+    /// origin are skipped.
+    ///
+    /// A chain's segment is hit only from its solid side, as Box2D casts
+    /// rays at chain segments (`b2RayCastSegment` called one-sided): a ray
+    /// whose origin lies strictly behind the segment's line (left of
+    /// `point2 − point1`, the side shapes are not pushed towards) passes
+    /// through it, wherever it is going; from the front, or from on the
+    /// line, it hits, with the segment's normal facing the ray. So a ray
+    /// cast up from under a ground chain listed right to left reaches what
+    /// stands on it, and one cast down from above stops on the chain.
+    /// Errors: a non-finite origin or direction, a
     /// zero direction, a negative or NaN distance.
     pub fn cast_ray(
         &self,
@@ -100,7 +107,7 @@ impl World {
         let source = self.source(filter);
         let mut best: Option<RayHit> = None;
         source.along_ray(origin, dir, max_distance, |shape, max_t| {
-            if let Some(hit) = ray_cast(&source.proxy(shape), origin, dir, max_t) {
+            if let Some(hit) = piece_ray(&source, shape, origin, dir, max_t) {
                 let better = best.is_none_or(|b| (hit.t, shape) < (b.distance, b.shape));
                 if better {
                     best = Some(ray_hit(shape, origin, dir, hit));
@@ -125,7 +132,7 @@ impl World {
         let source = self.source(filter);
         let mut hits = Vec::new();
         source.along_ray(origin, dir, max_distance, |shape, max_t| {
-            if let Some(hit) = ray_cast(&source.proxy(shape), origin, dir, max_t) {
+            if let Some(hit) = piece_ray(&source, shape, origin, dir, max_t) {
                 hits.push(ray_hit(shape, origin, dir, hit));
             }
             max_t
@@ -336,13 +343,24 @@ impl World {
     }
 }
 
-/// The public hit of a proxy hit.
-fn ray_hit(
+/// Where the ray meets piece `shape`, chain segments one-sided (see
+/// [`World::cast_ray`]).
+fn piece_ray(
+    source: &Source<'_>,
     shape: ShapeRef,
     origin: Vector2<f64>,
     dir: Vector2<f64>,
-    hit: super::ray::ProxyRayHit,
-) -> RayHit {
+    max_t: f64,
+) -> Option<ProxyRayHit> {
+    let proxy = source.proxy(shape);
+    if source.is_chain_segment(shape) && starts_behind(&proxy, origin) {
+        return None;
+    }
+    ray_cast(&proxy, origin, dir, max_t)
+}
+
+/// The public hit of a proxy hit.
+fn ray_hit(shape: ShapeRef, origin: Vector2<f64>, dir: Vector2<f64>, hit: ProxyRayHit) -> RayHit {
     RayHit {
         shape,
         distance: hit.t,

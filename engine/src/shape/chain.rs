@@ -98,30 +98,38 @@ impl Chain {
         self.is_loop
     }
 
+    /// How many solid segments the chain has: `n − 3` for an open chain of
+    /// `n` points, `n` for a loop.
+    pub fn segment_count(&self) -> usize {
+        let n = self.points.len();
+        if self.is_loop { n } else { n - 3 }
+    }
+
+    /// Solid segment `i` (in [0, [`Chain::segment_count`])) with its ghost
+    /// points, `None` past the last.
+    pub fn segment(&self, i: usize) -> Option<ChainSegment> {
+        if i >= self.segment_count() {
+            return None;
+        }
+        let p = &self.points;
+        let n = p.len();
+        // An open chain's first point is a ghost only: its segment i starts
+        // at point i + 1.
+        let first = if self.is_loop { i + n } else { i + 1 };
+        Some(ChainSegment {
+            ghost1: p[(first - 1) % n],
+            point1: p[first % n],
+            point2: p[(first + 1) % n],
+            ghost2: p[(first + 2) % n],
+        })
+    }
+
     /// The solid segments with their ghost points: `n − 3` for an open
     /// chain of `n` points, `n` for a loop.
     pub fn segments(&self) -> Vec<ChainSegment> {
-        let p = &self.points;
-        let n = p.len();
-        if self.is_loop {
-            (0..n)
-                .map(|i| ChainSegment {
-                    ghost1: p[(i + n - 1) % n],
-                    point1: p[i],
-                    point2: p[(i + 1) % n],
-                    ghost2: p[(i + 2) % n],
-                })
-                .collect()
-        } else {
-            (0..n - 3)
-                .map(|i| ChainSegment {
-                    ghost1: p[i],
-                    point1: p[i + 1],
-                    point2: p[i + 2],
-                    ghost2: p[i + 3],
-                })
-                .collect()
-        }
+        (0..self.segment_count())
+            .map(|i| self.segment(i).expect("i < segment count"))
+            .collect()
     }
 }
 

@@ -26,6 +26,9 @@
 //! fast bullets of a step. A world without bullets lists none, and the
 //! pass is not entered.
 //!
+//! Any convex shape is swept against any (compounds part by part), and
+//! against a chain segment by segment, one-sided, as in `continuous.rs`.
+//!
 //! What is swept against, as for static shapes in `continuous.rs`: shapes
 //! that would make a contact with the bullet's (not sensors, not refused by
 //! the filters, the program's filter hook or a joint that keeps the two
@@ -38,7 +41,8 @@ use super::continuous::Sweep;
 use super::finalize::speculative_box;
 use super::manifold::LINEAR_SLOP;
 use crate::body::BodyId;
-use crate::collision::{Motion, ToiOptions, toi_conservative_advancement};
+use crate::collision::{Motion, ToiOptions, toi_chain_segment, toi_conservative_advancement};
+use crate::shape::Shape;
 use crate::tunables::SWEEP_MAX_ITERATIONS;
 use crate::world_core::WorldCore;
 use nalgebra::{Isometry2, Translation2, UnitComplex};
@@ -138,10 +142,26 @@ impl SoftStep {
                 return;
             };
             let s = &core.states[body];
-            let held = Motion::fixed(Isometry2::new(s.position, s.angle));
+            let pose = Isometry2::new(s.position, s.angle);
             let limit = first.unwrap_or(sweep.dt);
-            if let Ok(Some(impact)) =
-                toi_conservative_advancement(shape, &motion, other_shape, &held, limit, &options)
+            let impact = match other_shape {
+                // One collider per solid segment: its part names it.
+                Shape::Chain(chain) => chain.segment(d.part).map_or(Ok(None), |segment| {
+                    toi_chain_segment(shape, &motion, &segment, &pose, limit, &options)
+                }),
+                _ => {
+                    let held = Motion::fixed(pose);
+                    toi_conservative_advancement(
+                        shape,
+                        &motion,
+                        other_shape,
+                        &held,
+                        limit,
+                        &options,
+                    )
+                }
+            };
+            if let Ok(Some(impact)) = impact
                 && impact.time > 0.0
             {
                 first = Some(impact.time);

@@ -3,7 +3,11 @@
 //! smallest extent in a step could have jumped over a thin static body, so
 //! its motion over the step (constant velocities from its start pose to its
 //! end pose) is swept against every static shape its path's box touches,
-//! by conservative advancement ([`crate::collision::toi_conservative_advancement`]).
+//! by conservative advancement ([`crate::collision::toi_conservative_advancement`]),
+//! whatever the two convex shapes (circle, polygon, segment, capsule,
+//! rounded polygon, a compound part by part), and against a chain segment
+//! by segment, one-sided ([`crate::collision::toi_chain_segment`]: a body
+//! whose centre crossed a segment's line from its solid side in the step).
 //! At the first time of impact the body is put back there, velocities
 //! unchanged: the next step's speculative contact then stops it at the
 //! surface, with its restitution.
@@ -19,7 +23,8 @@
 use super::broad_phase::BroadPhase;
 use super::manifold::LINEAR_SLOP;
 use crate::body::{Body, BodyState};
-use crate::collision::{Aabb, Motion, ToiOptions, toi_conservative_advancement};
+use crate::collision::{Aabb, Motion, ToiOptions, toi_chain_segment, toi_conservative_advancement};
+use crate::shape::Shape;
 use nalgebra::{Isometry2, Vector2};
 
 /// Read from `engine/src/tunables.rs` (unit, value and source there).
@@ -51,8 +56,8 @@ impl Sweep {
 /// `sweep` (whose start pose is `start`, the caller's
 /// `Isometry2::new(sweep.start.0, sweep.start.1)`) with any static shape
 /// its swept box overlaps, if any. `blocks` maps a static collider to its
-/// body when it can stop this one (not a sensor, not refused by the
-/// filters), else `None`.
+/// body and part (a compound's part, a chain's segment) when it can stop
+/// this one (not a sensor, not refused by the filters), else `None`.
 #[expect(
     clippy::too_many_arguments,
     reason = "the sweep's inputs, each from a different part of the model"
@@ -65,7 +70,7 @@ pub(crate) fn first_impact(
     broad: &BroadPhase,
     bodies: &[Body],
     states: &[BodyState],
-    blocks: impl Fn(usize) -> Option<usize>,
+    blocks: impl Fn(usize) -> Option<(usize, usize)>,
 ) -> Option<f64> {
     let shape = body.shape.as_ref()?;
     let motion = sweep.motion(start);
@@ -75,24 +80,31 @@ pub(crate) fn first_impact(
     };
     let mut first: Option<f64> = None;
     broad.query_static(swept_box, |collider| {
-        // The static body of that collider, if it can stop this one.
-        let Some(other) = blocks(collider) else {
+        // The static body of that collider and its part, if it can stop
+        // this one.
+        let Some((other, part)) = blocks(collider) else {
             return;
         };
         let Some(other_shape) = bodies[other].shape.as_ref() else {
             return;
         };
-        if let crate::shape::Shape::Chain(_) = other_shape {
-            // Not swept against chains yet: a fast body may pass a chain
-            // in one step (its speculative contacts still act).
-            return;
-        }
         let s = &states[other];
-        let fixed = Motion::fixed(Isometry2::new(s.position, s.angle));
+        let pose = Isometry2::new(s.position, s.angle);
         let limit = first.unwrap_or(sweep.dt);
-        match toi_conservative_advancement(shape, &motion, other_shape, &fixed, limit, &options) {
-            Ok(Some(impact)) if impact.time > 0.0 => first = Some(impact.time),
-            _ => {}
+        let impact = match other_shape {
+            // One collider per solid segment: the collider's part names it.
+            Shape::Chain(chain) => chain.segment(part).map_or(Ok(None), |segment| {
+                toi_chain_segment(shape, &motion, &segment, &pose, limit, &options)
+            }),
+            _ => {
+                let fixed = Motion::fixed(pose);
+                toi_conservative_advancement(shape, &motion, other_shape, &fixed, limit, &options)
+            }
+        };
+        if let Ok(Some(impact)) = impact
+            && impact.time > 0.0
+        {
+            first = Some(impact.time);
         }
     });
     first

@@ -135,7 +135,7 @@ fn finalize_body(
                 && own
                     .clone()
                     .any(|c| !data[c].sensor && data[c].filter.should_collide(&d.filter));
-            stops.then_some(colliders[other].body)
+            stops.then_some((colliders[other].body, d.part))
         };
         if let Some(toi) = continuous::first_impact(
             &inputs.bodies[id],

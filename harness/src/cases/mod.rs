@@ -60,6 +60,7 @@ registry! {
     hoffman,
     shape_mass,
     collision_parry,
+    shape_parry,
     queries_parry,
     collision_toi,
     collision_head_on,

@@ -78,10 +78,21 @@ fn parts(shape: Option<&Shape>) -> Value {
     let Some(shape) = shape else {
         return json!([]);
     };
+    if let Shape::Chain(chain) = shape {
+        // Each solid segment as its two ends and back, a closed polygon of
+        // no area that draws as its line (an open chain's first and last
+        // points are ghosts: not drawn).
+        let segments: Vec<Value> = chain
+            .segments()
+            .iter()
+            .map(|s| json!({ "polygon": [s.point1.x, s.point1.y, s.point2.x, s.point2.y, s.point1.x, s.point1.y] }))
+            .collect();
+        return json!(segments);
+    }
     let out: Vec<Value> = shape
         .pieces()
         .into_iter()
-        .map(|(offset, angle, piece)| {
+        .flat_map(|(offset, angle, piece)| {
             let (s, c) = angle.sin_cos();
             let place = |x: f64, y: f64| (offset.x + c * x - s * y, offset.y + s * x + c * y);
             // A piece's points placed in the body's frame, as x0, y0, x1, ...
@@ -96,10 +107,12 @@ fn parts(shape: Option<&Shape>) -> Value {
             };
             match piece {
                 Shape::Circle(circle) => {
-                    json!({ "circle": [offset.x, offset.y, circle.radius] })
+                    vec![json!({ "circle": [offset.x, offset.y, circle.radius] })]
                 }
-                Shape::Polygon(p) => json!({ "polygon": flat(p.vertices()) }),
-                Shape::Compound(_) | Shape::Chain(_) => json!({ "polygon": [] }),
+                Shape::Polygon(p) => vec![json!({ "polygon": flat(p.vertices()) })],
+                // Not pieces: a compound's are its parts, a chain's are
+                // drawn above.
+                Shape::Compound(_) | Shape::Chain(_) => vec![json!({ "polygon": [] })],
                 // The inscribed outline (48 chords a turn); a segment's two
                 // ends and back, a closed polygon of no area that draws as
                 // its line.
@@ -108,7 +121,7 @@ fn parts(shape: Option<&Shape>) -> Value {
                     if outline.len() == 2 {
                         outline.push(outline[0]);
                     }
-                    json!({ "polygon": flat(&outline) })
+                    vec![json!({ "polygon": flat(&outline) })]
                 }
             }
         })

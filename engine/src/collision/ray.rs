@@ -115,8 +115,11 @@ fn flat_entry(
     let edge = v[(k + 1) % n] - v[k];
     let core_point = origin + lower * dir - r * normal;
     let u = (core_point - v[k]).dot(&edge) / edge.norm_squared();
-    if r > 0.0 && !(0.0..=1.0).contains(&u) {
-        return None; // a corner region: the vertex discs decide
+    // A corner region: the vertex discs decide. A bare segment (2
+    // vertices, r = 0) has no discs, and its two edge planes are the same
+    // line, unbounded along it: past its ends the ray misses.
+    if (r > 0.0 || n == 2) && !(0.0..=1.0).contains(&u) {
+        return None;
     }
     Some(ProxyRayHit {
         t: lower,
@@ -152,6 +155,15 @@ fn ray_circle(
         return None;
     }
     Some((-b - disc.sqrt()).max(0.0))
+}
+
+/// Whether `origin` lies strictly behind a segment core `v[0] → v[1]`: on
+/// the left of its direction, the side a one-sided (chain) segment does
+/// not push shapes towards, where Box2D's one-sided ray cast lets a ray
+/// through.
+pub(crate) fn starts_behind(segment: &ConvexProxy, origin: Vector2<f64>) -> bool {
+    let (p1, p2) = (segment.vertices[0], segment.vertices[1]);
+    crate::shape::cross(origin - p1, p2 - p1) < 0.0
 }
 
 /// Whether `p` lies in the proxy (closed: on the boundary counts).

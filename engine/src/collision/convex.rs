@@ -2,10 +2,12 @@
 //! a segment, or a convex polygon, counter-clockwise) inflated by a radius.
 //!
 //! A circle is a point core of radius r, a polygon its vertices with radius
-//! 0; a capsule (a segment core) or a rounded polygon would be the same
-//! proxy with both, so the queries written on it (ray casts in
-//! [`super::ray`], distances and shape casts in [`super::minkowski`]) serve
-//! them unchanged. Coordinates are world-frame metres.
+//! 0, a segment (or a chain's solid segment) its two ends with radius 0, a
+//! capsule the same with its radius, a rounded polygon its core with its
+//! radius; the queries written on it (ray casts in [`super::ray`],
+//! distances and shape casts in [`super::minkowski`]) serve them all
+//! unchanged, and the world queries, the continuous collision and the
+//! time of impact use them from here. Coordinates are world-frame metres.
 
 use crate::shape::Shape;
 use nalgebra::{Isometry2, Point2, Vector2};
@@ -20,8 +22,8 @@ pub(crate) struct ConvexProxy {
     /// The core: 1 point, 2 (a segment) or ≥ 3 vertices counter-clockwise
     /// (m, world frame).
     pub vertices: SmallVec<[Vector2<f64>; INLINE]>,
-    /// The inflation radius (m), ≥ 0; > 0 when the core has fewer than 3
-    /// vertices.
+    /// The inflation radius (m), ≥ 0; > 0 when the core is a single point
+    /// (a 2-vertex core of radius 0 is a segment, a line without area).
     pub radius: f64,
 }
 
@@ -29,7 +31,7 @@ impl ConvexProxy {
     /// The proxy of a polygon or a circle placed at `pose`.
     ///
     /// # Panics
-    /// On a compound (take its parts with [`piece`]).
+    /// On a compound or a chain (take their pieces with [`piece_proxy`]).
     pub(crate) fn of(shape: &Shape, pose: &Isometry2<f64>) -> Self {
         match shape {
             Shape::Circle(c) => Self {
@@ -53,7 +55,7 @@ impl ConvexProxy {
                 radius: r.radius(),
             },
             Shape::Compound(_) => unreachable!("a compound is queried part by part"),
-            Shape::Chain(_) => unreachable!("a chain has no convex pieces to query"),
+            Shape::Chain(_) => unreachable!("a chain is queried segment by segment"),
         }
     }
 
@@ -79,27 +81,38 @@ impl ConvexProxy {
     }
 }
 
-/// Convex piece `part` of `shape` with its placement in the body frame:
-/// the shape itself (part 0) or a compound's part. `None` past the last.
-pub(crate) fn piece(shape: &Shape, part: usize) -> Option<(Isometry2<f64>, &Shape)> {
+/// Convex piece `part` of `shape`, placed at `pose` (its body's pose):
+/// the shape itself (part 0), a compound's part, or a chain's solid
+/// segment `part` (a core of its two points, radius 0; one-sided, which
+/// each query reads its own way: see [`crate::World::cast_ray`]). `None`
+/// past the last.
+pub(crate) fn piece_proxy(
+    shape: &Shape,
+    part: usize,
+    pose: &Isometry2<f64>,
+) -> Option<ConvexProxy> {
     match shape {
         Shape::Compound(c) => c
             .parts()
             .get(part)
-            .map(|p| (Isometry2::new(p.offset, p.angle), &p.shape)),
-        // Not queried yet: a chain's segments are one-sided, zero-radius
-        // cores the proxy does not model (docs/design.md, queries).
-        Shape::Chain(_) => None,
-        other => (part == 0).then(|| (Isometry2::identity(), other)),
+            .map(|p| ConvexProxy::of(&p.shape, &(pose * Isometry2::new(p.offset, p.angle)))),
+        Shape::Chain(c) => c.segment(part).map(|s| ConvexProxy {
+            vertices: [s.point1, s.point2]
+                .iter()
+                .map(|v| pose.transform_point(&Point2::from(*v)).coords)
+                .collect(),
+            radius: 0.0,
+        }),
+        other => (part == 0).then(|| ConvexProxy::of(other, pose)),
     }
 }
 
-/// How many convex pieces `shape` has (its parts for a compound, none for
-/// a chain, else 1).
+/// How many convex pieces `shape` has: its parts for a compound, its
+/// solid segments for a chain, else 1.
 pub(crate) fn piece_count(shape: &Shape) -> usize {
     match shape {
         Shape::Compound(c) => c.parts().len(),
-        Shape::Chain(_) => 0,
+        Shape::Chain(c) => c.segment_count(),
         _ => 1,
     }
 }
