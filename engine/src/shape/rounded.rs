@@ -316,10 +316,9 @@ fn checked_ends(kind: &str, a: Vector2<f64>, b: Vector2<f64>) -> Result<Vec<Vect
 }
 
 /// Refuses a body holding a segment, capsule or rounded polygon (alone or
-/// as a compound part) under contact model `model` ("exact" or
-/// "soft_step") with contacts on, naming the model, the shape kind and the
-/// body: no contact model collides them until the radius-aware collision
-/// core lands.
+/// as a compound part) under contact model `model` with contacts on,
+/// naming the model, the shape kind and the body: the exact model does not
+/// collide them yet (the soft step does).
 pub(crate) fn refuse_uncollided(body: &crate::body::Body, model: &str) -> Result<()> {
     let rounded = body.shape.as_ref().and_then(|shape| {
         shape.pieces().into_iter().find_map(|(_, _, s)| match s {
@@ -334,10 +333,10 @@ pub(crate) fn refuse_uncollided(body: &crate::body::Body, model: &str) -> Result
                 kind.name(),
                 body.name
             ),
-            reason: "no contact model collides segments, capsules or rounded polygons yet \
-                     (their radius-aware collision core is not written yet); without \
-                     contacts (the exact model, contacts off) they give their body its mass \
-                     properties",
+            reason: "the exact contact model does not collide segments, capsules or rounded \
+                     polygons yet (its radius-aware collision core is not written yet); the \
+                     soft_step model collides them, and without contacts (the exact model, \
+                     contacts off) they give their body its mass properties",
         }),
         None => Ok(()),
     }
