@@ -499,11 +499,9 @@ fn model_allows_body(
         .iter()
         .flat_map(Shape::pieces)
         .find_map(|(_, _, piece)| matches!(piece, Shape::Rounded(_)).then(|| piece.kind_name()));
-    if let (Some(model), Some(kind)) = (model, rounded) {
-        let model = match model {
-            ContactModelSpec::SoftStep => "soft_step",
-            ContactModelSpec::Exact => "exact",
-        };
+    // The soft step collides rounded shapes; the exact model not yet.
+    if let (Some(ContactModelSpec::Exact), Some(kind)) = (model, rounded) {
+        let model = "exact";
         let field = match &spec.shape {
             Some(ShapeSpec::Compound { .. }) => path.key("shape"),
             _ => path.key("shape").key("type"),
@@ -512,7 +510,7 @@ fn model_allows_body(
             &field,
             ErrorKind::InvalidValue,
             format!(
-                "body '{}': a {kind} is not collided by the {model} contact model: no contact model collides segments, capsules or rounded polygons yet (their radius-aware collision core is not written yet); remove [contact] to run the scene without contacts",
+                "body '{}': a {kind} is not collided by the {model} contact model: it does not collide segments, capsules or rounded polygons yet (its radius-aware collision core is not written yet); use the soft_step model, or remove [contact] to run the scene without contacts",
                 spec.name
             ),
         ));

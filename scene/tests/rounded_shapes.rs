@@ -106,16 +106,18 @@ fn a_dynamic_segment_is_refused_at_its_type() {
 }
 
 #[test]
-fn contact_models_refuse_them_by_kind() {
-    for (model, name) in [("", "soft_step"), ("model = \"exact\"\n", "exact")] {
-        let text = format!(
+fn the_exact_model_refuses_them_by_kind_and_the_soft_step_takes_them() {
+    let scene = |model: &str| {
+        format!(
             "[simulation]\ndt = 0.01\nduration = 1.0\n\n[contact]\n{model}\n[[bodies]]\nname = \"pill\"\n\
              mass = 1.0\nshape = {{ type = \"capsule\", length = 1.0, radius = 0.25 }}\n"
-        );
-        let e = error(&text);
-        let message = e.to_string();
-        assert!(message.contains("capsule"), "{message}");
-        assert!(message.contains(name), "{message}");
-        assert!(message.contains("not written yet"), "{message}");
-    }
+        )
+    };
+    let e = error(&scene("model = \"exact\"\n"));
+    let message = e.to_string();
+    assert!(message.contains("capsule"), "{message}");
+    assert!(message.contains("exact"), "{message}");
+    assert!(message.contains("not written yet"), "{message}");
+    // The default model, the soft step, collides them.
+    Scene::parse_str("soft.toml", &scene("")).unwrap();
 }
