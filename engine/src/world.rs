@@ -123,9 +123,6 @@ impl World {
                 if let Dynamics::Exact(exact) = &self.model {
                     exact.refuse_joints_leaving()?;
                 }
-                for body in &self.core.bodies {
-                    crate::shape::rounded::refuse_uncollided(body, "soft_step")?;
-                }
                 let method = self.model.method();
                 if method != Method::SemiImplicitEuler {
                     return Err(EngineError::Unsupported {

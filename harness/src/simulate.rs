@@ -579,20 +579,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         eprintln!("{warning}");
     }
     if let Some((t, a, b)) = overlap.as_ref().and_then(contacts_off::OverlapWatch::first) {
-        // Segments, capsules and rounded polygons: the exact model alone
-        // collides them.
-        let rounded = [a, b].iter().any(|&i| {
-            scene.bodies()[i].shape.iter().any(|s| {
-                s.pieces()
-                    .iter()
-                    .any(|(_, _, p)| matches!(p, engine::Shape::Rounded(_)))
-            })
-        });
-        let advice = if rounded {
-            "add `[contact]` with model = \"exact\" to make them collide (the soft step does not collide segments, capsules or rounded polygons yet)"
-        } else {
-            "add `[contact]` (model = \"soft_step\", the default, or \"exact\") to make them collide"
-        };
+        let advice = "add `[contact]` (model = \"soft_step\", the default, or \"exact\") to make them collide";
         let warning = format!(
             "warning: {}: bodies '{}' and '{}' overlap at t = {} s, but contacts are off (the scene has no [contact] table), so they pass through each other; {advice}",
             scene.origin(),

@@ -3,12 +3,13 @@
 //! open rows (docs/cases.md#bowl) must be exactly the ones failing.
 
 #[test]
-fn a_box_slides_over_a_chain_without_a_bump_and_is_thrown_by_boxes() {
+fn a_box_and_a_capsule_slide_over_a_chain_without_a_bump_and_are_thrown_by_boxes() {
     let report = harness::cases::ghost_collisions::run_sized(false).expect("ghost_collisions runs");
     let failed = harness::cases::failing_rows(&report.rows);
     assert!(failed.is_empty(), "ghost_collisions: {}", failed.join("\n"));
-    // The chain's and the long box's rows (speed and spin) and the boxes'.
-    assert_eq!(report.rows.len(), 5);
+    // The chain's and the long box's rows (speed and spin) and the boxes',
+    // for the box and for the capsule.
+    assert_eq!(report.rows.len(), 10);
 }
 
 #[test]

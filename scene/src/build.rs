@@ -494,26 +494,6 @@ fn model_allows_body(
     spec: &BodySpec,
     model: Option<ContactModelSpec>,
 ) -> Checked<()> {
-    let rounded = def
-        .shape
-        .iter()
-        .flat_map(Shape::pieces)
-        .find_map(|(_, _, piece)| matches!(piece, Shape::Rounded(_)).then(|| piece.kind_name()));
-    // The exact model collides them; the soft step not yet.
-    if let (Some(ContactModelSpec::SoftStep), Some(kind)) = (model, rounded) {
-        let field = match &spec.shape {
-            Some(ShapeSpec::Compound { .. }) => path.key("shape"),
-            _ => path.key("shape").key("type"),
-        };
-        return Err(Problem::new(
-            &field,
-            ErrorKind::InvalidValue,
-            format!(
-                "body '{}': a {kind} is not collided by the soft_step contact model (it does not collide segments, capsules or rounded polygons yet); set model = \"exact\" under [contact], or remove [contact] to run the scene without contacts",
-                spec.name
-            ),
-        ));
-    }
     if model == Some(ContactModelSpec::SoftStep) {
         return Ok(());
     }

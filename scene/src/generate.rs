@@ -195,12 +195,14 @@ pub enum GenerateSpec {
         /// Distance between centres along x and y (m), each > 0.
         spacing: Xy,
         /// Shapes to draw from: `"box"`, `"circle"`, `"polygon"` (a regular
-        /// polygon of 3 to 8 sides). Default `["box"]`.
+        /// polygon of 3 to 8 sides), `"capsule"`, `"rounded_box"`,
+        /// `"concave"` (an L piece). Default `["box"]`.
         #[serde(default = "default_shapes")]
         shapes: Vec<GridShape>,
         /// Size range `[min, max]` (m): a box's side, a circle's diameter,
-        /// a polygon's circumscribed diameter; 0 < min ≤ max. Default
-        /// `[1, 1]`.
+        /// a polygon's circumscribed diameter, a capsule's overall length,
+        /// a rounded box's outer side, an L piece's span; 0 < min ≤ max.
+        /// Default `[1, 1]`.
         size: Option<Xy>,
         /// Initial velocity of every body (m/s). Default `[0, 0]`.
         #[serde(default)]
@@ -395,6 +397,15 @@ pub enum GridShape {
     Circle,
     /// A regular polygon of 3 to 8 sides.
     Polygon,
+    /// A capsule `size` long overall, its cap centres `size`/2 apart, of
+    /// radius `size`/4.
+    Capsule,
+    /// A square box of outer side `size`: a core of side 0.8 `size`
+    /// rounded by 0.1 `size`.
+    RoundedBox,
+    /// A concave L piece spanning `size` on each side, its arms `size`/2
+    /// wide (decomposed into convex parts).
+    Concave,
 }
 
 fn default_shapes() -> Vec<GridShape> {
@@ -961,6 +972,16 @@ fn grid_shape(kind: GridShape, d: f64, rng: &mut SplitMix64) -> engine::Result<S
     match kind {
         GridShape::Box => Shape::rectangle(d, d),
         GridShape::Circle => Shape::circle(0.5 * d),
+        GridShape::Capsule => Shape::capsule(0.5 * d, 0.25 * d),
+        GridShape::RoundedBox => Shape::rounded_box(0.8 * d, 0.8 * d, 0.1 * d),
+        GridShape::Concave => {
+            // The L's outline counter-clockwise, its bounding square
+            // centred on the origin.
+            let h = 0.5 * d;
+            let outline = [(-h, -h), (h, -h), (h, 0.0), (0.0, 0.0), (0.0, h), (-h, h)]
+                .map(|(x, y)| Vector2::new(x, y));
+            Ok(Shape::simple_polygon(&outline)?.centered())
+        }
         GridShape::Polygon => {
             let sides = 3 + (rng.next() % 6) as usize;
             let r = 0.5 * d;

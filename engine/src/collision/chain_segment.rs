@@ -40,6 +40,13 @@
 //!    placed midway between the surfaces; points beyond `speculative` (m)
 //!    are dropped.
 //!
+//! **Rounded polygon, capsule.** A polygon of radius r > 0 (a capsule is a
+//! core of 2 vertices, its two sides as edges) is its core in all of the
+//! above, its separations the core's less r, and its points midway between
+//! the segment and its rounded surface (as Box2D's
+//! `b2CollideChainSegmentAndPolygon` takes the polygon's radius); the
+//! speculative cut-off applies to the rounded surface.
+//!
 //! Lengths are in m; normals point from the segment (A) to the other shape
 //! (B). Feature ids are `(feature of A) << 16 | (feature of B)`, as the soft
 //! step's polygon pairs: for the segment as reference, A's feature is 0
@@ -243,13 +250,14 @@ fn clip_to_slab(
 }
 
 /// A chain segment (A) against a convex polygon (B) given in its own frame
-/// (`vertices` counter-clockwise, `normals[i]` the outward unit normal of
-/// the edge from vertex i to i + 1), `xf` mapping B's frame into A's; points
-/// kept while their separation is at most `speculative` (m).
+/// as `(vertices, normals, radius)`: `vertices` counter-clockwise (2 for a
+/// capsule), `normals[i]` the outward unit normal of the edge from vertex i
+/// to i + 1, `radius` (m) around that core, 0 for a sharp polygon; `xf`
+/// maps B's frame into A's; points kept while their separation is at most
+/// `speculative` (m).
 pub(crate) fn chain_segment_polygon_local(
     segment: &ChainSegment,
-    vertices: &[Vector2<f64>],
-    normals: &[Vector2<f64>],
+    (vertices, normals, radius): (&[Vector2<f64>], &[Vector2<f64>], f64),
     xf: &Isometry2<f64>,
     speculative: f64,
 ) -> SegmentManifold {
@@ -296,7 +304,10 @@ pub(crate) fn chain_segment_polygon_local(
             (edge_separation, neighbour_owns) = (s2, true);
         }
     }
-    if edge_separation > speculative {
+    // The cut-off between the cores (`+ 0` for a sharp polygon keeps its
+    // bits).
+    let reach = speculative + radius;
+    if edge_separation > reach {
         return none;
     }
 
@@ -305,7 +316,7 @@ pub(crate) fn chain_segment_polygon_local(
     let mut polygon_best: Option<(usize, f64)> = None;
     for j in 0..count {
         let s = m[j].dot(&(-v[j])).min(m[j].dot(&(p2 - v[j])));
-        if s > speculative {
+        if s > reach {
             return none;
         }
         if smooth.classify(-m[j]) == NormalClass::Admit && polygon_best.is_none_or(|b| s > b.1) {
@@ -345,7 +356,9 @@ pub(crate) fn chain_segment_polygon_local(
                 ..none
             };
             for (end, q) in [(0u32, q1), (1, q2)] {
-                let separation = normal.dot(&(q - a1));
+                // From the rounded surface; midway between it and the
+                // segment is then `q` less half of it.
+                let separation = normal.dot(&(q - a1)) - radius;
                 if separation <= speculative {
                     out.points[out.count] = SegmentPoint {
                         point: q - 0.5 * separation * normal,
@@ -373,10 +386,14 @@ pub(crate) fn chain_segment_polygon_local(
             };
             let mut out = SegmentManifold { normal: n1, ..none };
             for (vertex, q) in [(i1, q1), (i2, q2)] {
-                let separation = n1.dot(&q);
+                let core = n1.dot(&q);
+                let separation = core - radius;
                 if separation <= speculative {
+                    // Midway between the segment and the rounded surface,
+                    // `radius` below the core's point `q`.
+                    let lift = if radius > 0.0 { core + radius } else { core };
                     out.points[out.count] = SegmentPoint {
-                        point: q - 0.5 * separation * n1,
+                        point: q - 0.5 * lift * n1,
                         separation,
                         id: feature_id(0, vertex),
                     };
@@ -428,7 +445,7 @@ mod tests {
         let (v, n) = unit_box();
         // Box centred at x = 0.5, bottom 1 mm into the ground.
         let xf = Isometry2::translation(0.5, 0.499);
-        let m = chain_segment_polygon_local(&flat(), &v, &n, &xf, 0.02);
+        let m = chain_segment_polygon_local(&flat(), (&v, &n, 0.0), &xf, 0.02);
         assert_eq!(m.count, 2);
         assert_eq!(m.normal, Vector2::new(0.0, 1.0));
         for p in &m.points {
@@ -436,6 +453,30 @@ mod tests {
             // Midway: half the overlap below the box's bottom.
             assert!((p.point.y - (-0.0005)).abs() < 1e-12, "{p:?}");
         }
+    }
+
+    #[test]
+    fn a_capsule_lying_on_the_segment_sinks_by_its_rounded_surface() {
+        // A capsule core (±0.25, its two sides) of radius 0.1 lying 1 mm
+        // into the ground (its axis at 0.099), centred at x = 0.5; beyond
+        // the speculative distance (axis at 0.1 + 0.03) it is dropped.
+        let v = vec![Vector2::new(-0.25, 0.0), Vector2::new(0.25, 0.0)];
+        let n = vec![Vector2::new(0.0, -1.0), Vector2::new(0.0, 1.0)];
+        let xf = Isometry2::translation(0.5, 0.099);
+        let m = chain_segment_polygon_local(&flat(), (&v, &n, 0.1), &xf, 0.02);
+        assert_eq!(m.count, 2);
+        assert_eq!(m.normal, Vector2::new(0.0, 1.0));
+        for p in &m.points {
+            assert!((p.separation + 0.001).abs() < 1e-12, "{p:?}");
+            // Midway between the ground and the capsule's bottom.
+            assert!((p.point.y - (-0.0005)).abs() < 1e-12, "{p:?}");
+        }
+        let xs = [m.points[0].point.x, m.points[1].point.x];
+        assert!((xs[0].min(xs[1]) - 0.25).abs() < 1e-12, "{xs:?}");
+        assert!((xs[0].max(xs[1]) - 0.75).abs() < 1e-12, "{xs:?}");
+        let far = Isometry2::translation(0.5, 0.13);
+        let m = chain_segment_polygon_local(&flat(), (&v, &n, 0.1), &far, 0.02);
+        assert_eq!(m.count, 0);
     }
 
     #[test]
@@ -447,7 +488,7 @@ mod tests {
         // of the bottom edge over this segment.
         let (v, n) = unit_box();
         let xf = Isometry2::translation(0.3, 0.499);
-        let m = chain_segment_polygon_local(&flat(), &v, &n, &xf, 0.02);
+        let m = chain_segment_polygon_local(&flat(), (&v, &n, 0.0), &xf, 0.02);
         assert_eq!(m.count, 2);
         assert_eq!(m.normal, Vector2::new(0.0, 1.0));
         let xs = [m.points[0].point.x, m.points[1].point.x];
@@ -458,7 +499,7 @@ mod tests {
         // A box 0.1 m past the join, sunk 0.05 m (a corner caught on the
         // end): still the ground's normal, never the box side's.
         let xf = Isometry2::translation(-0.4, 0.45);
-        let m = chain_segment_polygon_local(&flat(), &v, &n, &xf, 0.02);
+        let m = chain_segment_polygon_local(&flat(), (&v, &n, 0.0), &xf, 0.02);
         assert!(m.count > 0);
         assert_eq!(m.normal, Vector2::new(0.0, 1.0));
     }
@@ -469,7 +510,7 @@ mod tests {
         // Below the ground, overlapping it: nothing.
         let xf = Isometry2::translation(0.5, -0.45);
         assert_eq!(
-            chain_segment_polygon_local(&flat(), &v, &n, &xf, 0.02).count,
+            chain_segment_polygon_local(&flat(), (&v, &n, 0.0), &xf, 0.02).count,
             0
         );
         assert!(chain_segment_circle_local(&flat(), 0.5, Vector2::new(0.5, -0.1), 0.02).is_none());
@@ -507,7 +548,7 @@ mod tests {
         let down = rotation * Vector2::new(0.0, -1.0);
         let centre = -down * 0.499;
         let xf = Isometry2::from_parts(nalgebra::Translation2::from(centre), rotation);
-        let m = chain_segment_polygon_local(&ridge, &v, &n, &xf, 0.02);
+        let m = chain_segment_polygon_local(&ridge, (&v, &n, 0.0), &xf, 0.02);
         assert!(m.count > 0);
         assert!((m.normal - (-down)).norm() < 1e-12, "{:?}", m.normal);
     }

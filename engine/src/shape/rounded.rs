@@ -58,7 +58,7 @@
 //! body no mass, so a dynamic body needs another shape (or an explicit
 //! mass and inertia); its centroid is its midpoint.
 
-use super::{ConvexPolygon, Shape};
+use super::ConvexPolygon;
 use crate::error::{EngineError, Result, require_finite, require_positive};
 use nalgebra::Vector2;
 use smallvec::SmallVec;
@@ -313,33 +313,6 @@ fn checked_ends(kind: &str, a: Vector2<f64>, b: Vector2<f64>) -> Result<Vec<Vect
         });
     }
     Ok(vec![a, b])
-}
-
-/// Refuses a body holding a segment, capsule or rounded polygon (alone or
-/// as a compound part) under contact model `model` (the soft step) with
-/// contacts on, naming the model, the shape kind and the body: the exact
-/// model collides them (`collision/rounded_pair.rs`), the soft step not
-/// yet.
-pub(crate) fn refuse_uncollided(body: &crate::body::Body, model: &str) -> Result<()> {
-    let rounded = body.shape.as_ref().and_then(|shape| {
-        shape.pieces().into_iter().find_map(|(_, _, s)| match s {
-            Shape::Rounded(r) => Some(r.kind()),
-            _ => None,
-        })
-    });
-    match rounded {
-        Some(kind) => Err(EngineError::Unsupported {
-            what: format!(
-                "the {} shape of body '{}' under the {model} contact model",
-                kind.name(),
-                body.name
-            ),
-            reason: "the soft_step contact model does not collide segments, capsules or \
-                     rounded polygons yet; use the exact contact model, which does, or run \
-                     without contacts (they then give their body its mass properties)",
-        }),
-        None => Ok(()),
-    }
 }
 
 #[cfg(test)]

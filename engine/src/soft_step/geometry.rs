@@ -1,7 +1,10 @@
-//! Shapes as the soft step's narrow phase reads them: a polygon with its
-//! outward edge normals computed once, or a circle; their bounding boxes
-//! and extents; and the [`Collider`]s that place them on bodies (one per
-//! shape, or one per part of a compound shape).
+//! Shapes as the soft step's narrow phase reads them: a convex core of 2
+//! or more vertices with its outward edge normals computed once and its
+//! radius (a polygon has radius 0; a segment, capsule or rounded polygon
+//! is its core and radius, `shape/rounded.rs`), a circle, or a chain's
+//! segment; their bounding boxes and extents, the radius included; and the
+//! [`Collider`]s that place them on bodies (one per shape, or one per part
+//! of a compound shape).
 //!
 //! A collider's shape is in its own frame (m); the collider's offset places
 //! that frame in its body's frame, whose origin is the body's centre of
@@ -26,13 +29,43 @@ pub(crate) use crate::tunables::MARGIN_FRACTION;
 /// A polygon's points or edge normals (m, or unit vectors).
 pub(crate) type Points = SmallVec<[Vector2<f64>; INLINE_VERTICES]>;
 
-/// A convex polygon with its outward unit edge normals: `normals[i]` is the
-/// normal of the edge from `vertices[i]` to `vertices[i + 1]`.
+/// A convex core with its outward unit edge normals and its radius:
+/// `normals[i]` is the normal of the edge from `vertices[i]` to
+/// `vertices[i + 1]`. A core of 2 vertices (a segment or capsule) has two
+/// edges, its two sides. The shape is every point within `radius` of the
+/// core.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Polygon {
     pub vertices: Points,
     pub normals: Points,
+    /// Radius around the core (m): 0 for a polygon.
+    pub radius: f64,
+}
+
+impl Polygon {
+    /// `vertices` (counter-clockwise, 2 or more) with their edge normals
+    /// and `radius` (m).
+    fn new(vertices: Points, radius: f64) -> Self {
+        let n = vertices.len();
+        let normals = (0..n)
+            .map(|i| {
+                let e = vertices[(i + 1) % n] - vertices[i];
+                Vector2::new(e.y, -e.x).normalize()
+            })
+            .collect();
+        Polygon {
+            vertices,
+            normals,
+            radius,
+        }
+    }
+
+    /// Whether its core is a segment (2 vertices): a segment or capsule.
+    #[inline]
+    pub(crate) fn is_segment(&self) -> bool {
+        self.vertices.len() == 2
+    }
 }
 
 /// A shape ready for the narrow phase.
@@ -43,6 +76,7 @@ pub(crate) struct Polygon {
 )]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) enum SolverShape {
+    /// A polygon, segment, capsule or rounded polygon: a core and a radius.
     Polygon(Polygon),
     Circle {
         radius: f64,
@@ -122,7 +156,8 @@ impl Collider {
 }
 
 impl SolverShape {
-    /// The solver form of a polygon or circle (its own frame).
+    /// The solver form of a polygon, rounded shape or circle (its own
+    /// frame).
     ///
     /// # Panics
     /// On a compound: split it into [`Collider`]s first.
@@ -130,20 +165,12 @@ impl SolverShape {
         match shape {
             Shape::Compound(_) => unreachable!("compounds are split into colliders"),
             Shape::Chain(_) => unreachable!("chains are split into colliders"),
-            Shape::Rounded(_) => unreachable!(
-                "the soft step refuses rounded shapes (soft_step::world_seam::check_body_shape)"
-            ),
+            Shape::Rounded(r) => {
+                SolverShape::Polygon(Polygon::new(r.core().iter().copied().collect(), r.radius()))
+            }
             Shape::Circle(c) => SolverShape::Circle { radius: c.radius },
             Shape::Polygon(p) => {
-                let vertices: Points = p.vertices().iter().copied().collect();
-                let n = vertices.len();
-                let normals = (0..n)
-                    .map(|i| {
-                        let e = vertices[(i + 1) % n] - vertices[i];
-                        Vector2::new(e.y, -e.x).normalize()
-                    })
-                    .collect();
-                SolverShape::Polygon(Polygon { vertices, normals })
+                SolverShape::Polygon(Polygon::new(p.vertices().iter().copied().collect(), 0.0))
             }
         }
     }
@@ -153,7 +180,9 @@ impl SolverShape {
     pub(crate) fn max_extent(&self) -> f64 {
         match self {
             SolverShape::Circle { radius } => *radius,
-            SolverShape::Polygon(p) => p.vertices.iter().map(|v| v.norm()).fold(0.0, f64::max),
+            SolverShape::Polygon(p) => {
+                p.vertices.iter().map(|v| v.norm()).fold(0.0, f64::max) + p.radius
+            }
             SolverShape::ChainSegment(s) => s.point1.norm().max(s.point2.norm()),
         }
     }
@@ -164,12 +193,14 @@ impl SolverShape {
     pub(crate) fn min_extent(&self) -> f64 {
         match self {
             SolverShape::Circle { radius } => *radius,
-            SolverShape::Polygon(p) => p
-                .vertices
-                .iter()
-                .zip(&p.normals)
-                .map(|(v, n)| n.dot(v))
-                .fold(f64::INFINITY, f64::min),
+            SolverShape::Polygon(p) => {
+                p.vertices
+                    .iter()
+                    .zip(&p.normals)
+                    .map(|(v, n)| n.dot(v))
+                    .fold(f64::INFINITY, f64::min)
+                    + p.radius
+            }
             // No inside: a segment is thin (and static, never swept).
             SolverShape::ChainSegment(_) => 0.0,
         }
@@ -196,6 +227,10 @@ impl SolverShape {
                     let w = Vector2::new(c * v.x - s * v.y + p.x, s * v.x + c * v.y + p.y);
                     min = min.inf(&w);
                     max = max.sup(&w);
+                }
+                if poly.radius > 0.0 {
+                    let r = Vector2::repeat(poly.radius);
+                    (min, max) = (min - r, max + r);
                 }
                 Aabb::new(min, max)
             }

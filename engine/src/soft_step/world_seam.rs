@@ -1,7 +1,8 @@
 //! The soft step's side of the world seam
 //! ([`crate::contact_model::ContactModelStep`]): body changes update its
 //! broad phase, solver bodies and sleep state in place; it takes every
-//! joint type.
+//! joint type and every shape (no `check_body` refusal: segments, capsules
+//! and rounded polygons collide through `manifold.rs`).
 
 use super::SoftStep;
 use crate::body::{Body, BodyId};
@@ -14,10 +15,6 @@ use crate::world_core::WorldCore;
 use nalgebra::Vector2;
 
 impl ContactModelStep for SoftStep {
-    fn check_body(&self, body: &Body) -> Result<()> {
-        crate::shape::rounded::refuse_uncollided(body, "soft_step")
-    }
-
     fn body_added(&mut self, core: &WorldCore, id: BodyId) {
         SoftStep::body_added(self, core, id);
     }

@@ -45,7 +45,8 @@ const fn pyramid(id: &'static str, file: &'static str, top: &'static str) -> Ben
 /// Every benchmark scene, in report order: the pyramid series (base 10,
 /// 20, 40, 70 and 100 = `large_pyramid`), the stack, then Box2D's other
 /// benchmarks, a rain of mixed shapes into a container (`shape_rain`),
-/// and the two of joints.
+/// the same rain of capsules, rounded boxes and concave pieces
+/// (`capsule_rain`), and the two of joints.
 pub const SCENES: &[BenchScene] = &[
     pyramid("pyramid_10", "bench/pyramid_10", "pyramid_54"),
     pyramid("pyramid_20", "pyramid_20", "pyramid_209"),
@@ -90,6 +91,14 @@ pub const SCENES: &[BenchScene] = &[
     BenchScene {
         id: "shape_rain",
         file: "bench/shape_rain",
+        full: None,
+        top: None,
+        scaling: false,
+        box2d_steps: OTHER_STEPS,
+    },
+    BenchScene {
+        id: "capsule_rain",
+        file: "bench/capsule_rain",
         full: None,
         top: None,
         scaling: false,

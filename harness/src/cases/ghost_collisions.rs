@@ -1,13 +1,15 @@
 //! `ghost_collisions` (issue 19, `docs/cases.md#ghost_collisions`): a
-//! 1 m box sliding at 5 m/s without friction along a flat ground made three
-//! ways: (a) a chain of 100 unit segments (`scenes/ghost_collisions_chain.toml`),
-//! (b) 100 unit boxes side by side (`..._boxes.toml`), (c) one long box
-//! (`..._long_box.toml`). The ground is the plane y = 0 in all three, so
-//! the closed form is the same: the box slides at constant speed, its
-//! vertical speed and spin 0 throughout. Each engine (this one's soft
-//! step, rapier2d with a polyline for the chain, Box2D with its chain) is
-//! read for the largest upward speed and the largest spin of the box
-//! during the slide, from 0.1 s on (the first step's contacts settle).
+//! 1 m box, and a capsule (cap centres 1 m apart, radius 0.25 m), sliding
+//! at 5 m/s without friction along a flat ground made three ways: (a) a
+//! chain of 100 unit segments (`scenes/ghost_collisions_chain.toml`, the
+//! capsule's `..._chain_capsule.toml`), (b) 100 unit boxes side by side
+//! (`..._boxes.toml`), (c) one long box (`..._long_box.toml`). The ground is
+//! the plane y = 0 in all three, so the closed form is the same: the slider
+//! moves at constant speed, its vertical speed and spin 0 throughout. Each
+//! engine (this one's soft step, rapier2d with a polyline for the chain,
+//! Box2D with its chain) is read for the largest upward speed and the
+//! largest spin of the slider during the slide, from 0.1 s on (the first
+//! step's contacts settle).
 //!
 //! # The tolerance: what a seamless ground allows
 //!
@@ -22,7 +24,9 @@
 //! spin within g h/(w/2) (the same speed at a corner, w = 1 m the box's
 //! width). A ghost collision, the box's corner stopped by the next
 //! segment's or box's end, throws it at a speed of the order of the slide
-//! speed (about 2 m/s at 5 m/s): 45 times the bound.
+//! speed (about 2 m/s at 5 m/s): 45 times the bound. A capsule lying on
+//! the ground is held at its two core ends, L/2 = 0.5 m from its centre:
+//! the same bounds with w/2 read as L/2.
 //!
 //! # Rows
 //!
@@ -33,8 +37,8 @@
 //! (the box is thrown: the bump is above the bound), the figure in the
 //! row's value ([`Ground::smooth`]).
 //!
-//! The slider is a box; a capsule slider (rounded corners, the other usual
-//! remedy) belongs in [`SLIDERS`] when capsules exist.
+//! The sliders ([`SLIDERS`]): the box, and the capsule, whose rounded
+//! ends are the other usual remedy for ghost collisions.
 
 use super::joint_common::{Config, Engine, JointScene, Run, steps};
 use super::{Case, CaseReport, Snapshots};
@@ -47,6 +51,9 @@ pub const CASE: Case = Case {
         "ghost_collisions_chain",
         "ghost_collisions_boxes",
         "ghost_collisions_long_box",
+        "ghost_collisions_chain_capsule",
+        "ghost_collisions_boxes_capsule",
+        "ghost_collisions_long_box_capsule",
     ],
     snapshots: Snapshots::HarnessOnly(
         "three engines; harness/tests/chain_cases.rs checks the soft step alone with the same \
@@ -54,7 +61,7 @@ pub const CASE: Case = Case {
     ),
     ..Case::new(
         "ghost_collisions",
-        "Chains: a box sliding at 5 m/s over a chain of 100 segments is not bumped at the joins (as on one long box); over 100 boxes it is thrown",
+        "Chains: a box and a capsule sliding at 5 m/s over a chain of 100 segments are not bumped at the joins (as on one long box); over 100 boxes they are thrown",
         run,
     )
 };
@@ -83,26 +90,73 @@ impl Ground {
         }
     }
 
-    /// Whether `engine` slides the box over this ground without a bump,
-    /// as recorded from the runs: every engine on the long box; on the
-    /// chain, this engine and Box2D (whose chain segments read their ghost
-    /// points) but not rapier2d, whose polyline (parry's, two-sided, no
-    /// ghost points or internal-edge handling here) throws the box at a
-    /// join as the boxes do (2.25 m/s); on the 100 boxes, none.
-    pub fn smooth(self, engine: Engine) -> bool {
-        match self {
-            Ground::LongBox => true,
-            Ground::Chain => engine != Engine::Rapier,
-            Ground::Boxes => false,
+    /// Whether `engine` slides `slider` over this ground without a bump,
+    /// as recorded from the runs. The box: every engine on the long box;
+    /// on the chain, this engine and Box2D (whose chain segments read their
+    /// ghost points) but not rapier2d, whose polyline (parry's, two-sided,
+    /// no ghost points or internal-edge handling here) throws the box at a
+    /// join as the boxes do (2.25 m/s); on the 100 boxes, none. The
+    /// capsule: see [`Slider::Capsule`].
+    pub fn smooth(self, engine: Engine, slider: Slider) -> bool {
+        match (slider, self) {
+            (_, Ground::LongBox) => true,
+            (Slider::Box, Ground::Chain) => engine != Engine::Rapier,
+            (Slider::Box, Ground::Boxes) => false,
+            (Slider::Capsule, Ground::Chain) => CAPSULE_CHAIN_SMOOTH.contains(&engine),
+            (Slider::Capsule, Ground::Boxes) => CAPSULE_BOXES_SMOOTH.contains(&engine),
         }
     }
 }
 
-/// The sliders: `(scene suffix, body name, half-width w/2 in m)`. The box
-/// is `scenes/ghost_collisions_<ground>.toml`'s `slider`; a capsule
-/// slider goes here as `("_capsule", "slider", radius)` with its scenes
-/// `ghost_collisions_<ground>_capsule.toml`, when capsules exist.
-pub const SLIDERS: &[(&str, &str, f64)] = &[("", "slider", 0.5)];
+/// A slider of the case.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Slider {
+    /// The 1 m box, `scenes/ghost_collisions_<ground>.toml`'s `slider`.
+    Box,
+    /// The capsule (length 1 m between its cap centres, radius 0.25 m),
+    /// `scenes/ghost_collisions_<ground>_capsule.toml`'s `slider`.
+    Capsule,
+}
+
+impl Slider {
+    /// Its scenes' suffix after the ground's id, also its rows'.
+    pub fn suffix(self) -> &'static str {
+        match self {
+            Slider::Box => "",
+            Slider::Capsule => "_capsule",
+        }
+    }
+
+    /// How far from its centre the slider is held (m): the box's
+    /// half-width w/2, the capsule's half core length L/2 (its two
+    /// supports are its core's ends).
+    pub fn arm(self) -> f64 {
+        0.5
+    }
+
+    /// Its name in the rows' text.
+    pub fn label(self) -> &'static str {
+        match self {
+            Slider::Box => "box",
+            Slider::Capsule => "capsule",
+        }
+    }
+}
+
+/// The sliders, in row order (each body is named `slider` in its scenes).
+pub const SLIDERS: [Slider; 2] = [Slider::Box, Slider::Capsule];
+
+/// The engines under which the capsule slides over the chain without a
+/// bump, as recorded from the runs (docs/cases.md#ghost_collisions): this
+/// engine and Box2D (3e-5 and 1e-5 m/s); rapier2d's polyline throws it at
+/// 0.78 m/s.
+const CAPSULE_CHAIN_SMOOTH: &[Engine] = &[Engine::SoftStep, Engine::Box2d];
+
+/// The engines under which the capsule slides over the 100 boxes without
+/// a bump, as recorded from the runs: none, its rounded end still catches
+/// the next box's corner (0.79 m/s in all three, under half the box's
+/// 1.9).
+const CAPSULE_BOXES_SMOOTH: &[Engine] = &[];
 
 /// Reading starts here (s): the first steps' contacts settle.
 const SETTLE: f64 = 0.1;
@@ -131,11 +185,12 @@ pub fn run() -> Result<CaseReport> {
 /// `reference_engines`.
 pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
     let mut report = CaseReport::default();
-    for &(suffix, name, half_width) in SLIDERS {
+    for slider_kind in SLIDERS {
+        let (suffix, half_width) = (slider_kind.suffix(), slider_kind.arm());
         for ground in Ground::ALL {
             let id = format!("ghost_collisions_{}{suffix}", ground.id());
             let js = JointScene::load(&id)?;
-            let slider = js.body(name)?;
+            let slider = js.body("slider")?;
             let g = js.gravity()?;
             for &engine in Engine::of_run(reference_engines) {
                 let config = Config::of(&js.scene, engine)?;
@@ -155,10 +210,11 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
                 let check = |what: &str| format!("{what}_{}{suffix}", ground.id());
                 let bound_reason = format!(
                     "a new contact's impulse starts at zero where the support passes to it, so \
-                     for at most one substep h = {h:.6} s the box misses that support: g h = \
-                     {speed_bound:.4} m/s (docs/cases.md#ghost_collisions)"
+                     for at most one substep h = {h:.6} s the {} misses that support: g h = \
+                     {speed_bound:.4} m/s (docs/cases.md#ghost_collisions)",
+                    slider_kind.label()
                 );
-                if ground.smooth(engine) {
+                if ground.smooth(engine, slider_kind) {
                     rows.within(
                         RowKind::Validation,
                         &check("upward_speed"),
@@ -166,9 +222,10 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
                         0.0,
                         speed_bound,
                         format!(
-                            "validation against the closed form 0 (a box sliding on the flat \
+                            "validation against the closed form 0 (a {} sliding on the flat \
                              ground y = 0 keeps a zero vertical speed) of the largest upward \
                              speed from {SETTLE} s on, {} under {}. Tolerance: {bound_reason}",
+                            slider_kind.label(),
                             ground.id(),
                             engine.label()
                         ),
@@ -182,7 +239,7 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
                         format!(
                             "validation against the closed form 0 of the largest |spin| from \
                              {SETTLE} s on. Tolerance g h/(w/2) = {spin_bound:.4} rad/s: the \
-                             speed g h at a corner, w/2 = {half_width} m from the centre; \
+                             speed g h at a support, w/2 = {half_width} m from the centre; \
                              {bound_reason}"
                         ),
                     );
@@ -194,15 +251,16 @@ pub fn run_sized(reference_engines: bool) -> Result<CaseReport> {
                         speed_bound,
                         0.0,
                         format!(
-                            "what happens under {}, recorded: on the {} the box's corner \
-                             catches on a seam (a ghost collision) and is thrown upward, above \
-                             what a seamless ground allows ({bound_reason}); the value is the \
-                             bump. This engine's chain removes it",
+                            "what happens under {}, recorded: on the {} the {} catches on a \
+                             seam (a ghost collision) and is thrown upward, above what a \
+                             seamless ground allows ({bound_reason}); the value is the bump. \
+                             This engine's chain removes it",
                             engine.label(),
                             match ground {
                                 Ground::Chain => "polyline (rapier2d's, without ghost points)",
                                 _ => "100 boxes side by side",
-                            }
+                            },
+                            slider_kind.label()
                         ),
                     );
                 }
