@@ -209,6 +209,9 @@ impl BroadPhase {
     pub(crate) fn find_pairs(&mut self, mut new_pair: impl FnMut(BodyId, BodyId)) {
         self.dynamic_tree.rebuild();
         self.kinematic_tree.rebuild();
+        if self.static_tree.leaves_changed() {
+            self.static_tree.rebuild_all();
+        }
         let position = &self.move_position;
         let found = &mut self.found;
         found.clear();
