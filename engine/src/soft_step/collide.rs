@@ -173,6 +173,18 @@ impl SoftStep {
         }
         let mut i = 0;
         while i < self.contacts.contacts.len() {
+            if pool.is_some() {
+                // Past the quiet ones: nothing to apply (most of a resting
+                // pile's contacts).
+                let quiet = self.collided[i..]
+                    .iter()
+                    .take_while(|&&c| c == Collided::Quiet)
+                    .count();
+                i += quiet;
+                if i == self.contacts.contacts.len() {
+                    break;
+                }
+            }
             let found = match pool.map(|_| self.collided[i]) {
                 // Computed on the threads (a skipped contact is tried again:
                 // a wake earlier in this loop may have made it moving).
