@@ -144,6 +144,11 @@ pub struct DynamicTree {
     free_list: u32,
     /// The number of leaves.
     proxy_count: usize,
+    /// A proxy was created, destroyed, moved or enlarged since the last
+    /// [`DynamicTree::rebuild_all`] (or since the tree was made). Written
+    /// with the tree, so a restored tree rebuilds when the original does.
+    #[cfg_attr(feature = "serde", serde(default))]
+    leaves_changed: bool,
     /// Reused buffers of [`DynamicTree::rebuild`].
     #[cfg_attr(feature = "serde", serde(skip))]
     scratch: rebuild::Scratch,
@@ -166,6 +171,7 @@ impl DynamicTree {
             root: NULL,
             free_list: NULL,
             proxy_count: 0,
+            leaves_changed: false,
             scratch: rebuild::Scratch::default(),
             pair_scratch: pairs::Scratch::default(),
         }
@@ -181,6 +187,7 @@ impl DynamicTree {
         node.user_data = user_data;
         self.insert_leaf(leaf);
         self.proxy_count += 1;
+        self.leaves_changed = true;
         ProxyId(leaf)
     }
 
@@ -194,6 +201,7 @@ impl DynamicTree {
         self.remove_leaf(leaf);
         self.free_node(leaf);
         self.proxy_count -= 1;
+        self.leaves_changed = true;
     }
 
     /// Gives a proxy the new fat box `fat_aabb` (m): the leaf is removed and
@@ -208,6 +216,7 @@ impl DynamicTree {
         self.remove_leaf(leaf);
         self.nodes[leaf as usize].aabb = fat_aabb;
         self.insert_leaf(leaf);
+        self.leaves_changed = true;
     }
 
     /// Gives a proxy the new fat box `fat_aabb` (m) in place, without
@@ -223,6 +232,7 @@ impl DynamicTree {
     pub fn enlarge_proxy(&mut self, id: ProxyId, fat_aabb: Aabb) {
         let leaf = self.checked_leaf(id);
         self.nodes[leaf as usize].aabb = fat_aabb;
+        self.leaves_changed = true;
         let mut i = self.nodes[leaf as usize].parent;
         // Grow the ancestors until one already holds the box; above it only
         // the marks are missing, up to the first ancestor already marked
@@ -252,6 +262,29 @@ impl DynamicTree {
     /// tree's size.
     pub fn rebuild(&mut self) {
         rebuild::rebuild(self);
+    }
+
+    /// Rebuilds the whole tree top-down by the surface-area heuristic, for
+    /// a tree queried much more often than it changes (the soft step's
+    /// static tree, rebuilt before the pairs of a step in which it
+    /// changed; its world queries test about a third of the boxes of the
+    /// incrementally built tree). Each range of leaves is sorted by box
+    /// centre along x and along y, and split where the sum of the two
+    /// parts' perimeters, each times its leaf count, is least. The shape
+    /// depends only on the leaves (boxes and proxy ids), not on the order
+    /// they were inserted in: ties are broken by proxy id. Proxy ids and
+    /// user data are kept, the node pool does not grow, and every box is
+    /// exact. O(n log² n); allocates nothing once its buffers have grown to
+    /// the tree's size. Clears [`DynamicTree::leaves_changed`].
+    pub fn rebuild_all(&mut self) {
+        rebuild::rebuild_all(self);
+    }
+
+    /// Whether a proxy was created, destroyed, moved or enlarged since the
+    /// last [`DynamicTree::rebuild_all`] (true for a new tree that has had
+    /// proxies created and not yet been rebuilt).
+    pub fn leaves_changed(&self) -> bool {
+        self.leaves_changed
     }
 
     /// The fat box (m) of a proxy, as last given to

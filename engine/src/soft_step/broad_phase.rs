@@ -176,6 +176,13 @@ impl BroadPhase {
         self.fat[a].overlaps(&self.fat[b])
     }
 
+    /// Whether collider `id`'s fat box holds `aabb`: if so,
+    /// [`BroadPhase::update`] with `aabb` does nothing.
+    #[inline]
+    pub(crate) fn fat_contains(&self, id: BodyId, aabb: &Aabb) -> bool {
+        self.fat[id].contains(aabb)
+    }
+
     /// Body `id` now has the (speculatively grown) box `aabb`: if it left
     /// its fat box, its fat box becomes `aabb` grown by `margin` (m) and the
     /// body joins the move buffer.
@@ -209,6 +216,9 @@ impl BroadPhase {
     pub(crate) fn find_pairs(&mut self, mut new_pair: impl FnMut(BodyId, BodyId)) {
         self.dynamic_tree.rebuild();
         self.kinematic_tree.rebuild();
+        if self.static_tree.leaves_changed() {
+            self.static_tree.rebuild_all();
+        }
         let position = &self.move_position;
         let found = &mut self.found;
         found.clear();

@@ -46,6 +46,12 @@ pub(crate) enum Collided {
     Parted,
     /// The manifold was updated; whether the contact was touching before.
     Updated { was_touching: bool },
+    /// The manifold was updated on a pool's thread and the serial pass
+    /// has nothing to do for it: its touching state did not change, and
+    /// if it touches, it is not a sensor's, no pre-solve hook is set and
+    /// neither body sleeps (so nothing to wake; a body awake when the
+    /// threads ran is still awake in the serial pass, which only wakes).
+    Quiet,
 }
 
 /// What the manifold of a contact reads (shared by every thread).
@@ -59,6 +65,9 @@ pub(crate) struct CollideInputs<'a> {
     /// The speculative and the recycle distance (m).
     pub speculative: f64,
     pub recycle_distance: f64,
+    /// A pre-solve hook is set: every touching contact goes to the serial
+    /// pass.
+    pub has_hooks: bool,
 }
 
 impl<'a> CollideInputs<'a> {
@@ -74,6 +83,7 @@ impl<'a> CollideInputs<'a> {
             states,
             speculative: settings.speculative_distance,
             recycle_distance: settings.recycle_distance,
+            has_hooks: false,
         }
     }
 }
@@ -130,6 +140,23 @@ pub(crate) fn manifold_of(
     Collided::Updated { was_touching }
 }
 
+/// [`Collided::Quiet`] for an update the serial pass would do nothing
+/// with (see there), else `found` unchanged.
+#[inline(always)]
+fn quiet_or(found: Collided, contact: &Contact, inputs: &CollideInputs<'_>) -> Collided {
+    let Collided::Updated { was_touching } = found else {
+        return found;
+    };
+    let touching = contact.touching;
+    let asleep = inputs.sims[contact.body_a].asleep || inputs.sims[contact.body_b].asleep;
+    let serial_work = touching && !contact.sensor && (inputs.has_hooks || asleep);
+    if touching == was_touching && !serial_work {
+        Collided::Quiet
+    } else {
+        found
+    }
+}
+
 impl SoftStep {
     /// Stage 2: manifolds; destroys the contacts whose fat boxes parted.
     /// With `pool`, the manifolds are computed on its threads first (see
@@ -146,6 +173,18 @@ impl SoftStep {
         }
         let mut i = 0;
         while i < self.contacts.contacts.len() {
+            if pool.is_some() {
+                // Past the quiet ones: nothing to apply (most of a resting
+                // pile's contacts).
+                let quiet = self.collided[i..]
+                    .iter()
+                    .take_while(|&&c| c == Collided::Quiet)
+                    .count();
+                i += quiet;
+                if i == self.contacts.contacts.len() {
+                    break;
+                }
+            }
             let found = match pool.map(|_| self.collided[i]) {
                 // Computed on the threads (a skipped contact is tried again:
                 // a wake earlier in this loop may have made it moving).
@@ -182,11 +221,14 @@ impl SoftStep {
         let n = self.contacts.contacts.len();
         self.collided.clear();
         self.collided.resize(n, Collided::Skipped);
-        let inputs = CollideInputs::new(
-            (&self.sims, &self.colliders, &self.broad),
-            states,
-            &self.settings,
-        );
+        let inputs = CollideInputs {
+            has_hooks: self.hooks.0.is_some(),
+            ..CollideInputs::new(
+                (&self.sims, &self.colliders, &self.broad),
+                states,
+                &self.settings,
+            )
+        };
         let contacts = SharedSlice::new(&mut self.contacts.contacts);
         let collided = SharedSlice::new(&mut self.collided);
         let scratches = SharedSlice::new(&mut self.scratches);
@@ -202,7 +244,7 @@ impl SoftStep {
                 )
             };
             for (contact, found) in contacts.iter_mut().zip(collided) {
-                *found = manifold_of(contact, &inputs, scratch);
+                *found = quiet_or(manifold_of(contact, &inputs, scratch), contact, &inputs);
             }
         });
     }
@@ -216,7 +258,7 @@ impl SoftStep {
         let contact = &self.contacts.contacts[index];
         let (body_a, body_b) = (contact.body_a, contact.body_b);
         match found {
-            Collided::Skipped => true,
+            Collided::Skipped | Collided::Quiet => true,
             Collided::Parted => {
                 if contact.touching {
                     self.contact_ended(index);

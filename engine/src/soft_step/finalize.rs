@@ -190,23 +190,22 @@ impl SoftStep {
     /// parts on its threads first (see the module docs).
     #[inline(never)]
     pub(super) fn finalize_bodies(&mut self, core: &mut WorldCore, dt: f64, pool: Option<&Pool>) {
-        if let Some(pool) = pool {
-            self.parallel_finalize(pool, core, dt);
-        }
         let (speculative, margin) = (
             self.settings.speculative_distance,
             self.settings.aabb_margin,
         );
-        for id in 0..self.sims.len() {
-            if !self.sims[id].moving() {
-                continue;
-            }
-            if self.sims[id].bullet && is_fast(&self.settings, &self.sims[id], &self.bodies[id + 1])
-            {
-                self.fast_bullets.push(id);
-            }
-            if pool.is_some() {
-                // The threads' results, in body order.
+        if let Some(pool) = pool {
+            self.parallel_finalize(pool, core, dt);
+            // The threads' results, in body order: only the bodies they
+            // listed (a fast bullet, a corrected pose, or a box that left
+            // its fat box) have anything to do here.
+            let mut pending = std::mem::take(&mut self.finalize_pending);
+            for &id in pending.iter().flatten() {
+                if self.sims[id].bullet
+                    && is_fast(&self.settings, &self.sims[id], &self.bodies[id + 1])
+                {
+                    self.fast_bullets.push(id);
+                }
                 if let Some((position, angle)) = self.impacts[id] {
                     let state = &mut core.states[id];
                     state.position = position;
@@ -217,7 +216,20 @@ impl SoftStep {
                     self.broad
                         .update(c, &aabb, self.colliders[c].aabb_margin(margin));
                 }
+            }
+            pending.iter_mut().for_each(Vec::clear);
+            self.finalize_pending = pending;
+        }
+        for id in 0..self.sims.len() {
+            if pool.is_some() {
+                break;
+            }
+            if !self.sims[id].moving() {
                 continue;
+            }
+            if self.sims[id].bullet && is_fast(&self.settings, &self.sims[id], &self.bodies[id + 1])
+            {
+                self.fast_bullets.push(id);
             }
             let inputs = FinalizeInputs::new(
                 (&self.settings, &self.bodies, &self.colliders),
@@ -246,11 +258,16 @@ impl SoftStep {
 
     /// Every moving body's [`finalize_body`] on `pool`'s threads, each a
     /// contiguous share of the bodies; the corrected poses into
-    /// `self.impacts` (by body).
+    /// `self.impacts` (by body; written for the listed bodies only), and
+    /// each thread's list of the bodies the serial pass has work for into
+    /// `self.finalize_pending` (the lists in thread order are in body
+    /// order).
     fn parallel_finalize(&mut self, pool: &Pool, core: &WorldCore, dt: f64) {
         let n = self.sims.len();
-        self.impacts.clear();
         self.impacts.resize(n, None);
+        if self.finalize_pending.len() < pool.threads() {
+            self.finalize_pending.resize_with(pool.threads(), Vec::new);
+        }
         let empty = Aabb::new(Vector2::zeros(), Vector2::zeros());
         self.collider_boxes.resize(self.colliders.len(), empty);
         let inputs = FinalizeInputs::new(
@@ -263,7 +280,10 @@ impl SoftStep {
         let sims = SharedSlice::new(&mut self.sims);
         let impacts = SharedSlice::new(&mut self.impacts);
         let boxes = SharedSlice::new(&mut self.collider_boxes);
+        let pending = SharedSlice::new(&mut self.finalize_pending);
         pool.run(&|w: &Worker<'_>| {
+            // SAFETY: each thread its own list.
+            let pending = unsafe { pending.get_mut(w.index) };
             for id in w.share(n) {
                 // SAFETY: each body (its record, its impact, its colliders'
                 // boxes: a body's colliders are its own contiguous range)
@@ -272,14 +292,25 @@ impl SoftStep {
                 if !sim.moving() {
                     continue;
                 }
+                let fast_bullet =
+                    sim.bullet && is_fast(inputs.settings, sim, &inputs.solver[id + 1]);
                 let Some((pose, corrected)) = finalize_body(id, sim, &inputs) else {
+                    if fast_bullet {
+                        *impact = None;
+                        pending.push(id);
+                    }
                     continue;
                 };
                 *impact = corrected;
                 // SAFETY: as above.
                 let own = unsafe { boxes.slice(sim.colliders.clone()) };
+                let mut left_fat = false;
                 for (c, aabb) in sim.colliders.clone().zip(own) {
                     *aabb = speculative_box(&inputs.colliders[c], &pose, speculative);
+                    left_fat |= !inputs.broad.fat_contains(c, aabb);
+                }
+                if fast_bullet || corrected.is_some() || left_fat {
+                    pending.push(id);
                 }
             }
         });

@@ -239,6 +239,10 @@ pub struct SoftStep {
     /// threads').
     #[cfg_attr(feature = "serde", serde(skip))]
     impacts: Vec<Option<finalize::Impact>>,
+    /// Per thread of the continuous stage, the bodies of its share the
+    /// serial pass has work for, in body order (`finalize.rs`).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    finalize_pending: Vec<Vec<BodyId>>,
     /// The fast bullets of the step, in body order, whose sweeps wait for
     /// the other bodies' end poses (`bullets.rs`).
     #[cfg_attr(feature = "serde", serde(skip))]
@@ -282,6 +286,7 @@ impl SoftStep {
             collided: Vec::new(),
             collider_boxes: Vec::new(),
             impacts: Vec::new(),
+            finalize_pending: Vec::new(),
             fast_bullets: Vec::new(),
         };
         for id in 0..core.bodies.len() {

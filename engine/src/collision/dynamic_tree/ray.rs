@@ -83,6 +83,13 @@ pub(crate) struct RayBoxTest {
     parallel: bool,
 }
 
+#[cfg(test)]
+thread_local! {
+    /// Test builds only: the number of [`RayBoxTest::entry`] calls (box
+    /// tests of the ray walks) on this thread, for the tests' cost figures.
+    pub(crate) static BOX_TESTS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
 impl RayBoxTest {
     /// The test for the ray `origin + t dir`.
     pub(crate) fn new(origin: Vector2<f64>, dir: Vector2<f64>) -> Self {
@@ -98,6 +105,8 @@ impl RayBoxTest {
     /// misses: `ray_box(aabb, origin, 1 / dir, max_t)`'s lower end.
     #[inline(always)]
     pub(crate) fn entry(&self, aabb: &Aabb, max_t: f64) -> Option<f64> {
+        #[cfg(test)]
+        BOX_TESTS.with(|c| c.set(c.get() + 1));
         #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
         if !self.parallel {
             return self.entry_sse2(aabb, max_t);

@@ -53,6 +53,8 @@ pub(super) struct Scratch {
     /// The marked internal nodes freed by the gathering, to be handed
     /// back to the node pool in descending index order.
     freed: Vec<u32>,
+    /// [`sah_split`]'s costs of the right parts.
+    costs: Vec<f64>,
 }
 
 /// See [`DynamicTree::rebuild`] and the [module documentation](self).
@@ -192,4 +194,141 @@ fn split(pieces: &mut [u32], centres: &mut [Vector2<f64>]) -> usize {
 /// The centre of a box (m).
 fn centre(b: &Aabb) -> Vector2<f64> {
     0.5 * (b.min + b.max)
+}
+
+/// See [`DynamicTree::rebuild_all`]: every internal node is freed and the
+/// leaves are grouped top-down by the surface-area heuristic
+/// ([`sah_split`]), in an order fixed by the leaves alone (their boxes and
+/// proxy ids), so the same leaves give the same tree whatever the tree's
+/// history.
+pub(super) fn rebuild_all(tree: &mut DynamicTree) {
+    tree.leaves_changed = false;
+    if tree.root == NULL {
+        return;
+    }
+    let mut s = std::mem::take(&mut tree.scratch);
+    s.pieces.clear();
+    s.centres.clear();
+    s.walk.clear();
+    s.freed.clear();
+    s.walk.push(tree.root);
+    while let Some(i) = s.walk.pop() {
+        let node = &mut tree.nodes[i as usize];
+        if node.is_leaf() {
+            node.parent = NULL;
+            s.pieces.push(i);
+        } else {
+            let [c0, c1] = node.children;
+            s.walk.push(c1);
+            s.walk.push(c0);
+            s.freed.push(i);
+        }
+    }
+    // As in `gather`: handed back so that the build allocates the new
+    // internal nodes in ascending indices.
+    s.freed.sort_unstable_by(|a, b| b.cmp(a));
+    for &i in &s.freed {
+        tree.free_node(i);
+    }
+    build_sah(tree, &mut s);
+    tree.scratch = s;
+}
+
+/// Groups all the pieces (leaves) under a new root, each range split by
+/// [`sah_split`], and refits the new nodes.
+fn build_sah(tree: &mut DynamicTree, s: &mut Scratch) {
+    s.made.clear();
+    s.tasks.clear();
+    s.tasks.push(Task {
+        parent: NULL,
+        side: 0,
+        start: 0,
+        end: s.pieces.len(),
+    });
+    while let Some(task) = s.tasks.pop() {
+        let Task { start, end, .. } = task;
+        let node = if end - start == 1 {
+            s.pieces[start]
+        } else {
+            let left = sah_split(&tree.nodes, &mut s.pieces[start..end], &mut s.costs);
+            let i = tree.allocate_node();
+            s.made.push(i);
+            let mid = start + left;
+            s.tasks.push(Task {
+                parent: i,
+                side: 1,
+                start: mid,
+                end,
+            });
+            s.tasks.push(Task {
+                parent: i,
+                side: 0,
+                start,
+                end: mid,
+            });
+            i
+        };
+        tree.nodes[node as usize].parent = task.parent;
+        if task.parent == NULL {
+            tree.root = node;
+        } else {
+            tree.nodes[task.parent as usize].children[task.side] = node;
+        }
+    }
+    for &i in s.made.iter().rev() {
+        tree.refit(i);
+    }
+}
+
+/// Sorts a range of at least two leaves along the axis, and splits it at
+/// the place, that minimise the surface-area heuristic's cost (2D: the
+/// perimeter) `P(left) · n_left + P(right) · n_right`, over both axes and
+/// every split of the range sorted by box centre ([`sort_along`]); of
+/// equal costs the split nearer the middle wins, then the first, x before
+/// y. Returns the size `k` of the left
+/// part, 0 < k < len. A range whose costs are all NaN (NaN boxes) is
+/// halved in x order. `costs` is scratch.
+fn sah_split(nodes: &[super::Node], pieces: &mut [u32], costs: &mut Vec<f64>) -> usize {
+    let n = pieces.len();
+    if n == 2 {
+        return 1;
+    }
+    let mut best = (f64::INFINITY, 0usize, n / 2);
+    for axis in 0..2 {
+        sort_along(nodes, pieces, axis);
+        // costs[k]: the right part pieces[k..]'s perimeter times its count.
+        costs.clear();
+        costs.resize(n + 1, 0.0);
+        let mut right = nodes[pieces[n - 1] as usize].aabb;
+        for k in (1..n).rev() {
+            right = right.merged(&nodes[pieces[k] as usize].aabb);
+            costs[k] = right.perimeter() * (n - k) as f64;
+        }
+        let mut left = nodes[pieces[0] as usize].aabb;
+        for k in 1..n {
+            let cost = left.perimeter() * k as f64 + costs[k];
+            // Equal costs (coincident boxes) prefer the more even split.
+            let even = |k: usize| k.abs_diff(n / 2);
+            if cost < best.0 || (cost == best.0 && even(k) < even(best.2)) {
+                best = (cost, axis, k);
+            }
+            left = left.merged(&nodes[pieces[k] as usize].aabb);
+        }
+    }
+    if best.1 == 0 {
+        // Both axes were sorted, y last: back to x for the split found.
+        sort_along(nodes, pieces, 0);
+    }
+    best.2
+}
+
+/// Sorts the leaves by box centre along `axis`, ties by node index: a
+/// total order (NaN included, by `total_cmp`), so the result depends on
+/// the leaves alone, not on their order before. Allocates nothing.
+fn sort_along(nodes: &[super::Node], pieces: &mut [u32], axis: usize) {
+    pieces.sort_unstable_by(|&a, &b| {
+        let ca = centre(&nodes[a as usize].aabb)[axis];
+        let cb = centre(&nodes[b as usize].aabb)[axis];
+        ca.total_cmp(&cb).then(a.cmp(&b))
+    });
 }
