@@ -6,8 +6,7 @@
 //! them.
 
 use etalon2d::{
-    BodyDef, ContactModel, ContactSettings, Method, QueryFilter, Shape,
-    SoftStepSettings, World,
+    BodyDef, ContactModel, ContactSettings, Method, QueryFilter, Shape, SoftStepSettings, World,
 };
 use nalgebra::Vector2;
 
@@ -75,7 +74,10 @@ fn both_models_take_a_capsule_and_switching_keeps_the_world() {
         .set_contact_model(ContactModel::Exact(ContactSettings::default()))
         .unwrap();
     world.step(0.01).unwrap();
-    assert!(matches!(world.contact_model(), Some(ContactModel::Exact(_))));
+    assert!(matches!(
+        world.contact_model(),
+        Some(ContactModel::Exact(_))
+    ));
     // So does the soft step, and the body is still there.
     world
         .set_contact_model(ContactModel::SoftStep(SoftStepSettings::default()))
