@@ -20,7 +20,18 @@
 //! The current separation of a point inside the substeps comes from the
 //! bodies' motion since the step began, not from collision:
 //! s = s0 + n·(Δp_B + R(Δθ_B) r_B − Δp_A − R(Δθ_A) r_A) − n·(r_B − r_A),
-//! with the normal and the anchors fixed for the step.
+//! with the normal and the anchors fixed for the step (Box2D v3's). A
+//! circle's point is the exception: the point of a circle facing the other
+//! shape is the one along the normal from its centre, whatever the circle's
+//! turn, so its part of the separation follows the centre, at the distance
+//! k along the normal from the point ([`ContactConstraint::centre_depth`]):
+//! R(Δθ) r turned about the centre instead, which subtracts
+//! k (1 − cos Δθ) per circle. Box2D turns the point with the body: a disc
+//! rolling at ω opens its contact by r (1 − cos ωt) within a step (0.5 mm
+//! for a 0.1 m disc at 6 rad/s and dt = 1/60 s), so the soft contact lets
+//! it sink by about that much and pushes it back at the next step, a
+//! bump per step which a rolling disc feels as drag and, where a new
+//! contact begins, as a loss of speed (docs/cases.md#bowl).
 //!
 //! The solve is matrix-free: each point's effective mass is a scalar, and
 //! the constraints are visited in order (projected Gauss–Seidel), so the
@@ -93,6 +104,9 @@ pub(crate) struct ContactConstraint {
     pub rolling_mass: f64,
     /// Accumulated rolling-resistance angular impulse (N·m·s).
     pub rolling_impulse: f64,
+    /// For a circle on side A (B), the distance (m) along the normal from
+    /// the point to its centre, else 0 ([`super::contacts::Contact::centre_depth`]).
+    pub centre_depth: [f64; 2],
     pub count: usize,
     pub points: [ConstraintPoint; 2],
 }
@@ -181,6 +195,7 @@ pub(crate) fn prepare(
             0.0
         },
         rolling_impulse: warm * contact.rolling_impulse,
+        centre_depth: contact.centre_depth,
         count: contact.count,
         points,
     }
@@ -242,6 +257,9 @@ pub(crate) fn solve(
         let (ma, ia, mb, ib) = (c.inv_mass_a, c.inv_inertia_a, c.inv_mass_b, c.inv_inertia_b);
         let normal = c.normal;
         let dp = b.dp - a.dp;
+        // A circle's facing point does not turn with it: 0 for other shapes.
+        let [ka, kb] = c.centre_depth;
+        let unturned = kb * (1.0 - b.dq[0]) + ka * (1.0 - a.dq[0]);
         let (bias_rate, mass_scale, impulse_scale) = if use_bias {
             let s = c.softness;
             (s.mass_scale * s.bias_rate, s.mass_scale, s.impulse_scale)
@@ -251,7 +269,7 @@ pub(crate) fn solve(
         for cp in &mut c.points[..c.count] {
             // Current separation from the motion since the step began.
             let ds = dp + b.rotate(cp.rb) - a.rotate(cp.ra);
-            let s = cp.base_separation + ds.dot(&normal);
+            let s = cp.base_separation + ds.dot(&normal) - unturned;
             let (bias, point_mass_scale, point_impulse_scale) = if s > 0.0 {
                 (s * inv_h, 1.0, 0.0)
             } else {

@@ -88,6 +88,14 @@ pub(crate) struct Contact {
     /// Rolling-resistance angular impulse accumulated over the last step
     /// (N·m·s).
     pub rolling_impulse: f64,
+    /// When collider A (B) is a circle, the distance (m) along the normal
+    /// from the manifold's point to the circle's centre (towards A's
+    /// centre for A, along the normal for B); 0 for any other shape.
+    /// The point of a circle facing the other shape is the one along the
+    /// normal from its centre whatever the circle's turn, so the
+    /// separation follows the centre, not the point turning with the body
+    /// ([`super::contact_solver`]'s current separation).
+    pub centre_depth: [f64; 2],
     /// Whether one of the two colliders is a sensor: the pair is never
     /// solved, and "touching" means overlapping.
     pub sensor: bool,
@@ -177,6 +185,7 @@ impl ContactSet {
             rolling_resistance: material.rolling_resistance,
             tangent_speed: material.tangent_speed,
             rolling_impulse: 0.0,
+            centre_depth: [0.0; 2],
             sensor,
             touching: false,
             computed: None,
@@ -273,6 +282,7 @@ pub(crate) fn update_contact(
     }
     let local = manifold::collide(a.shape, b.shape, &relative, speculative, scratch);
     store_manifold(contact, &local, &a.collider, (&a.body, &b.body));
+    contact.centre_depth = centre_depth(contact, (&a, &b));
     contact.computed = Some(Computed {
         relative,
         rotation_a: a.body.rotation,
@@ -280,6 +290,25 @@ pub(crate) fn update_contact(
     });
     set_touching(contact);
     was_touching
+}
+
+/// [`Contact::centre_depth`] of a freshly stored manifold: for each side
+/// that is a circle (centred at its collider's origin), the distance along
+/// the normal between the point and the centre. Circle manifolds have one
+/// point.
+#[inline(always)]
+fn centre_depth(contact: &Contact, (a, b): (&Side<'_>, &Side<'_>)) -> [f64; 2] {
+    if contact.count == 0 {
+        return [0.0; 2];
+    }
+    let point = a.body.translation.vector + contact.points[0].anchor_a;
+    let depth = |side: &Side<'_>, sign: f64| match side.shape {
+        SolverShape::Circle { .. } => {
+            sign * (side.collider.translation.vector - point).dot(&contact.normal)
+        }
+        _ => 0.0,
+    };
+    [depth(a, -1.0), depth(b, 1.0)]
 }
 
 /// Sets `contact`'s touching flag from its manifold: any point for a
@@ -338,7 +367,10 @@ fn recycle(
         // B's point relative to A's point; zero when the manifold was
         // computed (anchor_b − anchor_a = pose_a − pose_b then).
         let d = dc + turn_b * p.anchor_b - turn_a * p.anchor_a;
-        p.separation = p.computed_separation + d.dot(&contact.normal);
+        // A circle's facing point does not turn with it (Contact::centre_depth).
+        let [ka, kb] = contact.centre_depth;
+        let unturned = kb * (1.0 - turn_b.re) + ka * (1.0 - turn_a.re);
+        p.separation = p.computed_separation + d.dot(&contact.normal) - unturned;
     }
     true
 }

@@ -14,7 +14,7 @@
 //! constraints one after the other would give (tested below).
 //!
 //! Layout: what the passes read and write every substep is in
-//! [`WideConstraint`] (structure of arrays, 1600 bytes per eight
+//! [`WideConstraint`] (structure of arrays, 1728 bytes per eight
 //! constraints, checked below), and only that: on large scenes the passes
 //! are bound by the traffic of these records through the caches
 //! (docs/soft_step.md, "Smaller records"). What is the same for many
@@ -132,11 +132,15 @@ pub(crate) struct WideConstraint {
     pub friction: F64x8,
     /// Minus each lane's push-out bound (m/s): the bias is at least this.
     pub min_bias: F64x8,
+    /// [`ContactConstraint::centre_depth`] of A and of B (m): 0 but for
+    /// circles.
+    pub centre_depth_a: F64x8,
+    pub centre_depth_b: F64x8,
     pub points: [WidePoint; 2],
 }
 
 // The size the module documentation gives.
-const _: () = assert!(std::mem::size_of::<WideConstraint>() == 1600);
+const _: () = assert!(std::mem::size_of::<WideConstraint>() == 1728);
 
 /// What the passes seldom read of eight constraints: restitution and the
 /// store, and, only in a step where some constraint has a tangent speed or
@@ -191,6 +195,8 @@ pub(crate) fn set_lane(
     w.normal_y.set_lane(l, c.normal.y);
     w.friction.set_lane(l, c.friction);
     w.min_bias.set_lane(l, -c.push_out);
+    w.centre_depth_a.set_lane(l, c.centre_depth[0]);
+    w.centre_depth_b.set_lane(l, c.centre_depth[1]);
     e.restitution.set_lane(l, c.restitution);
     e.tangent_speed.set_lane(l, c.tangent_speed);
     e.rolling_resistance.set_lane(l, c.rolling_resistance);
@@ -238,6 +244,7 @@ pub(crate) fn set_padding_lane((w, e): (&mut WideConstraint, &mut WideExtra), l:
         rolling_resistance: 0.0,
         rolling_mass: 0.0,
         rolling_impulse: 0.0,
+        centre_depth: [0.0; 2],
         count: 0,
         points: [ConstraintPoint::default(); 2],
     };
@@ -307,6 +314,7 @@ fn separations<L: Lanes>(
 ) -> [L; 2] {
     let [dpy_a, _, ca, sa] = gather_motion::<L>(bodies, &c.a, g);
     let [dpy_b, _, cb, sb] = gather_motion::<L>(bodies, &c.b, g);
+    let one = L::splat(1.0);
     let motion = Motion {
         dpx: b.dpx - a.dpx,
         dpy: dpy_b - dpy_a,
@@ -316,6 +324,8 @@ fn separations<L: Lanes>(
         sb,
         nx: L::load(&c.normal_x, g),
         ny: L::load(&c.normal_y, g),
+        unturned: L::load(&c.centre_depth_b, g) * (one - cb)
+            + L::load(&c.centre_depth_a, g) * (one - ca),
     };
     [
         motion.separation(&c.points[0], g),
@@ -337,6 +347,10 @@ struct Motion<L> {
     sb: L,
     nx: L,
     ny: L,
+    /// What the circles' turns take off the separation, the sum of
+    /// k_B (1 − cos Δθ_B) and k_A (1 − cos Δθ_A): 0 for other shapes
+    /// ([`ContactConstraint::centre_depth`]).
+    unturned: L,
 }
 
 impl<L: Lanes> Motion<L> {
@@ -350,7 +364,7 @@ impl<L: Lanes> Motion<L> {
         let (rax, ray) = (ca * ra_x - sa * ra_y, sa * ra_x + ca * ra_y);
         let dsx = self.dpx + rbx - rax;
         let dsy = self.dpy + rby - ray;
-        L::load(&p.base_separation, g) + (dsx * self.nx + dsy * self.ny)
+        L::load(&p.base_separation, g) + (dsx * self.nx + dsy * self.ny) - self.unturned
     }
 }
 
@@ -908,6 +922,12 @@ mod tests {
                 rolling_resistance: if contact % 3 == 1 { 0.05 } else { 0.0 },
                 rolling_mass: 1.0 / (masses[a][1] + masses[b][1]),
                 rolling_impulse: if contact % 3 == 1 { 0.01 } else { 0.0 },
+                // A circle on B on some lanes, circles on both on others.
+                centre_depth: match contact % 4 {
+                    2 => [0.0, 0.3],
+                    3 => [0.2, 0.4],
+                    _ => [0.0; 2],
+                },
                 count: 1 + contact % 2,
                 points,
             });
