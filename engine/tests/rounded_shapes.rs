@@ -61,6 +61,7 @@ fn both_models_take_a_capsule_and_switching_keeps_the_world() {
     // Without contacts the exact model integrates a capsule (it only gives
     // the body its mass properties).
     let mut world = World::new(Method::SemiImplicitEuler).unwrap();
+    world.set_gravity(Vector2::new(0.0, -9.81)).unwrap();
     world
         .add_body(BodyDef::rigid(
             "pill",
