@@ -3,36 +3,12 @@
 //! GIF, `--compare rapier` prints the differences, and the other examples
 //! and the `[linear_test]` scene run.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
+use common::{harness, workspace};
 
-const BIN: &str = env!("CARGO_BIN_EXE_harness");
 const README: &str = include_str!("../../README.md");
 const EXAMPLE: &str = include_str!("../../scenes/examples/thrown_plate.toml");
 const EXAMPLE_PATH: &str = "scenes/examples/thrown_plate.toml";
-
-fn workspace() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
-
-struct Done {
-    code: Option<i32>,
-    stdout: String,
-    stderr: String,
-}
-
-fn harness(dir: &Path, args: &[&str]) -> Done {
-    let output = Command::new(BIN)
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("run the harness binary");
-    Done {
-        code: output.status.code(),
-        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
-    }
-}
 
 /// The first ```toml block of the README's "Write your own scene" section.
 fn readme_example() -> &'static str {

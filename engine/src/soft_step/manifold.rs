@@ -818,8 +818,9 @@ mod tests {
 
     #[test]
     fn rounded_pairs_agree_with_the_exact_signed_distance_where_the_cores_overlap_or_touch_faces() {
-        // The exact signed distance of rounded shapes (brute force over
-        // their cores, `collision::proximity`) is the oracle: where the
+        // The exact signed distance of rounded shapes (the pair table's,
+        // `collision::proximity`, checked against parry2d by the harness's
+        // `shape_parry`) is the oracle: where the
         // shapes overlap, the manifold's normal and deepest point are
         // exact to round-off when the cores overlap (the separating axes
         // are then exact); apart, the manifold never reports a separation

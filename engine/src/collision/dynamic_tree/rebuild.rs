@@ -64,12 +64,24 @@ pub(super) fn rebuild(tree: &mut DynamicTree) {
         return;
     }
     let mut s = std::mem::take(&mut tree.scratch);
-    gather(tree, &mut s);
-    build(tree, &mut s);
+    gather(tree, &mut s, true);
+    build(tree, &mut s, Split::Median);
     tree.scratch = s;
 }
 
-/// Frees the marked nodes and lists the pieces under them.
+/// How [`build`] splits a range of pieces.
+#[derive(Debug, Clone, Copy)]
+enum Split {
+    /// [`split`]: at the middle of the centres' bounds (the partial
+    /// rebuild's, cheap).
+    Median,
+    /// [`sah_split`]: the surface-area heuristic (the full rebuild's).
+    Sah,
+}
+
+/// Frees the marked nodes and lists the pieces under them; with
+/// `keep_subtrees` off, every internal node is freed and the pieces are
+/// the leaves.
 ///
 /// The freed nodes join the free list in descending index order, so the
 /// build, which allocates in preorder, lays the new top of the tree out
@@ -80,7 +92,7 @@ pub(super) fn rebuild(tree: &mut DynamicTree) {
 /// again; a falling pile of 10^5 bodies (all enlarged every step) then
 /// spent most of its broad phase waiting on memory. Only node indices
 /// change: the tree's shape, hence the pair order, does not.
-fn gather(tree: &mut DynamicTree, s: &mut Scratch) {
+fn gather(tree: &mut DynamicTree, s: &mut Scratch, keep_subtrees: bool) {
     s.pieces.clear();
     s.centres.clear();
     s.walk.clear();
@@ -88,7 +100,7 @@ fn gather(tree: &mut DynamicTree, s: &mut Scratch) {
     s.walk.push(tree.root);
     while let Some(i) = s.walk.pop() {
         let node = &mut tree.nodes[i as usize];
-        if node.is_leaf() || !node.enlarged {
+        if node.is_leaf() || (keep_subtrees && !node.enlarged) {
             node.parent = NULL;
             s.pieces.push(i);
             s.centres.push(centre(&node.aabb));
@@ -105,8 +117,9 @@ fn gather(tree: &mut DynamicTree, s: &mut Scratch) {
     }
 }
 
-/// Groups the pieces into a new top of the tree and refits it.
-fn build(tree: &mut DynamicTree, s: &mut Scratch) {
+/// Groups the pieces into a new top of the tree, each range split as
+/// `how` says, and refits the new nodes.
+fn build(tree: &mut DynamicTree, s: &mut Scratch, how: Split) {
     s.made.clear();
     s.tasks.clear();
     s.tasks.push(Task {
@@ -120,7 +133,10 @@ fn build(tree: &mut DynamicTree, s: &mut Scratch) {
         let node = if end - start == 1 {
             s.pieces[start]
         } else {
-            let left = split(&mut s.pieces[start..end], &mut s.centres[start..end]);
+            let left = match how {
+                Split::Median => split(&mut s.pieces[start..end], &mut s.centres[start..end]),
+                Split::Sah => sah_split(&tree.nodes, &mut s.pieces[start..end], &mut s.costs),
+            };
             let i = tree.allocate_node();
             s.made.push(i);
             let mid = start + left;
@@ -207,77 +223,9 @@ pub(super) fn rebuild_all(tree: &mut DynamicTree) {
         return;
     }
     let mut s = std::mem::take(&mut tree.scratch);
-    s.pieces.clear();
-    s.centres.clear();
-    s.walk.clear();
-    s.freed.clear();
-    s.walk.push(tree.root);
-    while let Some(i) = s.walk.pop() {
-        let node = &mut tree.nodes[i as usize];
-        if node.is_leaf() {
-            node.parent = NULL;
-            s.pieces.push(i);
-        } else {
-            let [c0, c1] = node.children;
-            s.walk.push(c1);
-            s.walk.push(c0);
-            s.freed.push(i);
-        }
-    }
-    // As in `gather`: handed back so that the build allocates the new
-    // internal nodes in ascending indices.
-    s.freed.sort_unstable_by(|a, b| b.cmp(a));
-    for &i in &s.freed {
-        tree.free_node(i);
-    }
-    build_sah(tree, &mut s);
+    gather(tree, &mut s, false);
+    build(tree, &mut s, Split::Sah);
     tree.scratch = s;
-}
-
-/// Groups all the pieces (leaves) under a new root, each range split by
-/// [`sah_split`], and refits the new nodes.
-fn build_sah(tree: &mut DynamicTree, s: &mut Scratch) {
-    s.made.clear();
-    s.tasks.clear();
-    s.tasks.push(Task {
-        parent: NULL,
-        side: 0,
-        start: 0,
-        end: s.pieces.len(),
-    });
-    while let Some(task) = s.tasks.pop() {
-        let Task { start, end, .. } = task;
-        let node = if end - start == 1 {
-            s.pieces[start]
-        } else {
-            let left = sah_split(&tree.nodes, &mut s.pieces[start..end], &mut s.costs);
-            let i = tree.allocate_node();
-            s.made.push(i);
-            let mid = start + left;
-            s.tasks.push(Task {
-                parent: i,
-                side: 1,
-                start: mid,
-                end,
-            });
-            s.tasks.push(Task {
-                parent: i,
-                side: 0,
-                start,
-                end: mid,
-            });
-            i
-        };
-        tree.nodes[node as usize].parent = task.parent;
-        if task.parent == NULL {
-            tree.root = node;
-        } else {
-            tree.nodes[task.parent as usize].children[task.side] = node;
-        }
-    }
-    for &i in s.made.iter().rev() {
-        tree.refit(i);
-    }
 }
 
 /// Sorts a range of at least two leaves along the axis, and splits it at
