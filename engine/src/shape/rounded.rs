@@ -7,7 +7,7 @@
 //! a radius > 0). The shape is every point within `radius` of the core.
 //! With the circle (a core of 1 vertex) and the plain polygon (radius 0),
 //! every convex shape of the engine is "a convex core of 1..N vertices and
-//! a radius" ([`ConvexCore`], from [`Shape::convex_core`]): the one view a
+//! a radius" ([`ConvexCore`], from [`Shape::convex_core`](super::Shape::convex_core)): the one view a
 //! radius-aware collision core needs.
 //!
 //! # Mass properties of a rounded polygon, exactly
