@@ -220,10 +220,9 @@ impl SoftStep {
             pending.iter_mut().for_each(Vec::clear);
             self.finalize_pending = pending;
         }
-        for id in 0..self.sims.len() {
-            if pool.is_some() {
-                break;
-            }
+        // On one thread: every moving body here, in body order.
+        let serial = pool.is_none();
+        for id in (0..self.sims.len()).filter(|_| serial) {
             if !self.sims[id].moving() {
                 continue;
             }
