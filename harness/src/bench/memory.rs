@@ -35,17 +35,22 @@ pub struct Measured {
 /// 100 steps of `container_10k` (dt = 1/60 s).
 const STEPS_100: f64 = 1.6666666666666667;
 
+/// 3000 steps of `container_10k` (dt = 1/60 s), three times its own
+/// duration.
+const STEPS_3000: f64 = 50.0;
+
 /// The runs measured: the largest scenes of the benchmark and of the
 /// scenes folder at their own duration, no output asked; `container_1000`
 /// for ten times its duration (6000 steps, its pile at rest from about
-/// step 600 on); and `container_10k` at 100 and 1000 steps, without and
-/// with `--trace` (every step at 100; every 10th at 1000, `--max-samples
-/// 101`, so that both traces hold the same rows, about 150 MB each). At
-/// 100 steps its bodies still fall, at 1000 they lie in a pile whose
-/// contacts the soft step holds (its constraint records), so those two
-/// peaks differ by the pile's contact state, not by the steps;
-/// `container_1000`'s two rows, both of a pile at rest, show the peak
-/// independent of the number of steps.
+/// step 600 on); and `container_10k` at 100, 1000 and 3000 steps without
+/// output, and at 100 and 1000 with `--trace` (every step at 100; every
+/// 10th at 1000, `--max-samples 101`, so that both traces hold the same
+/// rows, about 150 MB each). At 100 steps its bodies still fall, at 1000
+/// and 3000 they lie in a pile whose contacts the soft step holds (its
+/// constraint records), so the 100-step peak differs from the others by
+/// the pile's contact state, not by the steps; `container_1000`'s two
+/// rows and `container_10k`'s at 1000 and 3000 steps, each pair a pile at
+/// rest, show the peak independent of the number of steps.
 pub const RUNS: &[Measured] = &[
     Measured {
         scene: "bench/large_pyramid",
@@ -70,6 +75,11 @@ pub const RUNS: &[Measured] = &[
     Measured {
         scene: "container_10k",
         until: None,
+        trace: None,
+    },
+    Measured {
+        scene: "container_10k",
+        until: Some(STEPS_3000),
         trace: None,
     },
     Measured {

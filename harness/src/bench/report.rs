@@ -302,10 +302,11 @@ pub fn write(
              harness's own peak is printed as a bound); MB = 10⁶ bytes. With no output asked the \
              run keeps nothing per step; `--trace` streams its rows to the file as the run goes; \
              so the peak is the world's and does not grow with the steps: `container_1000`'s pile, \
-             at rest from about step 600, at 600 and at 6000 steps. `container_10k` at 100 steps \
-             is a rain of falling bodies, at 1000 a pile whose contacts the soft step holds, so \
-             those peaks differ by the pile's contact state, not by the steps (its traces at 100 \
-             steps, every step, and at 1000, every 10th, hold the same rows).\n"
+             at rest from about step 600, at 600 and at 6000 steps, and `container_10k`'s pile at \
+             1000 and at 3000 steps. `container_10k` at 100 steps is a rain of falling bodies, \
+             so its peak differs from the pile's by the contact state the soft step holds, not by \
+             the steps (its traces at 100 steps, every step, and at 1000, every 10th, hold the \
+             same rows).\n"
         )?;
         let rows: Vec<Vec<String>> = extras
             .memory
