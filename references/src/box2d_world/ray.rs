@@ -18,7 +18,10 @@ impl Box2dWorld {
         let query = self.world.query().map_err(engine_error)?;
         let hit = query
             .cast_ray_closest(
-                Position::new(origin[0] as f32, origin[1] as f32),
+                Position::new(
+                    origin[0] as boxdd::WorldScalar,
+                    origin[1] as boxdd::WorldScalar,
+                ),
                 [translation[0] as f32, translation[1] as f32],
                 QueryFilter::default(),
             )
