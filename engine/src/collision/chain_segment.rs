@@ -48,24 +48,23 @@
 //! speculative cut-off applies to the rounded surface.
 //!
 //! Lengths are in m; normals point from the segment (A) to the other shape
-//! (B). Feature ids are `(feature of A) << 16 | (feature of B)`, as the soft
-//! step's polygon pairs: for the segment as reference, A's feature is 0
-//! and B's the incident vertex; for a polygon edge as reference, A's
-//! feature is `REFERENCE_ON_B | end of the segment` and B's the edge.
+//! (B). Feature ids are pairs of the one scheme (`feature_id.rs`), A's
+//! feature and B's, as the soft step's polygon pairs: for the segment as
+//! reference, the segment's edge and the incident vertex; for a polygon
+//! edge as reference, the segment's end (a vertex) and the polygon's edge,
+//! so that a point never keeps the impulse of a point made the other way
+//! round.
 //!
 //! Box2D v3.2's `b2CollideChainSegmentAndPolygon` decides the same cone
 //! with the closest points of a distance query; this file uses separating
 //! axes throughout (the polygon pairs of the soft step do too).
 
+use super::feature_id::{Feature, FeatureId};
 use super::manifold::LocalProximity;
 use crate::shape::ChainSegment;
 use crate::tunables::{CHAIN_ADMIT_SIN, CHAIN_CONVEX_SIN, LINEAR_SLOP};
 use nalgebra::{Isometry2, Vector2};
 use smallvec::SmallVec;
-
-/// Set in A's feature when the reference edge is the polygon's, so that a
-/// point never keeps the impulse of a point made the other way round.
-const REFERENCE_ON_B: u32 = 0x8000;
 
 /// A point of a [`SegmentManifold`], in the segment's frame.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -75,7 +74,7 @@ pub(crate) struct SegmentPoint {
     /// Signed distance along the normal (m): < 0 overlapping.
     pub separation: f64,
     /// Feature id (see the module documentation).
-    pub id: u32,
+    pub id: FeatureId,
 }
 
 /// A segment–polygon manifold: 0, 1 or 2 points sharing a normal.
@@ -124,10 +123,6 @@ fn right(d: Vector2<f64>) -> Vector2<f64> {
 
 fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
     a.x * b.y - a.y * b.x
-}
-
-fn feature_id(a: u32, b: usize) -> u32 {
-    (a << 16) | b as u32
 }
 
 impl Smooth {
@@ -355,7 +350,7 @@ pub(crate) fn chain_segment_polygon_local(
                 normal: -normal,
                 ..none
             };
-            for (end, q) in [(0u32, q1), (1, q2)] {
+            for (end, q) in [(0, q1), (1, q2)] {
                 // From the rounded surface; midway between it and the
                 // segment is then `q` less half of it.
                 let separation = normal.dot(&(q - a1)) - radius;
@@ -363,7 +358,7 @@ pub(crate) fn chain_segment_polygon_local(
                     out.points[out.count] = SegmentPoint {
                         point: q - 0.5 * separation * normal,
                         separation,
-                        id: feature_id(REFERENCE_ON_B | end, j),
+                        id: FeatureId::pair(Feature::Vertex(end), Feature::Edge(j)),
                     };
                     out.count += 1;
                 }
@@ -395,7 +390,7 @@ pub(crate) fn chain_segment_polygon_local(
                     out.points[out.count] = SegmentPoint {
                         point: q - 0.5 * lift * n1,
                         separation,
-                        id: feature_id(0, vertex),
+                        id: FeatureId::pair(Feature::Edge(0), Feature::Vertex(vertex)),
                     };
                     out.count += 1;
                 }

@@ -23,9 +23,10 @@
 //! Frames: a shape's frame is its body's (origin at the centre of mass); a
 //! circle is centred on it.
 
+use super::feature_id::{Feature, FeatureId};
 use super::manifold::Manifold;
 use super::polygon_circle::{PolygonFeature, closest_polygon_circle, edge_normal};
-use super::polygon_polygon::{Face, IncidentPoint, clip_polygon_polygon_on};
+use super::polygon_polygon::{Face, clip_polygon_polygon_on};
 use crate::shape::{Circle, ConvexPolygon};
 use nalgebra::{Isometry2, Point2, Vector2};
 
@@ -48,8 +49,8 @@ pub(crate) enum ContactFeatures {
         count: usize,
         /// The incident shape's radius (m): a circle's, 0 for a polygon.
         radius: f64,
-        /// Which features these are, for telling a change of contact
-        /// topology from a motion of the same contact.
+        /// Which features these are ([`FeatureId::face`]), for telling a
+        /// change of contact topology from a motion of the same contact.
         id: FeatureId,
     },
     /// Two round features, the normal along the line between them.
@@ -66,12 +67,6 @@ pub(crate) enum ContactFeatures {
         id: FeatureId,
     },
 }
-
-/// Identifies the features of a contact: the reference edge and the
-/// incident points' origins (vertex indices or clip sides), packed. Two
-/// classifications of the same pair with the same id follow the same
-/// features.
-pub(crate) type FeatureId = u64;
 
 impl ContactFeatures {
     /// The identity of the features.
@@ -117,46 +112,10 @@ impl ContactFeatures {
                 count: 1,
                 radius,
                 // Which of the two points is left is part of the identity.
-                id: id ^ (1 << (61 + kept[0])),
+                id: id.retained(kept[0]),
             }),
             round @ ContactFeatures::Round { .. } => Some(round),
         }
-    }
-}
-
-/// The bit of a [`FeatureId`] that marks a vertex–vertex contact of two
-/// cores (a capsule's cap against a box's corner, `rounded_pair.rs`): its
-/// id is this bit, A's vertex index shifted by 20 and B's. Bit 63 holds a
-/// face's reference side, bits 61–62 a retained point's side, the edge
-/// index bits 40–59.
-pub(crate) const VERTEX_PAIR: FeatureId = 1 << 60;
-
-fn incident_code(p: IncidentPoint) -> u64 {
-    match p {
-        IncidentPoint::Vertex(i) => 2 + i as u64,
-        IncidentPoint::Clip(side) => side as u64,
-    }
-}
-
-/// The id of points of the incident shape clipped against reference edge
-/// `edge` of A (`reference_is_a`) or B, the first and last from `first`
-/// and `last`.
-pub(crate) fn face_id(
-    reference_is_a: bool,
-    edge: usize,
-    first: IncidentPoint,
-    last: IncidentPoint,
-) -> FeatureId {
-    ((reference_is_a as u64) << 63)
-        | ((edge as u64) << 40)
-        | (incident_code(first) << 20)
-        | incident_code(last)
-}
-
-fn polygon_feature_code(f: PolygonFeature) -> u64 {
-    match f {
-        PolygonFeature::Edge(i) => 2 * i as u64,
-        PolygonFeature::Vertex(i) => 2 * i as u64 + 1,
     }
 }
 
@@ -196,7 +155,12 @@ pub(crate) fn polygon_polygon_features(
             points: [to_incident(f.points[0]), to_incident(f.points[1])],
             count: f.count,
             radius: 0.0,
-            id: face_id(f.reference_is_a, f.edge, f.ids[0], f.ids[f.count - 1]),
+            id: FeatureId::face(
+                f.reference_is_a,
+                f.edge,
+                f.ids[0].into(),
+                f.ids[f.count - 1].into(),
+            ),
         },
     ))
 }
@@ -234,7 +198,7 @@ pub(crate) fn circle_circle_contact(
             radius_a: ca.radius,
             point_b: Vector2::zeros(),
             radius_b: cb.radius,
-            id: 0,
+            id: FeatureId::ONE_POINT,
         },
     ))
 }
@@ -287,7 +251,9 @@ pub(crate) fn polygon_circle_features(
     radius: f64,
     polygon_is_a: bool,
 ) -> ContactFeatures {
-    let id = polygon_feature_code(feature);
+    // The polygon's feature and the circle's centre, whichever is A: a
+    // pair is always asked in one order.
+    let id = FeatureId::pair(Feature::from(feature), Feature::Centre);
     match feature {
         PolygonFeature::Edge(i) => {
             let (v1, v2) = (vertices[i], vertices[(i + 1) % vertices.len()]);

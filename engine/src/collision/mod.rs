@@ -49,6 +49,7 @@ pub(crate) mod chain_segment;
 pub mod circle_circle;
 pub(crate) mod convex;
 pub mod dynamic_tree;
+pub(crate) mod feature_id;
 pub(crate) mod features;
 pub mod manifold;
 pub(crate) mod minkowski;

@@ -15,6 +15,7 @@
 //!   vertex is the closest point q of the polygon: the normal is
 //!   `(c − q)/|c − q|` and the signed distance `|c − q| − r`.
 
+use super::feature_id::Feature;
 use super::manifold::{LocalProximity, Manifold, Proximity};
 use crate::shape::{Circle, ConvexPolygon};
 use nalgebra::{Isometry2, Point2, Vector2};
@@ -61,6 +62,16 @@ pub(crate) enum PolygonFeature {
     Edge(usize),
     /// Vertex i.
     Vertex(usize),
+}
+
+/// A polygon's feature as a feature of the one scheme.
+impl From<PolygonFeature> for Feature {
+    fn from(f: PolygonFeature) -> Self {
+        match f {
+            PolygonFeature::Vertex(i) => Feature::Vertex(i),
+            PolygonFeature::Edge(i) => Feature::Edge(i),
+        }
+    }
 }
 
 /// The contact of a convex polygon (A) and a circle of `radius` (m) centred

@@ -36,6 +36,7 @@
 //!    from the reference surface, or none when the edges do not face each
 //!    other.
 
+use super::feature_id::{Feature, FeatureId};
 use nalgebra::{Isometry2, Vector2};
 
 /// A convex core and a radius, in its own frame.
@@ -58,6 +59,16 @@ pub(crate) enum IncidentPoint {
     /// The incident edge cut by the side plane through the reference edge's
     /// first (0) or second (1) vertex.
     Clip(u8),
+}
+
+/// An incident point as a feature of the one scheme.
+impl From<IncidentPoint> for Feature {
+    fn from(p: IncidentPoint) -> Self {
+        match p {
+            IncidentPoint::Vertex(i) => Feature::Vertex(i),
+            IncidentPoint::Clip(k) => Feature::Clip(k as usize),
+        }
+    }
 }
 
 /// The unused slots of an empty [`Clipped`] read vertex 0.
@@ -123,11 +134,10 @@ pub(crate) struct ClipPoint {
     /// Signed distance of the rounded surfaces along the normal (m): < 0
     /// overlapping.
     pub separation: f64,
-    /// The vertex of A behind the point (the reference edge's end on the
-    /// point's side, or the incident vertex).
-    pub vertex_a: usize,
-    /// The vertex of B behind the point.
-    pub vertex_b: usize,
+    /// The features behind the point: A's vertex (the reference edge's end
+    /// on the point's side, or the incident vertex) and B's
+    /// ([`FeatureId::pair`] of two vertices; the soft step's id).
+    pub id: FeatureId,
     /// Where the point comes from on the incident polygon.
     pub side: IncidentPoint,
 }
@@ -403,8 +413,7 @@ impl Placed<'_> {
                 point: v - 0.5 * (s - half_offset) * normal,
                 incident: v,
                 separation: s - radius,
-                vertex_a: ia,
-                vertex_b: ib,
+                id: FeatureId::pair(Feature::Vertex(ia), Feature::Vertex(ib)),
                 side,
             }
         };

@@ -35,9 +35,10 @@
 //! moved out by the core's radius (`face_point`), the incident shape's
 //! radius is the Face's `radius`, and a vertex–vertex contact is a
 //! [`ContactFeatures::Round`] of two vertices with their radii, identified
-//! by [`VERTEX_PAIR`].
+//! by `FeatureId::vertex_pair` (`feature_id.rs`).
 
-use super::features::{ContactFeatures, FeatureId, VERTEX_PAIR, face_id, polygon_circle_features};
+use super::feature_id::FeatureId;
+use super::features::{ContactFeatures, polygon_circle_features};
 use super::manifold::{Manifold, ManifoldPoint, Proximity};
 use super::polygon_circle::{PolygonFeature, edge_normal, polygon_circle_local};
 use super::polygon_polygon::Face;
@@ -269,7 +270,7 @@ fn vertex_pair(
         return None;
     }
     let n = (qb - qa) / length;
-    let id: FeatureId = VERTEX_PAIR | ((vertex_a as u64) << 20) | vertex_b as u64;
+    let id = FeatureId::vertex_pair(vertex_a, vertex_b);
     Some((
         Manifold::one(
             n,
@@ -373,7 +374,7 @@ fn clip_on(
             points: [to_incident(first.2), to_incident(last.2)],
             count: kept.len(),
             radius: incident.radius,
-            id: face_id(reference_is_a, edge, first.3, last.3),
+            id: FeatureId::face(reference_is_a, edge, first.3.into(), last.3.into()),
         },
     ))
 }
@@ -525,7 +526,7 @@ mod tests {
         assert!((m.normal - dir).norm() < 1e-15, "{m:?}");
         assert_eq!(m.points().len(), 1);
         assert!((m.points()[0].depth - 0.1).abs() < 1e-15, "{m:?}");
-        assert!(matches!(f, ContactFeatures::Round { id, .. } if id & VERTEX_PAIR != 0));
+        assert!(matches!(f, ContactFeatures::Round { id, .. } if id.is_vertex_pair()));
         let p = core_proximity(
             boxed,
             &at(0.0, 0.0, 0.0),

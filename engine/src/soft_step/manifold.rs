@@ -1,8 +1,9 @@
 //! The soft step's narrow phase: the contact manifold of two shapes in the
 //! frame of the first, each point carrying a **feature id** that names the
 //! pair of features (a reference edge and an incident vertex) that made it,
-//! so the next step's point from the same features inherits its impulses
-//! (warm starting).
+//! in the one scheme both models use (`collision/feature_id.rs`), so the
+//! next step's point from the same features inherits its impulses (warm
+//! starting).
 //!
 //! Every convex shape but the circle is a core of 2 or more vertices and a
 //! radius (`geometry.rs`'s `Polygon`: a polygon has radius 0; a segment,
@@ -49,6 +50,7 @@ use crate::collision::chain_segment::{
     SegmentManifold, chain_segment_circle_local, chain_segment_polygon_local,
 };
 use crate::collision::circle_circle::circle_circle_local;
+use crate::collision::feature_id::{Feature, FeatureId};
 use crate::collision::manifold::LocalProximity;
 use crate::collision::polygon_circle::polygon_circle_local;
 use crate::collision::polygon_polygon_local::{Clipped, Placed, RoundPolygon, separating_axes};
@@ -69,8 +71,9 @@ pub(crate) struct LocalPoint {
     pub point: Vector2<f64>,
     /// Signed distance along the normal (m): < 0 overlapping.
     pub separation: f64,
-    /// Feature id: `(feature of A) << 16 | (feature of B)`.
-    pub id: u32,
+    /// The features of A and B that made the point
+    /// ([`FeatureId::pair`] of the one scheme, `collision/feature_id.rs`).
+    pub id: FeatureId,
 }
 
 /// A manifold in A's frame: 0, 1 or 2 points sharing a normal.
@@ -81,10 +84,6 @@ pub(crate) struct LocalManifold {
     pub normal: Vector2<f64>,
     pub count: usize,
     pub points: [LocalPoint; 2],
-}
-
-fn feature_id(a: usize, b: usize) -> u32 {
-    ((a as u32) << 16) | b as u32
 }
 
 /// The manifold of `a` and `b`, where `xf` maps B's frame into A's, with
@@ -168,7 +167,7 @@ fn from_segment_manifold(m: SegmentManifold) -> LocalManifold {
 }
 
 /// The one-point manifold of a circle pair's [`LocalProximity`]: the point
-/// midway between the surfaces, feature id 0 (one point, nothing to tell
+/// midway between the surfaces, [`FeatureId::ONE_POINT`] (nothing to tell
 /// apart, as Box2D's circle manifolds).
 fn one_point(contact: LocalProximity) -> LocalManifold {
     LocalManifold {
@@ -178,7 +177,7 @@ fn one_point(contact: LocalProximity) -> LocalManifold {
             LocalPoint {
                 point: 0.5 * (contact.point_a + contact.point_b),
                 separation: contact.distance,
-                id: 0,
+                id: FeatureId::ONE_POINT,
             },
             LocalPoint::default(),
         ],
@@ -222,23 +221,20 @@ fn collide_polygons(
 }
 
 /// Feature of a capsule's core for the point between the closest points
-/// of two segments at `fraction` along it: its first end (0), its second
-/// (1), or its inside (3).
-fn segment_feature(fraction: f64) -> usize {
+/// of two segments at `fraction` along it: its first end (vertex 0), its
+/// second (vertex 1), or its inside (edge 0). A clipped point names the
+/// reference segment's edge 0 and the incident end as a clip, which none of
+/// these pairs is, so that it never takes over the impulse of a
+/// closest-point one.
+fn segment_feature(fraction: f64) -> Feature {
     if fraction == 0.0 {
-        0
+        Feature::Vertex(0)
     } else if fraction == 1.0 {
-        1
+        Feature::Vertex(1)
     } else {
-        3
+        Feature::Edge(0)
     }
 }
-
-/// The feature a clipped point of two capsules names on the reference
-/// segment (2: "the reference side", apart from the end and inside
-/// features of [`segment_feature`], so that a clipped point never takes
-/// over the impulse of a closest-point one).
-const REFERENCE_SIDE: usize = 2;
 
 /// Two segments or capsules (2-vertex cores, `xf` mapping B's frame into
 /// A's): see the module documentation. Lengths in m.
@@ -282,7 +278,7 @@ fn collide_capsules(
                     LocalPoint {
                         point: 0.5 * ((c1 + ra * normal) + (c2 - rb * normal)),
                         separation: distance - radius,
-                        id: feature_id(
+                        id: FeatureId::pair(
                             segment_feature(closest.fraction_a),
                             segment_feature(closest.fraction_b),
                         ),
@@ -362,7 +358,7 @@ fn clip_capsules(
         let at = |c: Vector2<f64>, s: f64, end: usize| LocalPoint {
             point: c + 0.5 * (ra - rb - s) * normal_a,
             separation: s - radius,
-            id: feature_id(REFERENCE_SIDE, end),
+            id: FeatureId::pair(Feature::Edge(0), Feature::Clip(end)),
         };
         (normal_a, [at(cp, sp, 0), at(cq, sq, 1)])
     } else {
@@ -374,7 +370,7 @@ fn clip_capsules(
         let at = |c: Vector2<f64>, s: f64, end: usize| LocalPoint {
             point: c + 0.5 * (rb - ra - s) * normal_b,
             separation: s - radius,
-            id: feature_id(end, REFERENCE_SIDE),
+            id: FeatureId::pair(Feature::Clip(end), Feature::Edge(0)),
         };
         (-normal_b, [at(cp, sp, 0), at(cq, sq, 1)])
     };
@@ -393,7 +389,7 @@ fn clip_capsules(
 
 /// A segment or capsule (A) against a circle of `radius` (m) centred at
 /// `center` (A's frame): one point between the point of A's segment
-/// nearest the centre and the centre, feature id 0 (one point, as the
+/// nearest the centre and the centre, [`FeatureId::ONE_POINT`] (as the
 /// circle pairs).
 fn capsule_circle(
     p: &Polygon,
@@ -424,7 +420,7 @@ fn capsule_circle(
             LocalPoint {
                 point: 0.5 * ((nearest + p.radius * normal) + (center - radius * normal)),
                 separation,
-                id: 0,
+                id: FeatureId::ONE_POINT,
             },
             LocalPoint::default(),
         ],
@@ -440,7 +436,7 @@ fn local_manifold(clipped: Clipped) -> LocalManifold {
         LocalPoint {
             point: p.point,
             separation: p.separation,
-            id: feature_id(p.vertex_a, p.vertex_b),
+            id: p.id,
         }
     };
     LocalManifold {
@@ -494,7 +490,8 @@ fn apart(placed: &Placed, speculative: f64) -> LocalManifold {
                     LocalPoint {
                         point: 0.5 * (av[ia] + bv[ib]) + offset * normal,
                         separation: distance - radius,
-                        id: feature_id(ia, ib),
+                        // The clipped point's id: the same vertices.
+                        id: FeatureId::pair(Feature::Vertex(ia), Feature::Vertex(ib)),
                     },
                     LocalPoint::default(),
                 ],
@@ -559,8 +556,8 @@ mod tests {
             0.02,
             &mut scratch,
         );
-        let ids1: Vec<u32> = m1.points[..m1.count].iter().map(|p| p.id).collect();
-        let ids2: Vec<u32> = m2.points[..m2.count].iter().map(|p| p.id).collect();
+        let ids1: Vec<FeatureId> = m1.points[..m1.count].iter().map(|p| p.id).collect();
+        let ids2: Vec<FeatureId> = m2.points[..m2.count].iter().map(|p| p.id).collect();
         assert_eq!(ids1, ids2);
     }
 
@@ -741,8 +738,8 @@ mod tests {
                 &mut scratch,
             );
             assert_eq!(m1.count, 2);
-            let ids1: Vec<u32> = m1.points[..m1.count].iter().map(|p| p.id).collect();
-            let ids2: Vec<u32> = m2.points[..m2.count].iter().map(|p| p.id).collect();
+            let ids1: Vec<FeatureId> = m1.points[..m1.count].iter().map(|p| p.id).collect();
+            let ids2: Vec<FeatureId> = m2.points[..m2.count].iter().map(|p| p.id).collect();
             assert_eq!(ids1, ids2);
             assert_ne!(ids1[0], ids1[1]);
         }
