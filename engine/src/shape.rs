@@ -214,6 +214,13 @@ impl Shape {
         }
     }
 
+    /// Whether the shape is a single convex shape (it has a
+    /// [`convex_core`](Self::convex_core)): false for a compound and a
+    /// chain.
+    pub fn is_convex(&self) -> bool {
+        !matches!(self, Shape::Compound(_) | Shape::Chain(_))
+    }
+
     /// The tightest axis-aligned bounds of the shape placed at `pose` (m,
     /// world frame): the lower and upper corners.
     pub fn bounds(&self, pose: &Isometry2<f64>) -> (Vector2<f64>, Vector2<f64>) {
@@ -316,6 +323,18 @@ impl Shape {
                 0.0 => 0.0,
                 area => r.polar_moment_about_centroid() / area,
             },
+        }
+    }
+
+    /// The centroid in the shape's own frame (m); `None` when it is the
+    /// frame's origin by construction (a circle) or the shape has none (a
+    /// chain).
+    pub fn frame_centroid(&self) -> Option<Vector2<f64>> {
+        match self {
+            Shape::Polygon(p) => Some(p.centroid()),
+            Shape::Rounded(r) => Some(r.centroid()),
+            Shape::Compound(c) => Some(c.centroid()),
+            Shape::Circle(_) | Shape::Chain(_) => None,
         }
     }
 

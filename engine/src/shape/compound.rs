@@ -48,10 +48,10 @@ impl CompoundPart {
 
     /// The part's centroid in the body frame (m).
     pub fn centroid(&self) -> Vector2<f64> {
-        match &self.shape {
-            Shape::Polygon(p) => self.to_body(p.centroid()),
-            Shape::Rounded(r) => self.to_body(r.centroid()),
-            _ => self.offset,
+        match self.shape.frame_centroid() {
+            Some(c) => self.to_body(c),
+            // Centred on its own origin: the part's offset.
+            None => self.offset,
         }
     }
 }
