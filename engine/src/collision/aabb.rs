@@ -6,7 +6,7 @@
 //! so a pair in exact contact is never dropped by the broad phase.
 
 use crate::shape::{Circle, ConvexPolygon, Shape};
-use nalgebra::{Isometry2, Point2, Vector2};
+use nalgebra::{Isometry2, Vector2};
 
 /// An axis-aligned box in the world frame (m).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -28,63 +28,20 @@ impl Aabb {
     /// The tightest box around `polygon` placed at `pose`: the extremes of
     /// its vertices in world coordinates.
     pub fn of_polygon(polygon: &ConvexPolygon, pose: &Isometry2<f64>) -> Self {
-        let mut min = Vector2::repeat(f64::INFINITY);
-        let mut max = Vector2::repeat(f64::NEG_INFINITY);
-        for v in polygon.vertices() {
-            let w = pose.transform_point(&Point2::from(*v)).coords;
-            min = min.inf(&w);
-            max = max.sup(&w);
-        }
+        let (min, max) = polygon.bounds(pose);
         Self { min, max }
     }
 
     /// The box around `circle` centred at `pose`'s translation: centre ± r.
     pub fn of_circle(circle: &Circle, pose: &Isometry2<f64>) -> Self {
-        let c = pose.translation.vector;
-        let r = Vector2::repeat(circle.radius);
-        Self {
-            min: c - r,
-            max: c + r,
-        }
+        let (min, max) = circle.bounds(pose);
+        Self { min, max }
     }
 
-    /// The tightest box around `shape` placed at `pose`.
+    /// The tightest box around `shape` placed at `pose` ([`Shape::bounds`]).
     pub fn of_shape(shape: &Shape, pose: &Isometry2<f64>) -> Self {
-        match shape {
-            Shape::Polygon(p) => Self::of_polygon(p, pose),
-            Shape::Circle(c) => Self::of_circle(c, pose),
-            Shape::Rounded(r) => {
-                let points = r.core().iter().map(|v| pose * nalgebra::Point2::from(*v));
-                let (min, max) = points.fold(
-                    (
-                        Vector2::repeat(f64::INFINITY),
-                        Vector2::repeat(f64::NEG_INFINITY),
-                    ),
-                    |(min, max), p| (min.inf(&p.coords), max.sup(&p.coords)),
-                );
-                let radius = Vector2::repeat(r.radius());
-                Self {
-                    min: min - radius,
-                    max: max + radius,
-                }
-            }
-            Shape::Compound(c) => c
-                .parts()
-                .iter()
-                .map(|p| Self::of_shape(&p.shape, &(pose * Isometry2::new(p.offset, p.angle))))
-                .reduce(|a, b| a.merged(&b))
-                .expect("a compound has at least one part"),
-            Shape::Chain(c) => {
-                let mut min = Vector2::repeat(f64::INFINITY);
-                let mut max = Vector2::repeat(f64::NEG_INFINITY);
-                for p in c.points() {
-                    let w = pose.transform_point(&nalgebra::Point2::from(*p)).coords;
-                    min = min.inf(&w);
-                    max = max.sup(&w);
-                }
-                Self { min, max }
-            }
-        }
+        let (min, max) = shape.bounds(pose);
+        Self { min, max }
     }
 
     /// True when the two closed boxes share at least one point (touching

@@ -28,35 +28,16 @@ pub(crate) struct ConvexProxy {
 }
 
 impl ConvexProxy {
-    /// The proxy of a polygon or a circle placed at `pose`.
+    /// The proxy of a convex shape placed at `pose`: its convex core and
+    /// radius ([`Shape::convex_core_at`]).
     ///
     /// # Panics
     /// On a compound or a chain (take their pieces with [`piece_proxy`]).
     pub(crate) fn of(shape: &Shape, pose: &Isometry2<f64>) -> Self {
-        match shape {
-            Shape::Circle(c) => Self {
-                vertices: SmallVec::from_slice(&[pose.translation.vector]),
-                radius: c.radius,
-            },
-            Shape::Polygon(p) => Self {
-                vertices: p
-                    .vertices()
-                    .iter()
-                    .map(|v| pose.transform_point(&Point2::from(*v)).coords)
-                    .collect(),
-                radius: 0.0,
-            },
-            Shape::Rounded(r) => Self {
-                vertices: r
-                    .core()
-                    .iter()
-                    .map(|v| pose.transform_point(&Point2::from(*v)).coords)
-                    .collect(),
-                radius: r.radius(),
-            },
-            Shape::Compound(_) => unreachable!("a compound is queried part by part"),
-            Shape::Chain(_) => unreachable!("a chain is queried segment by segment"),
-        }
+        let (vertices, radius) = shape
+            .convex_core_at(pose)
+            .expect("a compound is queried part by part, a chain segment by segment");
+        Self { vertices, radius }
     }
 
     /// The tightest axis-aligned box around the proxy (m).

@@ -122,73 +122,18 @@ pub fn proximity(
 }
 
 /// The radius (m) of the largest circle about the body origin (the centre
-/// of mass) inside the shape: a circle's radius, the smallest distance from
-/// the origin to a polygon's edge lines, the largest over a compound's
-/// parts of their own less their offsets (0 if none contains the origin).
-/// Half the thinnest the shape can be across its centre.
+/// of mass) inside the shape ([`Shape::inner_radius`]): half the thinnest
+/// the shape can be across its centre.
 pub fn inner_radius(shape: &Shape) -> f64 {
-    match shape {
-        Shape::Circle(c) => c.radius,
-        Shape::Polygon(p) => polygon_inner_radius(p.vertices()),
-        Shape::Compound(c) => c
-            .parts()
-            .iter()
-            .map(|p| inner_radius(&p.shape) - p.offset.norm())
-            .fold(0.0, f64::max),
-        Shape::Chain(_) => 0.0,
-        // The core's own inner radius (a 2-vertex core is thin: minus the
-        // origin's distance to it) plus the rounding.
-        Shape::Rounded(r) => {
-            let v = r.core();
-            let core = if v.len() >= 3 {
-                polygon_inner_radius(v)
-            } else {
-                let (a, b) = (v[0], v[1]);
-                let t = (-a.dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
-                -(a + t * (b - a)).norm()
-            };
-            (core + r.radius()).max(0.0)
-        }
-    }
-}
-
-/// The inner radius (m) of a convex polygon with vertices `v`
-/// (counter-clockwise, body frame): the least distance from the origin to
-/// an edge's line, 0 when the origin is outside.
-fn polygon_inner_radius(v: &[Vector2<f64>]) -> f64 {
-    (0..v.len())
-        .map(|i| super::polygon_circle::edge_normal(v[i], v[(i + 1) % v.len()]).dot(&v[i]))
-        .fold(f64::INFINITY, f64::min)
-        .max(0.0)
+    shape.inner_radius()
 }
 
 /// The largest distance (m) from the body origin (the centre of rotation)
-/// to a point of the shape whose position changes when the body turns: the
-/// farthest vertex of a polygon, 0 for a circle (centred on the origin, a
-/// rotation leaves it in place). Bounds the speed of a boundary point:
+/// to a point of the shape whose position changes when the body turns
+/// ([`Shape::rotation_radius`]). Bounds the speed of a boundary point:
 /// `|ω| · rotation_radius`.
 pub fn rotation_radius(shape: &Shape) -> f64 {
-    match shape {
-        Shape::Polygon(p) => p.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max),
-        Shape::Circle(_) => 0.0,
-        // Boundary points lie within the radius of a core vertex's arc.
-        Shape::Rounded(r) => r.core().iter().map(|v| v.norm()).fold(0.0, f64::max) + r.radius(),
-        // A part turns about the body origin: its farthest point is at most
-        // its offset plus its own extent (a circle's radius counts here,
-        // since its centre moves).
-        Shape::Compound(c) => c
-            .parts()
-            .iter()
-            .map(|p| {
-                p.offset.norm()
-                    + match &p.shape {
-                        Shape::Circle(circle) => circle.radius,
-                        other => rotation_radius(other),
-                    }
-            })
-            .fold(0.0, f64::max),
-        Shape::Chain(c) => c.points().iter().map(|v| v.norm()).fold(0.0, f64::max),
-    }
+    shape.rotation_radius()
 }
 
 #[cfg(test)]

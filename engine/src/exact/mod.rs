@@ -128,9 +128,9 @@ impl ExactModel {
         })
     }
 
-    /// Refuses a body this model cannot simulate. A compound shape is
-    /// refused only when `contacts` are on (the model collides single
-    /// polygons, circles, segments, capsules and rounded polygons); without
+    /// Refuses a body this model cannot simulate. A shape that is not
+    /// convex (a compound) is refused only when `contacts` are on (the
+    /// model collides single convex shapes of every kind); without
     /// contacts a shape only gives the body its mass properties, and any
     /// shape but a chain integrates.
     pub(crate) fn check_body(body: &Body, contacts: bool) -> Result<()> {
@@ -149,9 +149,12 @@ impl ExactModel {
                  use the soft_step contact model",
             );
         }
-        if let (true, Some(crate::shape::Shape::Compound(_))) = (contacts, &body.shape) {
+        // The pair table collides single convex shapes of every kind.
+        if let (true, Some(shape)) = (contacts, &body.shape)
+            && !shape.is_convex()
+        {
             return refuse(
-                format!("the compound shape of body '{}'", body.name),
+                format!("the {} shape of body '{}'", shape.kind_name(), body.name),
                 "the exact contact model collides single convex shapes; \
                  use the soft_step contact model",
             );

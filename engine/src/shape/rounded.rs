@@ -60,7 +60,7 @@
 
 use super::ConvexPolygon;
 use crate::error::{EngineError, Result, require_finite, require_positive};
-use nalgebra::Vector2;
+use nalgebra::{Isometry2, Point2, Vector2};
 use smallvec::SmallVec;
 
 /// Which of the rounded kinds a [`RoundedConvex`] is.
@@ -288,6 +288,53 @@ impl RoundedConvex {
             }
         }
         outline
+    }
+
+    /// The tightest axis-aligned bounds of the shape placed at `pose` (m,
+    /// world frame): its core's, grown by the radius.
+    pub fn bounds(&self, pose: &Isometry2<f64>) -> (Vector2<f64>, Vector2<f64>) {
+        let points = self.core.iter().map(|v| pose * Point2::from(*v));
+        let (min, max) = points.fold(
+            (
+                Vector2::repeat(f64::INFINITY),
+                Vector2::repeat(f64::NEG_INFINITY),
+            ),
+            |(min, max), p| (min.inf(&p.coords), max.sup(&p.coords)),
+        );
+        let radius = Vector2::repeat(self.radius);
+        (min - radius, max + radius)
+    }
+
+    /// Its convex core placed at `pose` (m, world frame), to be inflated by
+    /// [`radius`](Self::radius).
+    pub(crate) fn core_at<'a>(
+        &'a self,
+        pose: &'a Isometry2<f64>,
+    ) -> impl Iterator<Item = Vector2<f64>> + 'a {
+        self.core
+            .iter()
+            .map(|v| pose.transform_point(&Point2::from(*v)).coords)
+    }
+
+    /// The radius (m) of the largest circle about the frame's origin inside
+    /// the shape: the core's own inner radius (a 2-vertex core is thin:
+    /// minus the origin's distance to it) plus the rounding, at least 0.
+    pub fn inner_radius(&self) -> f64 {
+        let v = &self.core;
+        let core = if v.len() >= 3 {
+            super::polygon::inner_radius_of(v)
+        } else {
+            let (a, b) = (v[0], v[1]);
+            let t = (-a.dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
+            -(a + t * (b - a)).norm()
+        };
+        (core + self.radius).max(0.0)
+    }
+
+    /// The largest distance from the frame's origin to the shape (m): its
+    /// farthest core vertex plus the radius.
+    pub fn max_extent(&self) -> f64 {
+        self.core.iter().map(|v| v.norm()).fold(0.0, f64::max) + self.radius
     }
 
     /// The same shape translated so that its centroid is the origin.

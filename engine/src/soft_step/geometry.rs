@@ -156,22 +156,24 @@ impl Collider {
 }
 
 impl SolverShape {
-    /// The solver form of a polygon, rounded shape or circle (its own
-    /// frame).
+    /// The solver form of a convex shape (its own frame), read from its
+    /// convex core and radius ([`Shape::convex_core`]): a core of 2 or
+    /// more vertices is a [`Polygon`] with that radius, a 1-vertex core (at
+    /// the origin: a circle) a circle of that radius.
     ///
     /// # Panics
-    /// On a compound: split it into [`Collider`]s first.
+    /// On a compound or a chain: split it into [`Collider`]s first.
     pub(crate) fn new(shape: &Shape) -> Self {
-        match shape {
-            Shape::Compound(_) => unreachable!("compounds are split into colliders"),
-            Shape::Chain(_) => unreachable!("chains are split into colliders"),
-            Shape::Rounded(r) => {
-                SolverShape::Polygon(Polygon::new(r.core().iter().copied().collect(), r.radius()))
+        let core = shape
+            .convex_core()
+            .expect("compounds and chains are split into colliders");
+        if core.vertices.len() == 1 {
+            debug_assert_eq!(core.vertices[0], Vector2::zeros(), "a circle's centre");
+            SolverShape::Circle {
+                radius: core.radius,
             }
-            Shape::Circle(c) => SolverShape::Circle { radius: c.radius },
-            Shape::Polygon(p) => {
-                SolverShape::Polygon(Polygon::new(p.vertices().iter().copied().collect(), 0.0))
-            }
+        } else {
+            SolverShape::Polygon(Polygon::new(core.vertices, core.radius))
         }
     }
 

@@ -27,8 +27,9 @@ pub(crate) struct ShapeData {
     pub restitution: f64,
     pub rolling_resistance: f64,
     pub tangent_speed: f64,
-    /// Its rounding radius for rolling resistance (m): a circle's radius,
-    /// 0 for a polygon (Box2D's `b2GetShapeRadius`).
+    /// Its rounding radius for rolling resistance (m):
+    /// [`Shape::rounding_radius`] (a circle's or capsule's radius, 0 for a
+    /// polygon; Box2D's `b2GetShapeRadius`).
     pub radius: f64,
 }
 
@@ -42,12 +43,12 @@ impl ShapeData {
             Shape::Compound(c) => c
                 .parts()
                 .iter()
-                .map(|p| (p.overrides, radius_of(&p.shape)))
+                .map(|p| (p.overrides, p.shape.rounding_radius()))
                 .collect(),
             // One collider per segment (`geometry.rs`), each with the body's
             // filter and material.
             Shape::Chain(c) => vec![(ShapeOverrides::default(), 0.0); c.segments().len()],
-            other => vec![(ShapeOverrides::default(), radius_of(other))],
+            other => vec![(ShapeOverrides::default(), other.rounding_radius())],
         };
         parts
             .into_iter()
@@ -113,14 +114,5 @@ impl PairMaterial {
             rolling_resistance,
             tangent_speed: a.tangent_speed + b.tangent_speed,
         }
-    }
-}
-
-/// A piece's rounding radius (m): a circle's radius, else 0.
-fn radius_of(shape: &Shape) -> f64 {
-    match shape {
-        Shape::Circle(c) => c.radius,
-        Shape::Rounded(r) => r.radius(),
-        _ => 0.0,
     }
 }
