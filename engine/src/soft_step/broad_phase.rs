@@ -78,6 +78,9 @@ pub(crate) struct BroadPhase {
     ordered: Vec<u32>,
 }
 
+/// A body's tree and proxy, `None` without a shape.
+type Proxy = Option<(Tree, ProxyId)>;
+
 /// One thread's pairs of [`BroadPhase::find_pairs`], each as (position in
 /// `moved` of the body reporting it, other body): those of the dynamic
 /// tree's walk (its pieces, in order), then those of the queries of the
@@ -363,7 +366,7 @@ impl BroadPhase {
     /// the dynamic tree.
     #[inline]
     fn query_pairs_of(
-        (proxies, fat, position): (&[Option<(Tree, ProxyId)>], &[Aabb], &[u32]),
+        (proxies, fat, position): (&[Proxy], &[Aabb], &[u32]),
         [kinematic, fixed, dynamic]: [&DynamicTree; 3],
         found: &mut Vec<(u32, u32)>,
         id: BodyId,
@@ -552,8 +555,8 @@ mod tests {
                 assert_eq!(threaded, alone, "round {round}, {} threads", pool.threads());
             }
             broad.find_pairs(None, |_, _| {});
-            for id in 0..n {
-                if kinds[id] != BodyKind::Static && rng.unit() < 0.33 {
+            for (id, &kind) in kinds.iter().enumerate() {
+                if kind != BodyKind::Static && rng.unit() < 0.33 {
                     broad.update(id, &random_box(&mut rng), 0.0);
                 }
             }
