@@ -94,6 +94,7 @@ impl Colouring {
     /// the first colour free of both, or to the overflow; one with a single
     /// dynamic body to the last free colour (solved last: the contacts'
     /// rule, the ground has the last word).
+    #[inline]
     pub(crate) fn add(&mut self, a: Option<BodyId>, b: Option<BodyId>) {
         self.add_ordered(a, b, false);
     }
@@ -110,32 +111,46 @@ impl Colouring {
         self.add_ordered(a, b, true);
     }
 
+    /// Inlined into the callers' loops (the contacts' colouring is serial,
+    /// on the calling thread, once per touching contact): each body's mask
+    /// is read once and written once, and the match on the kinds folds
+    /// into the caller's.
+    #[inline(always)]
     fn add_ordered(&mut self, a: Option<BodyId>, b: Option<BodyId>, in_order: bool) {
+        let used = &mut self.used;
         let colour = match (a, b) {
             (Some(a), Some(b)) => {
                 // The lowest colour whose bit is clear in both bodies.
-                let free = !(self.used[a] | self.used[b]) & DYNAMIC_MASK;
-                (free != 0).then(|| free.trailing_zeros() as usize)
-            }
-            (Some(one), None) | (None, Some(one)) if in_order => {
-                let free = !self.used[one] & ALL_MASK;
-                (free != 0).then(|| free.trailing_zeros() as usize)
+                let (used_a, used_b) = (used[a], used[b]);
+                let free = !(used_a | used_b) & DYNAMIC_MASK;
+                if free == 0 {
+                    COLOURS
+                } else {
+                    let c = free.trailing_zeros() as usize;
+                    used[a] = used_a | 1 << c;
+                    used[b] = used_b | 1 << c;
+                    c
+                }
             }
             (Some(one), None) | (None, Some(one)) => {
-                // The highest free colour, down to colour 1.
-                let free = !self.used[one] & STATIC_MASK;
-                (free != 0).then(|| 31 - free.leading_zeros() as usize)
-            }
-            (None, None) => Some(COLOURS - 1),
-        };
-        let colour = match colour {
-            Some(c) => {
-                for body in [a, b].into_iter().flatten() {
-                    self.used[body] |= 1 << c;
+                let mask = used[one];
+                let c = if in_order {
+                    let free = !mask & ALL_MASK;
+                    (free != 0).then(|| free.trailing_zeros() as usize)
+                } else {
+                    // The highest free colour, down to colour 1.
+                    let free = !mask & STATIC_MASK;
+                    (free != 0).then(|| 31 - free.leading_zeros() as usize)
+                };
+                match c {
+                    Some(c) => {
+                        used[one] = mask | 1 << c;
+                        c
+                    }
+                    None => COLOURS,
                 }
-                c
             }
-            None => COLOURS,
+            (None, None) => COLOURS - 1,
         };
         let position = self.counts[colour];
         self.counts[colour] += 1;
@@ -175,7 +190,6 @@ impl Colouring {
     }
 
     /// The number of constraints in the overflow.
-    #[cfg(test)]
     pub(crate) fn overflow(&self) -> usize {
         self.counts[COLOURS]
     }

@@ -421,7 +421,12 @@ impl SoftStep {
         let pool = self.pool.get(settings.threads);
 
         let started = core.profiler.start();
-        self.update_pairs();
+        // The pairs by last step's count of contacts (this step's are not
+        // known yet): the same pairs in the same order either way.
+        let pairs_pool = pool
+            .as_deref()
+            .filter(|p| self.enough_work_for(p.threads()));
+        self.update_pairs(pairs_pool);
         core.profiler.stop(Phase::Pairs, started);
         let pool = pool.filter(|p| self.enough_work_for(p.threads()));
 
@@ -574,7 +579,7 @@ impl SoftStep {
 
     /// Stage 1: contacts for the new overlapping pairs of colliders.
     #[inline(never)]
-    fn update_pairs(&mut self) {
+    fn update_pairs(&mut self, pool: Option<&pool::Pool>) {
         let sims = &self.sims;
         let colliders = &self.colliders;
         let data = &self.shape_data;
@@ -582,7 +587,7 @@ impl SoftStep {
         let joints = &self.joints;
         let settings = &self.settings;
         let hooks = &mut self.hooks.0;
-        self.broad.find_pairs(|a, b| {
+        self.broad.find_pairs(pool, |a, b| {
             let (ca, cb) = (&colliders[a], &colliders[b]);
             if ca.body == cb.body {
                 return;

@@ -176,12 +176,15 @@ impl SoftStep {
             }
             let (constrained, colouring, source) =
                 (&self.constrained, &self.colouring, &self.lane_source);
+            // Thread 0 looks for the overflow's constraints only if there
+            // are any (a scan of every constraint, alone on its thread).
+            let overflows = self.colouring.overflow() > 0;
             let rare = std::sync::atomic::AtomicBool::new(false);
             let wide = SharedSlice::new(&mut self.wide);
             let extra = SharedSlice::new(&mut self.wide_extra);
             let overflow = SharedSlice::new(std::slice::from_mut(&mut self.constraints));
             pool.run(&|w: &Worker<'_>| {
-                if w.index == 0 {
+                if w.index == 0 && overflows {
                     // SAFETY: only thread 0 touches the overflow.
                     let overflow = unsafe { overflow.get_mut(0) };
                     for (i, &index) in constrained.iter().enumerate() {

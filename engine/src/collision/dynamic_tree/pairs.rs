@@ -12,6 +12,12 @@
 //! nodes is skipped: only pairs with a moved proxy are reported. When most
 //! proxies moved (a tumbling or exploding pile), this does about half the
 //! work of the queries; when few did, about the same.
+//!
+//! For several threads the walk is cut into pieces
+//! ([`DynamicTree::split_moved_pairs`]): the top of the walk, down to a
+//! fixed depth, is done once and leaves a list of node pairs whose walks,
+//! joined in the list's order, report the pairs of the one walk in its
+//! order, whoever walks each piece.
 
 use super::{DynamicTree, NULL, ProxyId, overlap};
 
@@ -22,7 +28,18 @@ pub(super) struct Scratch {
     marked: Vec<bool>,
     /// Pairs of nodes still to visit; `(n, n)` means "inside node n".
     stack: Vec<(u32, u32)>,
+    /// The same for [`DynamicTree::split_moved_pairs`], with each pair's
+    /// depth below the root pair.
+    split_stack: Vec<(u32, u32, u32)>,
 }
+
+/// The depth (in node pairs below the root pair) at which
+/// [`DynamicTree::split_moved_pairs`] stops descending and hands out a
+/// piece: a constant, so the pieces do not depend on the thread count.
+/// Seven levels give a few hundred pieces on a tree of thousands of
+/// proxies, enough for any likely thread count to share evenly, for a
+/// serial pre-walk of a few hundred node pairs.
+const PIECE_DEPTH: u32 = 7;
 
 impl DynamicTree {
     /// Calls `report(a, b)` (user data) once for every unordered pair of
@@ -37,60 +54,172 @@ impl DynamicTree {
             return;
         }
         let mut s = std::mem::take(&mut self.pair_scratch);
-        s.marked.clear();
-        s.marked.resize(self.nodes.len(), false);
+        self.mark(moved, &mut s.marked);
+        walk(
+            self,
+            &s.marked,
+            (self.root, self.root),
+            &mut s.stack,
+            &mut report,
+        );
+        self.pair_scratch = s;
+    }
+
+    /// The walk of [`DynamicTree::moved_pairs`] cut into pieces, for
+    /// several threads: marks the nodes above the `moved` proxies and
+    /// fills `pieces` with pairs of nodes such that walking each piece with
+    /// [`DynamicTree::moved_pairs_of_piece`], in the order of `pieces`,
+    /// reports exactly the pairs of [`DynamicTree::moved_pairs`] in its
+    /// order. The pieces depend only on the tree and `moved`.
+    ///
+    /// The split is the walk itself (depth first, a stack of node pairs)
+    /// down to a fixed depth: a node pair popped there, or a pair of
+    /// leaves above it, becomes the next piece instead of being walked.
+    /// The walk reports everything below a popped pair before popping the
+    /// next one, so the pieces' reports, joined in the order they were
+    /// popped, are the walk's.
+    ///
+    /// # Panics
+    /// If a proxy of `moved` is not a live proxy of this tree.
+    pub fn split_moved_pairs(&mut self, moved: &[ProxyId], pieces: &mut Vec<(u32, u32)>) {
+        pieces.clear();
+        if self.root == NULL || moved.is_empty() {
+            return;
+        }
+        let mut s = std::mem::take(&mut self.pair_scratch);
+        self.mark(moved, &mut s.marked);
+        let mut stack = std::mem::take(&mut s.split_stack);
+        stack.clear();
+        stack.push((self.root, self.root, 0));
+        while let Some((a, b, depth)) = stack.pop() {
+            if depth >= PIECE_DEPTH {
+                pieces.push((a, b));
+                continue;
+            }
+            match step(self, &s.marked, (a, b)) {
+                Step::Skip => {}
+                Step::Report => pieces.push((a, b)),
+                Step::Inside([c0, c1]) => {
+                    stack.push((c0, c1, depth + 1));
+                    stack.push((c1, c1, depth + 1));
+                    stack.push((c0, c0, depth + 1));
+                }
+                Step::SplitA([c0, c1]) => {
+                    stack.push((c1, b, depth + 1));
+                    stack.push((c0, b, depth + 1));
+                }
+                Step::SplitB([c0, c1]) => {
+                    stack.push((a, c1, depth + 1));
+                    stack.push((a, c0, depth + 1));
+                }
+            }
+        }
+        s.split_stack = stack;
+        self.pair_scratch = s;
+    }
+
+    /// Reports the pairs below one piece of
+    /// [`DynamicTree::split_moved_pairs`] (called last on this tree, which
+    /// has not changed since), in the walk's order; `stack` is the
+    /// caller's (one per thread), reused. Reads the tree only, so several
+    /// threads can walk their pieces at once.
+    pub fn moved_pairs_of_piece(
+        &self,
+        piece: (u32, u32),
+        stack: &mut Vec<(u32, u32)>,
+        mut report: impl FnMut(u32, u32),
+    ) {
+        walk(self, &self.pair_scratch.marked, piece, stack, &mut report);
+    }
+
+    /// Marks in `marked` every node with a `moved` leaf at or below it.
+    fn mark(&self, moved: &[ProxyId], marked: &mut Vec<bool>) {
+        marked.clear();
+        marked.resize(self.nodes.len(), false);
         for &id in moved {
             let mut i = self.checked_leaf(id);
-            while i != NULL && !s.marked[i as usize] {
-                s.marked[i as usize] = true;
+            while i != NULL && !marked[i as usize] {
+                marked[i as usize] = true;
                 i = self.nodes[i as usize].parent;
             }
         }
-        s.stack.clear();
-        s.stack.push((self.root, self.root));
-        while let Some((a, b)) = s.stack.pop() {
-            let (na, nb) = (&self.nodes[a as usize], &self.nodes[b as usize]);
-            if a == b {
-                // Inside one node: each child, and the two against each
-                // other.
-                if na.is_leaf() || !s.marked[a as usize] {
-                    continue;
-                }
-                let [c0, c1] = na.children;
-                s.stack.push((c0, c1));
-                s.stack.push((c1, c1));
-                s.stack.push((c0, c0));
-                continue;
-            }
-            if !(s.marked[a as usize] || s.marked[b as usize]) || !overlap(&na.aabb, &nb.aabb) {
-                continue;
-            }
-            match (na.is_leaf(), nb.is_leaf()) {
-                (true, true) => report(na.user_data, nb.user_data),
-                // Split the internal one, or the larger of two.
-                (true, false) => {
-                    let [c0, c1] = nb.children;
-                    s.stack.push((a, c1));
-                    s.stack.push((a, c0));
-                }
-                (false, true) => {
-                    let [c0, c1] = na.children;
-                    s.stack.push((c1, b));
-                    s.stack.push((c0, b));
-                }
-                (false, false) => {
-                    if na.aabb.perimeter() >= nb.aabb.perimeter() {
-                        let [c0, c1] = na.children;
-                        s.stack.push((c1, b));
-                        s.stack.push((c0, b));
-                    } else {
-                        let [c0, c1] = nb.children;
-                        s.stack.push((a, c1));
-                        s.stack.push((a, c0));
-                    }
-                }
+    }
+}
+
+/// What the walk does with a pair of nodes.
+enum Step {
+    /// Nothing below it to report.
+    Skip,
+    /// A pair of overlapping leaves, one moved: report it.
+    Report,
+    /// Inside one node: its children, each alone, and the two against
+    /// each other.
+    Inside([u32; 2]),
+    /// Node `a`'s children against `b`.
+    SplitA([u32; 2]),
+    /// `a` against node `b`'s children.
+    SplitB([u32; 2]),
+}
+
+/// The walk's rule for the node pair `(a, b)` (`a == b`: inside node a).
+#[inline(always)]
+fn step(tree: &DynamicTree, marked: &[bool], (a, b): (u32, u32)) -> Step {
+    let (na, nb) = (&tree.nodes[a as usize], &tree.nodes[b as usize]);
+    if a == b {
+        if na.is_leaf() || !marked[a as usize] {
+            return Step::Skip;
+        }
+        return Step::Inside(na.children);
+    }
+    if !(marked[a as usize] || marked[b as usize]) || !overlap(&na.aabb, &nb.aabb) {
+        return Step::Skip;
+    }
+    match (na.is_leaf(), nb.is_leaf()) {
+        (true, true) => Step::Report,
+        // Split the internal one, or the larger of two.
+        (true, false) => Step::SplitB(nb.children),
+        (false, true) => Step::SplitA(na.children),
+        (false, false) => {
+            if na.aabb.perimeter() >= nb.aabb.perimeter() {
+                Step::SplitA(na.children)
+            } else {
+                Step::SplitB(nb.children)
             }
         }
-        self.pair_scratch = s;
+    }
+}
+
+/// Walks everything below the node pair `start`, depth first, reporting
+/// the pairs of overlapping leaves with a marked one.
+fn walk(
+    tree: &DynamicTree,
+    marked: &[bool],
+    start: (u32, u32),
+    stack: &mut Vec<(u32, u32)>,
+    report: &mut impl FnMut(u32, u32),
+) {
+    stack.clear();
+    stack.push(start);
+    while let Some((a, b)) = stack.pop() {
+        match step(tree, marked, (a, b)) {
+            Step::Skip => {}
+            Step::Report => report(
+                tree.nodes[a as usize].user_data,
+                tree.nodes[b as usize].user_data,
+            ),
+            Step::Inside([c0, c1]) => {
+                stack.push((c0, c1));
+                stack.push((c1, c1));
+                stack.push((c0, c0));
+            }
+            Step::SplitA([c0, c1]) => {
+                stack.push((c1, b));
+                stack.push((c0, b));
+            }
+            Step::SplitB([c0, c1]) => {
+                stack.push((a, c1));
+                stack.push((a, c0));
+            }
+        }
     }
 }

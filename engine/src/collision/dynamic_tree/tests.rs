@@ -615,6 +615,41 @@ fn moved_pairs_are_the_brute_force_pairs_with_a_moved_proxy_each_once() {
 }
 
 #[test]
+fn the_pieces_of_the_moved_pairs_walk_joined_in_order_are_the_one_walk() {
+    // Trees from 20 to 1400 proxies (deeper than the split depth, so that
+    // the larger ones are cut below pairs of internal nodes), none, a few,
+    // half or all moved: the pieces' reports, joined in the pieces' order,
+    // equal the one walk's reports in its order.
+    let mut rng = Rng::new(0x7EE_00C5);
+    for round in 0..12 {
+        let n = 20 + 115 * round;
+        let boxes: Vec<Aabb> = (0..n).map(|_| random_box(&mut rng, 40.0, 1.5)).collect();
+        let (mut tree, ids) = build(&boxes);
+        let share = [0.0, 0.05, 0.5, 1.0][round % 4];
+        let moved_ids: Vec<ProxyId> = (0..n)
+            .filter(|_| rng.unit() < share)
+            .map(|k| ids[k])
+            .collect();
+        let mut one_walk = Vec::new();
+        tree.moved_pairs(&moved_ids, |a, b| one_walk.push((a, b)));
+        let mut pieces = Vec::new();
+        tree.split_moved_pairs(&moved_ids, &mut pieces);
+        if n > 1000 && share > 0.0 {
+            assert!(pieces.len() > 16, "round {round}: {} pieces", pieces.len());
+        }
+        let mut joined = Vec::new();
+        let mut stack = Vec::new();
+        for &piece in &pieces {
+            tree.moved_pairs_of_piece(piece, &mut stack, |a, b| joined.push((a, b)));
+        }
+        assert_eq!(joined, one_walk, "round {round}");
+        if share >= 0.5 {
+            assert!(!one_walk.is_empty(), "round {round}: nothing to compare");
+        }
+    }
+}
+
+#[test]
 fn a_full_rebuild_lays_the_internal_nodes_out_in_preorder() {
     // Every proxy enlarged: the rebuild regroups the whole tree, and its
     // internal nodes, visited in preorder (left child first), must take
