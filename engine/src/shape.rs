@@ -84,6 +84,22 @@ pub(crate) fn turn(a: Vector2<f64>, b: Vector2<f64>, c: Vector2<f64>) -> Turn {
     }
 }
 
+/// The axis-aligned bounds (m, world frame) of `points` (m, the shape's
+/// frame) placed at `pose`: the least and the greatest coordinates.
+pub(crate) fn placed_bounds(
+    points: &[Vector2<f64>],
+    pose: &Isometry2<f64>,
+) -> (Vector2<f64>, Vector2<f64>) {
+    let mut min = Vector2::repeat(f64::INFINITY);
+    let mut max = Vector2::repeat(f64::NEG_INFINITY);
+    for p in points {
+        let w = pose.transform_point(&nalgebra::Point2::from(*p)).coords;
+        min = min.inf(&w);
+        max = max.sup(&w);
+    }
+    (min, max)
+}
+
 /// The vertices multiplied by the power of two that brings the largest
 /// coordinate magnitude into [1, 2): exact (barring underflow of
 /// coordinates some 2^1000 times smaller than the largest, far below any

@@ -21,7 +21,7 @@
 //! A chain has no area and no mass: it goes on static bodies only.
 
 use crate::error::{EngineError, Result};
-use nalgebra::{Isometry2, Point2, Vector2};
+use nalgebra::{Isometry2, Vector2};
 
 /// Read from `engine/src/tunables.rs` (unit, value and source there): the
 /// shortest segment a chain accepts (m).
@@ -91,14 +91,7 @@ impl Chain {
     /// The tightest axis-aligned bounds of the chain placed at `pose` (m,
     /// world frame): the extremes of its points (ghosts included).
     pub fn bounds(&self, pose: &Isometry2<f64>) -> (Vector2<f64>, Vector2<f64>) {
-        let mut min = Vector2::repeat(f64::INFINITY);
-        let mut max = Vector2::repeat(f64::NEG_INFINITY);
-        for p in &self.points {
-            let w = pose.transform_point(&Point2::from(*p)).coords;
-            min = min.inf(&w);
-            max = max.sup(&w);
-        }
-        (min, max)
+        super::placed_bounds(&self.points, pose)
     }
 
     /// The largest distance from the frame's origin to a point of the

@@ -191,14 +191,7 @@ impl ConvexPolygon {
     /// (m, world frame): the lower and upper corners, the extremes of its
     /// vertices.
     pub fn bounds(&self, pose: &Isometry2<f64>) -> (Vector2<f64>, Vector2<f64>) {
-        let mut min = Vector2::repeat(f64::INFINITY);
-        let mut max = Vector2::repeat(f64::NEG_INFINITY);
-        for v in &self.vertices {
-            let w = pose.transform_point(&Point2::from(*v)).coords;
-            min = min.inf(&w);
-            max = max.sup(&w);
-        }
-        (min, max)
+        super::placed_bounds(&self.vertices, pose)
     }
 
     /// Its convex core placed at `pose` (m, world frame): the vertices,

@@ -293,14 +293,7 @@ impl RoundedConvex {
     /// The tightest axis-aligned bounds of the shape placed at `pose` (m,
     /// world frame): its core's, grown by the radius.
     pub fn bounds(&self, pose: &Isometry2<f64>) -> (Vector2<f64>, Vector2<f64>) {
-        let points = self.core.iter().map(|v| pose * Point2::from(*v));
-        let (min, max) = points.fold(
-            (
-                Vector2::repeat(f64::INFINITY),
-                Vector2::repeat(f64::NEG_INFINITY),
-            ),
-            |(min, max), p| (min.inf(&p.coords), max.sup(&p.coords)),
-        );
+        let (min, max) = super::placed_bounds(&self.core, pose);
         let radius = Vector2::repeat(self.radius);
         (min - radius, max + radius)
     }
