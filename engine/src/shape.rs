@@ -92,12 +92,21 @@ pub(crate) fn placed_bounds(
 ) -> (Vector2<f64>, Vector2<f64>) {
     let mut min = Vector2::repeat(f64::INFINITY);
     let mut max = Vector2::repeat(f64::NEG_INFINITY);
-    for p in points {
-        let w = pose.transform_point(&nalgebra::Point2::from(*p)).coords;
+    for w in placed(points, pose) {
         min = min.inf(&w);
         max = max.sup(&w);
     }
     (min, max)
+}
+
+/// `points` (m, the shape's frame) placed at `pose` (m, world frame).
+pub(crate) fn placed<'a>(
+    points: &'a [Vector2<f64>],
+    pose: &'a Isometry2<f64>,
+) -> impl Iterator<Item = Vector2<f64>> + 'a {
+    points
+        .iter()
+        .map(|p| pose.transform_point(&nalgebra::Point2::from(*p)).coords)
 }
 
 /// The vertices multiplied by the power of two that brings the largest

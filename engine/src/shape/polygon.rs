@@ -4,7 +4,7 @@
 
 use super::{Turn, cross, rescaled, turn};
 use crate::error::{EngineError, Result, require_positive};
-use nalgebra::{Isometry2, Point2, Vector2};
+use nalgebra::{Isometry2, Vector2};
 
 /// A convex polygon, counter-clockwise, in its body's frame (m).
 #[derive(Debug, Clone, PartialEq)]
@@ -200,9 +200,7 @@ impl ConvexPolygon {
         &'a self,
         pose: &'a Isometry2<f64>,
     ) -> impl Iterator<Item = Vector2<f64>> + 'a {
-        self.vertices
-            .iter()
-            .map(|v| pose.transform_point(&Point2::from(*v)).coords)
+        super::placed(&self.vertices, pose)
     }
 
     /// The radius (m) of the largest circle about the frame's origin inside

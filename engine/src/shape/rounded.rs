@@ -60,7 +60,7 @@
 
 use super::ConvexPolygon;
 use crate::error::{EngineError, Result, require_finite, require_positive};
-use nalgebra::{Isometry2, Point2, Vector2};
+use nalgebra::{Isometry2, Vector2};
 use smallvec::SmallVec;
 
 /// Which of the rounded kinds a [`RoundedConvex`] is.
@@ -304,9 +304,7 @@ impl RoundedConvex {
         &'a self,
         pose: &'a Isometry2<f64>,
     ) -> impl Iterator<Item = Vector2<f64>> + 'a {
-        self.core
-            .iter()
-            .map(|v| pose.transform_point(&Point2::from(*v)).coords)
+        super::placed(&self.core, pose)
     }
 
     /// The radius (m) of the largest circle about the frame's origin inside
