@@ -19,14 +19,15 @@
 //! - `collide`: `b2Collide`, every contact's manifold, begin and end of
 //!   touching, contacts whose boxes parted destroyed;
 //! - `solve` = `solver_setup` + `constraints` + `transforms` +
-//!   `joint_events` + `hit_events` + `refit` + `bullets` + `sensor_hits`
-//!   + `sleep_islands`;
+//!   `joint_events` + `hit_events` + `refit` + `bullets` +
+//!   `sensor_hits` + `sleep_islands`;
 //! - `constraints` (the solver's stages on the workers) ⊇
-//!   `prepare_constraints` (joints and contacts) + `integrate_velocities`
-//!   + `warm_start` + `solve_impulses` + `integrate_positions` +
-//!   `relax_impulses` (each summed over the substeps) + `apply_restitution`
-//!   + `store_impulses`, timed on the orchestrating thread, which waits
-//!   for the workers at the end of each stage;
+//!   `prepare_constraints` (joints and contacts) +
+//!   `integrate_velocities` + `warm_start` + `solve_impulses` +
+//!   `integrate_positions` + `relax_impulses` (each summed over the
+//!   substeps) + `apply_restitution` + `store_impulses`, timed on the
+//!   orchestrating thread, which waits for the workers at the end of each
+//!   stage;
 //! - `transforms`: `b2FinalizeBodiesTask`, body transforms, shape boxes and
 //!   the sweeps of fast bodies against static ones (continuous);
 //!   `refit`: enlarged boxes into the broad phase; `bullets`: the bullets'
