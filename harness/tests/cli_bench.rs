@@ -55,9 +55,40 @@ fn a_bench_row_carries_the_build_and_the_spread() {
             rows[2]
         );
     }
+    // The stages of the profiled runs: this engine's and the linked
+    // Box2D's rows at each thread count (one thread: the fine stages; two:
+    // the substeps as one), none for rapier2d.
+    for (k, row) in rows.iter().enumerate() {
+        let profiled = avx2 && k % engines != 1;
+        let Some(stages) = row["stages"].as_object() else {
+            assert!(!profiled && row.get("stages").is_none(), "{row}");
+            continue;
+        };
+        assert!(profiled, "{row}");
+        let fine = row["threads"] == 1;
+        assert_eq!(stages.contains_key("integrate"), fine, "{row}");
+        assert_eq!(stages.contains_key("substeps"), !fine, "{row}");
+        for (name, ms) in stages {
+            let ms = ms.as_f64().unwrap();
+            assert!(ms.is_finite(), "{name}: {row}");
+            if name != "outside the stages" {
+                assert!(ms >= 0.0, "{name}: {row}");
+            }
+        }
+        // Every step collides and solves.
+        assert!(stages["collide"].as_f64().unwrap() > 0.0, "{row}");
+    }
     let md = std::fs::read_to_string(dir.path().join("benchmarks.md")).unwrap();
     assert!(md.contains("## The engines' builds"), "{md}");
     assert!(md.contains("single-thread lead over Box2D"), "{md}");
+    if avx2 {
+        assert!(
+            md.contains("| stage | this engine (ms) | Box2D (ms) | difference (ms) |"),
+            "{md}"
+        );
+        assert!(md.contains("stage by stage, one thread each"), "{md}");
+        assert!(md.contains("stage by stage, 2 threads each"), "{md}");
+    }
 }
 
 #[test]

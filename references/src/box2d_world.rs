@@ -175,6 +175,7 @@ fn scene_f32(field: &'static str, x: f64) -> Result<f32, ManyBodyError> {
 pub mod build;
 pub mod joints;
 pub mod log;
+pub mod profile;
 mod ray;
 
 /// A [`ManyBodyScene`] in a Box2D world.
@@ -471,6 +472,13 @@ impl Box2dWorld {
             joint.linear_separation().map_err(engine_error)? as f64,
             joint.angular_separation().map_err(engine_error)? as f64,
         ))
+    }
+
+    /// Box2D's own timers of its last step (ms, [`profile::FIELDS`]; see
+    /// [`profile`] for what each times and how they nest).
+    pub fn last_step_profile(&self) -> Result<[(&'static str, f64); 23], ManyBodyError> {
+        let p = self.world.profile().map_err(engine_error)?;
+        Ok(profile::fields(&p))
     }
 
     /// The world's settings as Box2D reports them (read back from the

@@ -21,12 +21,15 @@
 //! separation (how far apart the anchors a joint holds together are) and
 //! the largest excess over a joint's limits, from the final poses through
 //! the scene's joints ([`ManyBodyScene::joint_states`]), also the same for
-//! every engine.
+//! every engine. After the repeats, separate profiled runs of this engine
+//! and of the linked Box2D (at one thread, and at the larger count) say
+//! where each one's step goes, stage by stage ([`super::stages`]).
 
 use super::child::{self, ChildBuild};
 use super::convert::many_body_scene;
 use super::ours::SoftStepEngine;
 use super::scenes::BenchScene;
+use super::stages::{self, StageComparison};
 use anyhow::{Context, Result, bail};
 use references::box2d_world::Box2dWorld;
 use references::box2d_world::build::Box2dBuild;
@@ -34,6 +37,7 @@ use references::many_body::{BodySample, JointState, ManyBodyEngine, ManyBodyScen
 use references::rapier_many::RapierManyWorld;
 use scene::Scene;
 use serde::Serialize;
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -167,6 +171,11 @@ pub struct BenchRow {
     /// end (rad for a revolute joint), from the poses; `None` without
     /// joints.
     pub joint_limit_excess_max: Option<f64>,
+    /// The engine's ms per step in each common stage of its profiled run
+    /// ([`super::stages`]), for this engine's and the linked Box2D's rows
+    /// when both were profiled at the row's thread count; absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stages: Option<BTreeMap<String, f64>>,
 }
 
 /// The measurements of one scene.
@@ -181,6 +190,11 @@ pub struct SceneResult {
     /// This engine's time per phase (ms per step) from a separate
     /// profiled run, in the order of [`engine::StepProfile::phases`].
     pub profile: Vec<(&'static str, f64)>,
+    /// This engine and the linked Box2D stage by stage, from their
+    /// profiled runs ([`super::stages`]): at one thread, then at the run's
+    /// larger thread count if it has one; empty when that Box2D is not
+    /// measured (a CPU without its SIMD).
+    pub stages: Vec<StageComparison>,
     /// Each engine's configuration paragraph.
     pub configurations: Vec<(String, String)>,
 }
@@ -567,28 +581,71 @@ pub fn measure(
             joints: neutral.joints.len(),
             joint_separation_max: largest(|j| j.separation),
             joint_limit_excess_max: largest(|j| j.limit_violation),
+            stages: None,
         });
     }
-    // A separate profiled run of this engine: where its time goes.
-    let mut profiled = SoftStepEngine::new(scene, true)?;
-    profiled.step()?;
-    let before = profiled.world().profile();
-    for _ in 0..steps {
-        profiled.step()?;
+    // Separate profiled runs: where this engine's time goes, and, with the
+    // linked Box2D measured, where Box2D's goes, stage by stage, at one
+    // thread and at the run's larger count; each engine's fastest of a few
+    // runs, alternating ([`stages::PROFILED_REPEATS`]).
+    let repeats = settings.repeats.clamp(1, stages::PROFILED_REPEATS);
+    let counts = if settings.threads > 1 {
+        vec![1, settings.threads]
+    } else {
+        vec![1]
+    };
+    let mut ours_one = None;
+    let mut comparisons = Vec::new();
+    for threads in counts {
+        let with_box2d = contenders.list.contains(&Contender::Box2d(threads));
+        if threads > 1 && !with_box2d {
+            continue;
+        }
+        let (mut ours, mut box2d) = (None, None);
+        for _ in 0..repeats {
+            let run = stages::profile_ours(scene, steps, threads).with_context(|| {
+                format!(
+                    "this engine's profiled run of {} on {threads} thread(s)",
+                    bench.id
+                )
+            })?;
+            ours = Some(stages::faster(ours, run));
+            if with_box2d {
+                let run = stages::profile_box2d(&neutral, steps, threads).with_context(|| {
+                    format!(
+                        "Box2D's profiled run of {} with {threads} worker(s)",
+                        bench.id
+                    )
+                })?;
+                box2d = Some(stages::faster(box2d, run));
+            }
+        }
+        if let (Some(o), Some(b)) = (&ours, &box2d) {
+            comparisons.push(StageComparison::new(threads, o, b));
+        }
+        if threads == 1 {
+            ours_one = ours;
+        }
     }
-    let after = profiled.world().profile();
-    let n = steps.max(1) as f64;
-    let profile = after
-        .phases()
-        .iter()
-        .zip(before.phases().iter())
-        .map(|((name, a), (_, b))| (*name, 1e3 * (a.as_secs_f64() - b.as_secs_f64()) / n))
+    let profile = ours_one
+        .context("this engine's profiled run at one thread")?
+        .timers
+        .into_iter()
         .filter(|(_, ms)| *ms > 0.0)
         .collect();
+    for (row, contender) in rows.iter_mut().zip(&contenders.list) {
+        let at = |t: usize| comparisons.iter().find(|c| c.threads == t);
+        row.stages = match contender {
+            Contender::Ours(t) => at(*t).map(StageComparison::ours_map),
+            Contender::Box2d(t) => at(*t).map(StageComparison::box2d_map),
+            _ => None,
+        };
+    }
     Ok(SceneResult {
         scene: bench,
         rows,
         profile,
+        stages: comparisons,
         configurations,
     })
 }

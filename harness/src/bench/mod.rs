@@ -19,6 +19,7 @@ pub mod ours;
 pub mod queries;
 pub mod report;
 pub mod scenes;
+pub mod stages;
 pub mod targets;
 
 pub use measure::{BenchRow, BenchSettings, SceneResult, Steps};

@@ -3,11 +3,14 @@
 //! ratio to this engine, contact counts and quality figures; the machine,
 //! the commit, each engine's build (precision, SIMD path taken on this
 //! CPU, threads, compiler flags) and settings; the targets with their
-//! measured figures; the peak memory of the large scenes; the charts.
+//! measured figures, and for a missed speed target against Box2D what
+//! would close it; per scene, this engine and Box2D stage by stage
+//! ([`super::stages`]); the peak memory of the large scenes; the charts.
 
 use super::contact_precision::CaseResult;
 use super::measure::{BenchSettings, SceneResult, Steps};
 use super::memory::PeakMemory;
+use super::stages::{OUTSIDE, PROFILED_REPEATS, STAGES, StageComparison};
 use super::targets::{Target, box2d_targets, scaling_slope, targets};
 use anyhow::Result;
 use std::fmt::Write as _;
@@ -27,18 +30,87 @@ fn table(headers: &[&str], rows: &[Vec<String>]) -> String {
     out
 }
 
-/// Targets as table rows: target, measured, verdict.
-fn verdict_rows(targets: &[Target]) -> Vec<Vec<String>> {
-    targets
+/// Targets as a table: target, measured, verdict, and, when a target
+/// there was missed with a profile to explain it, what would close it.
+fn verdict_table(targets: &[Target]) -> String {
+    let closing = targets.iter().any(|t| t.to_close.is_some());
+    let rows: Vec<Vec<String>> = targets
         .iter()
         .map(|t| {
-            vec![
+            let mut cells = vec![
                 t.target.clone(),
                 t.measured.clone(),
                 if t.met { "met" } else { "**not met**" }.into(),
+            ];
+            if closing {
+                cells.push(t.to_close.clone().unwrap_or_default());
+            }
+            cells
+        })
+        .collect();
+    let mut headers = vec!["target", "measured", "verdict"];
+    if closing {
+        headers.push("what would close it");
+    }
+    table(&headers, &rows)
+}
+
+/// How the target tables explain a missed speed target.
+const CLOSING: &str = " A speed target not met says what would close it: the ms per step this \
+     engine must lose (its minimum less the target's multiple of Box2D's minimum), and the \
+     stages in which this engine's profiled run is slower than Box2D's, largest first, with \
+     by how much (each scene's stage table, under Results).";
+
+/// A signed difference (ms) with a real minus sign.
+fn signed(x: f64) -> String {
+    let text = format!("{x:+.3}");
+    text.replacen('-', "−", 1)
+}
+
+/// The stage table of one comparison: stage, this engine, Box2D, the
+/// difference, then the total (the profiled runs' wall time per step).
+fn stage_table(c: &StageComparison) -> String {
+    let mut rows: Vec<Vec<String>> = c
+        .stages
+        .iter()
+        .map(|s| {
+            vec![
+                s.stage.to_string(),
+                format!("{:.3}", s.ours_ms),
+                format!("{:.3}", s.box2d_ms),
+                signed(s.ours_ms - s.box2d_ms),
             ]
         })
-        .collect()
+        .collect();
+    let (ours, box2d): (f64, f64) = c
+        .stages
+        .iter()
+        .fold((0.0, 0.0), |(a, b), s| (a + s.ours_ms, b + s.box2d_ms));
+    rows.push(vec![
+        "**step** (the profiled run's wall time)".into(),
+        format!("{ours:.3}"),
+        format!("{box2d:.3}"),
+        signed(ours - box2d),
+    ]);
+    table(
+        &["stage", "this engine (ms)", "Box2D (ms)", "difference (ms)"],
+        &rows,
+    )
+}
+
+/// The correspondence of the stages, in words, from [`STAGES`].
+fn correspondence() -> String {
+    STAGES
+        .iter()
+        .map(|(stage, ours, box2d)| {
+            format!(
+                "{stage}: ours {} ~ Box2D {}",
+                ours.join(" + "),
+                box2d.join(" + ")
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
 }
 
 fn opt(v: Option<f64>) -> String {
@@ -152,8 +224,7 @@ pub fn write(
     }
     writeln!(md, "## Targets\n")?;
     let t = targets(results);
-    let trows = verdict_rows(&t);
-    md.push_str(&table(&["target", "measured", "verdict"], &trows));
+    md.push_str(&verdict_table(&t));
     let lead = box2d_targets(results);
     if !lead.is_empty() {
         let met = lead.iter().filter(|t| t.met).count();
@@ -163,13 +234,11 @@ pub fn write(
              Targets: this engine at most 0.9× the ms per step of Box2D built as it ships (f32, \
              AVX2, -O3, NDEBUG) on every scene, one thread each, the same substeps; and every \
              quality figure at least as good as Box2D's (no worse by more than 1 % or 1e-6 in \
-             the figure's unit). Met: {met} of {}.\n",
-            lead.len()
+             the figure's unit). Met: {met} of {}.{}\n",
+            lead.len(),
+            CLOSING
         )?;
-        md.push_str(&table(
-            &["target", "measured", "verdict"],
-            &verdict_rows(&lead),
-        ));
+        md.push_str(&verdict_table(&lead));
     }
     let threaded = super::targets::thread_targets(results);
     if !threaded.is_empty() {
@@ -178,12 +247,10 @@ pub fn write(
             "\n### Threads\n\n\
              Targets (issue 21): this engine on 2 threads at least 1.7× faster than on 1 on \
              large_pyramid, and ahead of Box2D's 2-worker time on every scene. The results do \
-             not depend on the thread count (the same bits: engine test `falling_hinges`).\n"
+             not depend on the thread count (the same bits: engine test `falling_hinges`).{}\n",
+            CLOSING
         )?;
-        md.push_str(&table(
-            &["target", "measured", "verdict"],
-            &verdict_rows(&threaded),
-        ));
+        md.push_str(&verdict_table(&threaded));
     }
     let slopes: Vec<String> = results
         .first()
@@ -217,6 +284,30 @@ pub fn write(
          scene's joints: the largest separation of the two anchors a joint holds together (a \
          revolute joint's point) and the largest excess of a joint's angle over its limits.\n"
     )?;
+    if results.iter().any(|r| !r.stages.is_empty()) {
+        writeln!(
+            md,
+            "Stage by stage: after its timed repeats, this engine and the linked Box2D each run the \
+         scene again, profiled (built afresh, step 0 untimed, then the same steps; {} runs each, \
+         alternating, the fastest kept): this \
+         engine's phase timers and Box2D's own (`b2Profile`, which holds the last step and is read \
+         after each one) summed over the steps and divided by them, mapped onto common stages: \
+         {}. Box2D's `step`, `solve` and `constraints` hold the others and are not counted \
+         again; its `split_islands` runs inside `solver_setup` with one worker and only with \
+         sleeping on. \"{OUTSIDE}\" is the profiled run's wall time per step less its stages \
+         (the call into the engine, the timers' own cost, work no timer covers), so each column \
+         adds up to that wall time. Where the boundaries differ: with one worker Box2D's \
+         `pairs` includes the rebuild of its dynamic tree (as ours does), with more that \
+         rebuild runs alongside and is waited for in `refit`; ours `prepare` also loads the \
+         bodies and prepares the joints; ours `store` also writes the states back to the world, \
+         which Box2D does in `transforms`. On several threads this engine times its substeps as \
+         one stage and stores the contact impulses with restitution, so that table merges \
+         integrate, warm_start, solve and relax into substeps, and restitution with store, for \
+         both engines.\n",
+            settings.repeats.clamp(1, PROFILED_REPEATS),
+            correspondence()
+        )?;
+    }
     for r in results {
         writeln!(md, "### {}\n", r.scene.id)?;
         let jointed = r.rows.iter().any(|b| b.joints > 0);
@@ -287,9 +378,30 @@ pub fn write(
                 .collect();
             writeln!(
                 md,
-                "\nThis engine's step, phase by phase (a separate profiled run): {}.\n",
+                "\nThis engine's step, phase by phase (its fastest profiled run): {}.\n",
                 phases.join(", ")
             )?;
+        }
+        for c in &r.stages {
+            writeln!(
+                md,
+                "This engine and {} stage by stage, {} (ms per step, each engine's fastest profiled run):\n",
+                r.rows
+                    .iter()
+                    .find(|b| {
+                        b.threads == c.threads
+                            && b.engine.starts_with("Box2D")
+                            && b.stages.is_some()
+                    })
+                    .map_or("Box2D", |b| b.engine.as_str()),
+                if c.threads == 1 {
+                    "one thread each".to_string()
+                } else {
+                    format!("{} threads each (Box2D: {} workers)", c.threads, c.threads)
+                }
+            )?;
+            md.push_str(&stage_table(c));
+            md.push('\n');
         }
     }
     if !extras.memory.is_empty() {

@@ -16,6 +16,9 @@ pub struct Target {
     pub measured: String,
     /// Whether it holds.
     pub met: bool,
+    /// For a missed speed target against Box2D: what would close it, from
+    /// the measured figures ([`super::stages::Gap::describe`]).
+    pub to_close: Option<String>,
 }
 
 /// The row of engine `index` of scene `id`: 0 this engine, 1 rapier2d
@@ -83,6 +86,7 @@ pub fn box2d_targets(results: &[SceneResult]) -> Vec<Target> {
                 ours.ms_per_step_min, b2.ms_per_step_min
             ),
             met: ratio <= 0.9,
+            to_close: to_close(r, ours.ms_per_step_min, b2, 0.9, ratio <= 0.9),
         });
         let theirs = figures(b2);
         for (name, a) in figures(ours) {
@@ -91,11 +95,31 @@ pub fn box2d_targets(results: &[SceneResult]) -> Vec<Target> {
                     target: format!("{}: {name} at least as good as Box2D's", r.scene.id),
                     measured: format!("{a:.3e} against {b:.3e}"),
                     met: at_least_as_good(a, b),
+                    to_close: None,
                 });
             }
         }
     }
     out
+}
+
+/// What would close the missed target "at most `factor` × Box2D's ms per
+/// step" (`met`: nothing to close), this engine at `ours_ms`, against
+/// Box2D's row `b2`: the [`super::stages::Gap`] with the stages of the
+/// profiled runs at `b2`'s thread count (when `b2` is the profiled
+/// linked build: its row carries the stages).
+fn to_close(
+    r: &SceneResult,
+    ours_ms: f64,
+    b2: &BenchRow,
+    factor: f64,
+    met: bool,
+) -> Option<String> {
+    if met || b2.stages.is_none() {
+        return None;
+    }
+    let c = r.stages.iter().find(|c| c.threads == b2.threads)?;
+    Some(super::stages::gap(ours_ms, b2.ms_per_step_min, factor, &c.stages).describe())
 }
 
 /// The least-squares slope of log(ms per step) against log(bodies) over
@@ -133,6 +157,7 @@ pub fn targets(results: &[SceneResult]) -> Vec<Target> {
                     ours.ms_per_step_min, rapier.ms_per_step_min
                 ),
                 met: ratio <= 1.0,
+                to_close: None,
             });
         }
     }
@@ -148,6 +173,7 @@ pub fn targets(results: &[SceneResult]) -> Vec<Target> {
                 ours.ms_per_step_min, b2.ms_per_step_min
             ),
             met: ratio <= 2.0,
+            to_close: None,
         });
         out.push(Target {
             target:
@@ -155,6 +181,7 @@ pub fn targets(results: &[SceneResult]) -> Vec<Target> {
                     .into(),
             measured: format!("{:.3} ms per step", ours.ms_per_step_min),
             met: ours.ms_per_step_min < 1e3 / 60.0,
+            to_close: None,
         });
     }
     if let Some(slope) = scaling_slope(results, 0) {
@@ -162,6 +189,7 @@ pub fn targets(results: &[SceneResult]) -> Vec<Target> {
             target: "cost grows no faster than n log n over the pyramid series: slope at most 1.15 on log-log axes".into(),
             measured: format!("slope {slope:.3}"),
             met: slope <= 1.15,
+            to_close: None,
         });
     }
     for id in [
@@ -196,6 +224,7 @@ pub fn targets(results: &[SceneResult]) -> Vec<Target> {
                     target: format!("{id}: {name} at least as good as rapier2d's"),
                     measured: format!("{a:.3e} against {b:.3e}"),
                     met,
+                    to_close: None,
                 });
             }
         }
@@ -244,6 +273,7 @@ pub fn thread_targets(results: &[SceneResult]) -> Vec<Target> {
                     one.ms_per_step_min, many.ms_per_step_min, many.cpu_over_wall
                 ),
                 met: speedup >= 1.7,
+                to_close: None,
             });
         }
         if let Some(b2) = row_at(r, "Box2D", threads) {
@@ -262,6 +292,7 @@ pub fn thread_targets(results: &[SceneResult]) -> Vec<Target> {
                         .map_or(f64::NAN, |b| b.ms_per_step_min / b2.ms_per_step_min)
                 ),
                 met: ratio < 1.0,
+                to_close: to_close(r, many.ms_per_step_min, b2, 1.0, ratio < 1.0),
             });
         }
     }

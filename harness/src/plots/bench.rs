@@ -58,7 +58,7 @@ pub fn draw(dir: &Path, results: &[SceneResult]) -> Result<Vec<(String, String)>
         let profile = Chart {
             title: "this engine's step, phase by phase".into(),
             x_label: "bodies".into(),
-            y_label: "wall time per step in the phase (ms), one profiled run".into(),
+            y_label: "wall time per step in the phase (ms), the fastest profiled run".into(),
             log_x: true,
             log_y: true,
             series: phases

@@ -304,7 +304,9 @@ pub fn write(
         files.push(
             "`benchmarks.json`: one row per benchmark scene and engine (`scene, engine, threads, \
              precision, simd, build, bodies, steps, repeats, substeps, ms_per_step_min, \
-             ms_per_step_median, ms_per_step_max, ratio_to_engine` and the quality figures).",
+             ms_per_step_median, ms_per_step_max, ratio_to_engine`, the quality figures, and for \
+             this engine's and the linked Box2D's rows `stages`: ms per step in each common \
+             stage of a profiled run).",
         );
     }
     if pictures {
