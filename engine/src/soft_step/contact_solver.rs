@@ -45,7 +45,7 @@
 //! the same bits.
 
 use super::bodies::SolverBody;
-use super::contacts::Contact;
+use super::contacts::{Contact, ContactPoint};
 use super::softness::Softness;
 use crate::shape::cross;
 use nalgebra::Vector2;
@@ -128,6 +128,67 @@ pub(crate) struct PairMass {
     pub inv_inertia_b: f64,
 }
 
+/// The per-step quantities of point `p` of a contact whose unit normal
+/// (A to B) is `normal`, between bodies of inverse masses `mass` whose
+/// solver records are `(ba, bb)`: its anchors, its separation less
+/// n·(r_B − r_A) (m), its effective masses (kg), the impulses inherited
+/// from the last step scaled by `warm` (N·s) and its normal velocity
+/// (m/s). The formulas of both solvers' prepare ([`prepare`] and
+/// [`super::wide_solver::prepare_lane`]), written once so that a lane and
+/// the scalar constraint hold the same bits.
+#[inline(always)]
+pub(crate) fn prepare_point(
+    p: &ContactPoint,
+    normal: Vector2<f64>,
+    mass: &PairMass,
+    (ba, bb): (&SolverBody, &SolverBody),
+    warm: f64,
+) -> ConstraintPoint {
+    let tangent = Vector2::new(normal.y, -normal.x);
+    let (ma, ia, mb, ib) = (
+        mass.inv_mass_a,
+        mass.inv_inertia_a,
+        mass.inv_mass_b,
+        mass.inv_inertia_b,
+    );
+    let (ra, rb) = (p.anchor_a, p.anchor_b);
+    let (rna, rnb) = (cross(ra, normal), cross(rb, normal));
+    let k_normal = ma + mb + ia * rna * rna + ib * rnb * rnb;
+    let (rta, rtb) = (cross(ra, tangent), cross(rb, tangent));
+    let k_tangent = ma + mb + ia * rta * rta + ib * rtb * rtb;
+    let vra = ba.v + cross_sv(ba.w, ra);
+    let vrb = bb.v + cross_sv(bb.w, rb);
+    ConstraintPoint {
+        ra,
+        rb,
+        base_separation: p.separation - (rb - ra).dot(&normal),
+        normal_mass: if k_normal > 0.0 { 1.0 / k_normal } else { 0.0 },
+        tangent_mass: if k_tangent > 0.0 {
+            1.0 / k_tangent
+        } else {
+            0.0
+        },
+        normal_impulse: warm * p.normal_impulse,
+        tangent_impulse: warm * p.tangent_impulse,
+        total_normal_impulse: 0.0,
+        normal_velocity: normal.dot(&(vrb - vra)),
+    }
+}
+
+/// The rolling resistance's effective mass, 1/(1/I_A + 1/I_B) (kg·m²),
+/// of a contact with rolling resistance `rolling_resistance` (m) between
+/// bodies of inverse inertias `ia` and `ib` (1/(kg·m²)); 0 without
+/// rolling resistance (only read with it: no division otherwise) or when
+/// neither body turns.
+#[inline(always)]
+pub(crate) fn rolling_mass(rolling_resistance: f64, ia: f64, ib: f64) -> f64 {
+    if rolling_resistance > 0.0 && ia + ib > 0.0 {
+        1.0 / (ia + ib)
+    } else {
+        0.0
+    }
+}
+
 /// Builds the constraint of `contact` (with its points) for a step, with
 /// warm-starting impulses scaled by `warm` (1 on, 0 off) and the soft bias
 /// bounded by `push_out` (m/s).
@@ -140,38 +201,10 @@ pub(crate) fn prepare(
     warm: f64,
 ) -> ContactConstraint {
     let normal = contact.normal;
-    let tangent = Vector2::new(normal.y, -normal.x);
-    let (ba, bb) = (&bodies[mass.a], &bodies[mass.b]);
-    let (ma, ia, mb, ib) = (
-        mass.inv_mass_a,
-        mass.inv_inertia_a,
-        mass.inv_mass_b,
-        mass.inv_inertia_b,
-    );
+    let pair = (&bodies[mass.a], &bodies[mass.b]);
     let mut points = [ConstraintPoint::default(); 2];
     for (cp, p) in points.iter_mut().zip(&contact.points[..contact.count]) {
-        let (ra, rb) = (p.anchor_a, p.anchor_b);
-        let (rna, rnb) = (cross(ra, normal), cross(rb, normal));
-        let k_normal = ma + mb + ia * rna * rna + ib * rnb * rnb;
-        let (rta, rtb) = (cross(ra, tangent), cross(rb, tangent));
-        let k_tangent = ma + mb + ia * rta * rta + ib * rtb * rtb;
-        let vra = ba.v + cross_sv(ba.w, ra);
-        let vrb = bb.v + cross_sv(bb.w, rb);
-        *cp = ConstraintPoint {
-            ra,
-            rb,
-            base_separation: p.separation - (rb - ra).dot(&normal),
-            normal_mass: if k_normal > 0.0 { 1.0 / k_normal } else { 0.0 },
-            tangent_mass: if k_tangent > 0.0 {
-                1.0 / k_tangent
-            } else {
-                0.0
-            },
-            normal_impulse: warm * p.normal_impulse,
-            tangent_impulse: warm * p.tangent_impulse,
-            total_normal_impulse: 0.0,
-            normal_velocity: normal.dot(&(vrb - vra)),
-        };
+        *cp = prepare_point(p, normal, &mass, pair, warm);
     }
     ContactConstraint {
         a: mass.a,
@@ -180,20 +213,19 @@ pub(crate) fn prepare(
         normal,
         friction: contact.friction,
         restitution: contact.restitution,
-        inv_mass_a: ma,
-        inv_inertia_a: ia,
-        inv_mass_b: mb,
-        inv_inertia_b: ib,
+        inv_mass_a: mass.inv_mass_a,
+        inv_inertia_a: mass.inv_inertia_a,
+        inv_mass_b: mass.inv_mass_b,
+        inv_inertia_b: mass.inv_inertia_b,
         softness,
         push_out,
         tangent_speed: contact.tangent_speed,
         rolling_resistance: contact.rolling_resistance,
-        // Only read with rolling resistance: no division otherwise.
-        rolling_mass: if contact.rolling_resistance > 0.0 && ia + ib > 0.0 {
-            1.0 / (ia + ib)
-        } else {
-            0.0
-        },
+        rolling_mass: rolling_mass(
+            contact.rolling_resistance,
+            mass.inv_inertia_a,
+            mass.inv_inertia_b,
+        ),
         rolling_impulse: warm * contact.rolling_impulse,
         centre_depth: contact.centre_depth,
         count: contact.count,

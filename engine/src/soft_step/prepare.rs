@@ -6,12 +6,17 @@
 //! order: the first picks the touching contacts with an awake body and
 //! colours them ([`super::colouring`]); once every colour's size is known
 //! the records are laid out colour after colour, and the second loop
-//! prepares each constraint ([`super::contact_solver::prepare`], the
-//! reference formulas) and writes it into its lane of its colour's record
-//! ([`super::wide_solver::set_lane`]), or appends it to the overflow. The
-//! records of the last step are overwritten field by field, so nothing is
-//! zeroed or allocated per step. Store walks the same list in the same
-//! order.
+//! prepares each constraint straight into its lane of its colour's record
+//! ([`super::wide_solver::prepare_lane`]: each field computed from the
+//! contact and its bodies and written, with the per-point formulas of the
+//! reference, [`super::contact_solver::prepare_point`]), or builds the
+//! scalar constraint ([`super::contact_solver::prepare`]) and appends it
+//! to the overflow. Box2D's `b2PrepareContactsTask` writes its lanes from
+//! the contact the same way; building a whole scalar constraint first and
+//! copying it lane by lane cost a fifth of the stage (docs/soft_step.md,
+//! "Then prepare writes each lane straight from its contact"). The records
+//! of the last step are overwritten field by field, so nothing is zeroed
+//! or allocated per step. Store walks the same list in the same order.
 //!
 //! **Shared push-out.** The push-out speed bounds the bias of each
 //! contact, so a body overlapping k others deeply could be pushed at k
@@ -35,11 +40,11 @@
 
 use super::bodies::{BodyMass, SolverBody, solver_body, solver_index};
 use super::colouring::Slot;
-use super::contact_solver::{self, PairMass};
+use super::contact_solver::{self, ContactConstraint, PairMass};
 use super::contacts::Contact;
 use super::lanes::LANES;
 use super::pool::{Pool, SharedSlice, Worker};
-use super::wide_solver::{self, WideConstraint, WideExtra};
+use super::wide_solver::{self, StepSoftness, WideConstraint, WideExtra};
 use super::{SoftStep, Softness};
 use crate::body::{BodyId, BodyKind};
 use crate::world_core::WorldCore;
@@ -82,14 +87,6 @@ impl SoftStep {
         let push_out = settings.push_out_speed;
         // The bias rate of a contact between two dynamic bodies (1/s).
         let rate = soft.mass_scale * soft.bias_rate;
-        // Plain comparisons: the values are finite (f64::min's NaN
-        // handling costs instructions on every contact).
-        let demand_of = |c: &Contact| {
-            let demand = -rate * deepest(c);
-            if demand < push_out { demand } else { push_out }
-        };
-        let both_dynamic =
-            |a: &BodyMass, b: &BodyMass| a.kind == BodyKind::Dynamic && b.kind == BodyKind::Dynamic;
         self.colouring.clear(self.sims.len());
         self.constrained.clear();
         self.push_demand.clear();
@@ -109,7 +106,7 @@ impl SoftStep {
             self.constrained.push(index);
             points += c.count;
             if both_dynamic(sa, sb) {
-                let demand = demand_of(c);
+                let demand = demand_of(c, rate, push_out);
                 if demand > 0.0 {
                     // Each body's part of the relative push, twice its
                     // share of the pair's inverse mass: 1 for equal masses
@@ -130,42 +127,22 @@ impl SoftStep {
         self.wide.resize(records, WideConstraint::default());
         self.wide_extra.resize(records, WideExtra::default());
         self.constraints.clear();
-        let (masses, contacts, bodies) = (&self.masses, &self.contacts.contacts, &self.bodies);
-        let demand = &self.push_demand;
-        // The two softnesses the records select from (`constraint_of`
-        // gives each constraint one of them).
-        let step_softness = [soft, static_soft];
-        self.softness = step_softness;
-        let constraint_of = |index: usize| {
-            let c = &contacts[index];
-            let (sa, sb) = (&masses[c.body_a], &masses[c.body_b]);
-            let mass = PairMass {
-                a: solver_index(c.body_a, sa.kind),
-                b: solver_index(c.body_b, sb.kind),
-                inv_mass_a: sa.inv_mass,
-                inv_inertia_a: sa.inv_inertia,
-                inv_mass_b: sb.inv_mass,
-                inv_inertia_b: sb.inv_inertia,
-            };
-            let (softness, bound) = if both_dynamic(sa, sb) {
-                let (da, db) = (demand[c.body_a], demand[c.body_b]);
-                let most = if da > db { da } else { db };
-                let bound = if most > push_out {
-                    demand_of(c).max(0.0) * (push_out / most)
-                } else {
-                    push_out
-                };
-                (soft, bound)
-            } else if sa.kind == BodyKind::Static || sb.kind == BodyKind::Static {
-                (static_soft, push_out)
-            } else {
-                (soft, push_out)
-            };
-            contact_solver::prepare(c, index, mass, (softness, bound), bodies, warm)
+        // The two softnesses the records select from (`Inputs::pair` gives
+        // each constraint one of them).
+        self.softness = [soft, static_soft];
+        let inputs = Inputs {
+            masses: &self.masses,
+            contacts: &self.contacts.contacts,
+            bodies: &self.bodies,
+            demand: &self.push_demand,
+            softness: self.softness,
+            push_out,
+            rate,
+            warm,
         };
         if let Some(pool) = pool {
             // On the threads: each its share of the records, every lane
-            // from the constraint the colouring put there (the same
+            // from the contact the colouring put there (the same
             // constraints, in another order: the same bits).
             self.lane_source.clear();
             self.lane_source.resize(records * LANES, u32::MAX);
@@ -189,7 +166,7 @@ impl SoftStep {
                     let overflow = unsafe { overflow.get_mut(0) };
                     for (i, &index) in constrained.iter().enumerate() {
                         if let Slot::Overflow(_) = colouring.slot(i) {
-                            overflow.push(constraint_of(index));
+                            overflow.push(inputs.constraint(index));
                         }
                     }
                 }
@@ -201,9 +178,8 @@ impl SoftStep {
                         match source[record * LANES + lane] {
                             u32::MAX => wide_solver::set_padding_lane((r, e), lane),
                             i => {
-                                let constraint = constraint_of(constrained[i as usize]);
-                                mine_rare |= wide_solver::is_rare(&constraint);
-                                wide_solver::set_lane((r, e), lane, &constraint, &step_softness);
+                                let index = constrained[i as usize];
+                                mine_rare |= inputs.prepare_lane(index, (r, e), lane);
                             }
                         }
                     }
@@ -216,29 +192,24 @@ impl SoftStep {
             self.rare = rare.into_inner();
         } else {
             // In contact order, so that the contacts are read in memory
-            // order; each colour's records are written in order too.
+            // order; each colour's records are written in order too. The
+            // records are indexed through slices taken once (through
+            // `self`, the compiler reloaded their pointers and lengths for
+            // every contact: 10 instructions a constraint).
+            let (wide, extra) = (&mut self.wide[..], &mut self.wide_extra[..]);
             let mut rare = false;
             for (i, &index) in self.constrained.iter().enumerate() {
-                let constraint = constraint_of(index);
                 match self.colouring.slot(i) {
                     Slot::Lane { record, lane } => {
-                        rare |= wide_solver::is_rare(&constraint);
-                        wide_solver::set_lane(
-                            (&mut self.wide[record], &mut self.wide_extra[record]),
-                            lane,
-                            &constraint,
-                            &step_softness,
-                        );
+                        let lane_records = (&mut wide[record], &mut extra[record]);
+                        rare |= inputs.prepare_lane(index, lane_records, lane);
                     }
                     // Overflow positions come in order.
-                    Slot::Overflow(_) => self.constraints.push(constraint),
+                    Slot::Overflow(_) => self.constraints.push(inputs.constraint(index)),
                 }
             }
             for (record, lane) in self.colouring.padding() {
-                wide_solver::set_padding_lane(
-                    (&mut self.wide[record], &mut self.wide_extra[record]),
-                    lane,
-                );
+                wide_solver::set_padding_lane((&mut wide[record], &mut extra[record]), lane);
             }
             self.rare = rare;
         }
@@ -264,6 +235,110 @@ impl SoftStep {
             }
         }
     }
+}
+
+/// What the second loop of prepare reads to make a contact's constraint:
+/// the step's bodies and contacts, the push demands the first loop summed,
+/// and the step's settings.
+#[derive(Clone, Copy)]
+struct Inputs<'a> {
+    masses: &'a [BodyMass],
+    contacts: &'a [Contact],
+    /// The solver records, by solver index.
+    bodies: &'a [SolverBody],
+    /// Each dynamic body's push demand (m/s; the module documentation).
+    demand: &'a [f64],
+    /// Between moving bodies (or with a kinematic one), and with a static
+    /// body.
+    softness: StepSoftness,
+    /// The settings' push-out speed (m/s).
+    push_out: f64,
+    /// The bias rate of a contact between two dynamic bodies (1/s).
+    rate: f64,
+    /// The warm-start scale (1 on, 0 off).
+    warm: f64,
+}
+
+impl Inputs<'_> {
+    /// Contact `index`, its bodies' solver indices and inverse masses,
+    /// whether it takes the step's second softness (with a static body)
+    /// and its push-out bound (m/s): the settings' push-out speed, scaled
+    /// down when a dynamic body's demand exceeds it (the module
+    /// documentation).
+    #[inline(always)]
+    fn pair(&self, index: usize) -> (&Contact, PairMass, bool, f64) {
+        let c = &self.contacts[index];
+        let (sa, sb) = (&self.masses[c.body_a], &self.masses[c.body_b]);
+        let mass = PairMass {
+            a: solver_index(c.body_a, sa.kind),
+            b: solver_index(c.body_b, sb.kind),
+            inv_mass_a: sa.inv_mass,
+            inv_inertia_a: sa.inv_inertia,
+            inv_mass_b: sb.inv_mass,
+            inv_inertia_b: sb.inv_inertia,
+        };
+        let push_out = self.push_out;
+        let (static_soft, bound) = if both_dynamic(sa, sb) {
+            let (da, db) = (self.demand[c.body_a], self.demand[c.body_b]);
+            let most = if da > db { da } else { db };
+            let bound = if most > push_out {
+                demand_of(c, self.rate, push_out).max(0.0) * (push_out / most)
+            } else {
+                push_out
+            };
+            (false, bound)
+        } else {
+            let static_soft = sa.kind == BodyKind::Static || sb.kind == BodyKind::Static;
+            (static_soft, push_out)
+        };
+        (c, mass, static_soft, bound)
+    }
+
+    /// The scalar constraint of contact `index` (for the overflow).
+    fn constraint(&self, index: usize) -> ContactConstraint {
+        let (c, mass, static_soft, bound) = self.pair(index);
+        let softness = self.softness[usize::from(static_soft)];
+        contact_solver::prepare(c, index, mass, (softness, bound), self.bodies, self.warm)
+    }
+
+    /// Prepares the constraint of contact `index` straight into lane `l`
+    /// of `records` ([`wide_solver::prepare_lane`]: the bits
+    /// [`Inputs::constraint`] would hold); returns whether it is rare
+    /// ([`wide_solver::is_rare`]).
+    #[inline(always)]
+    fn prepare_lane(
+        &self,
+        index: usize,
+        records: (&mut WideConstraint, &mut WideExtra),
+        l: usize,
+    ) -> bool {
+        let (c, mass, static_soft, bound) = self.pair(index);
+        wide_solver::prepare_lane(
+            records,
+            l,
+            c,
+            &mass,
+            (static_soft, bound),
+            self.bodies,
+            self.warm,
+        )
+    }
+}
+
+/// Whether both bodies are dynamic.
+#[inline(always)]
+fn both_dynamic(a: &BodyMass, b: &BodyMass) -> bool {
+    a.kind == BodyKind::Dynamic && b.kind == BodyKind::Dynamic
+}
+
+/// The bias speed (m/s) contact `c` asks for between two dynamic bodies:
+/// `rate` (1/s) times its deepest overlap, at most `push_out` (m/s).
+#[inline(always)]
+fn demand_of(c: &Contact, rate: f64, push_out: f64) -> f64 {
+    // Plain comparisons: the values are finite (f64::min's NaN handling
+    // costs instructions on every contact).
+    let demand = -rate * deepest(c);
+    if demand < push_out { demand } else { push_out }
 }
 
 /// The separation of the deepest point of `c` (m, negative inside; the

@@ -29,10 +29,13 @@
 //! nothing.
 
 use super::bodies::SolverBody;
-use super::contact_solver::{ConstraintPoint, ContactConstraint};
+#[cfg(test)]
+use super::contact_solver::ContactConstraint;
+use super::contact_solver::{self, ConstraintPoint, PairMass};
 use super::contacts::Contact;
 use super::lanes::{F64x8, LANES, Lanes, dispatch};
 use super::pool::SharedSlice;
+use nalgebra::Vector2;
 
 /// The solver records as the passes see them: shared by the threads of a
 /// parallel pass, each writing only the dynamic bodies of its own
@@ -132,7 +135,7 @@ pub(crate) struct WideConstraint {
     pub friction: F64x8,
     /// Minus each lane's push-out bound (m/s): the bias is at least this.
     pub min_bias: F64x8,
-    /// [`ContactConstraint::centre_depth`] of A and of B (m): 0 but for
+    /// [`contact_solver::ContactConstraint::centre_depth`] of A and of B (m): 0 but for
     /// circles.
     pub centre_depth_a: F64x8,
     pub centre_depth_b: F64x8,
@@ -160,23 +163,135 @@ pub(crate) struct WideExtra {
     pub rolling_impulse: F64x8,
 }
 
-/// Whether constraint `c` makes the passes read the rare fields of the
-/// records ([`WideExtra`]): a tangent speed other than +0 (subtracting +0
-/// changes no value, −0 included, so skipping it gives the same bits) or
-/// rolling resistance.
+/// Whether a constraint whose surfaces have tangent speed `tangent_speed`
+/// (m/s) and rolling resistance `rolling_resistance` (m) makes the passes
+/// read the rare fields of the records ([`WideExtra`]): a tangent speed
+/// other than +0 (subtracting +0 changes no value, −0 included, so
+/// skipping it gives the same bits) or rolling resistance.
 #[inline(always)]
-pub(crate) fn is_rare(c: &ContactConstraint) -> bool {
-    c.tangent_speed.to_bits() != 0 || c.rolling_resistance > 0.0
+pub(crate) fn is_rare(tangent_speed: f64, rolling_resistance: f64) -> bool {
+    tangent_speed.to_bits() != 0 || rolling_resistance > 0.0
+}
+
+/// What a lane holds of a constraint besides its points, as the lane
+/// stores it.
+struct LaneHead {
+    /// The lane's body words ([`lane_index`], with [`STATIC_SOFT`] in `a`
+    /// for the step's second softness).
+    a: u32,
+    b: u32,
+    normal: Vector2<f64>,
+    friction: f64,
+    /// The push-out bound (m/s), stored negated as the lane's `min_bias`.
+    push_out: f64,
+    centre_depth: [f64; 2],
+    restitution: f64,
+    tangent_speed: f64,
+    rolling_resistance: f64,
+    rolling_mass: f64,
+    rolling_impulse: f64,
+}
+
+/// Writes `h` into lane `l` of `(w, e)`: every field but the points'.
+#[inline(always)]
+fn set_head((w, e): (&mut WideConstraint, &mut WideExtra), l: usize, h: &LaneHead) {
+    w.a[l] = h.a;
+    w.b[l] = h.b;
+    w.normal_x.set_lane(l, h.normal.x);
+    w.normal_y.set_lane(l, h.normal.y);
+    w.friction.set_lane(l, h.friction);
+    w.min_bias.set_lane(l, -h.push_out);
+    w.centre_depth_a.set_lane(l, h.centre_depth[0]);
+    w.centre_depth_b.set_lane(l, h.centre_depth[1]);
+    e.restitution.set_lane(l, h.restitution);
+    e.tangent_speed.set_lane(l, h.tangent_speed);
+    e.rolling_resistance.set_lane(l, h.rolling_resistance);
+    e.rolling_mass.set_lane(l, h.rolling_mass);
+    e.rolling_impulse.set_lane(l, h.rolling_impulse);
+}
+
+/// Writes point `cp` as point `k` (0 or 1) of lane `l` of `(w, e)`.
+#[inline(always)]
+fn set_point(
+    (w, e): (&mut WideConstraint, &mut WideExtra),
+    l: usize,
+    k: usize,
+    cp: &ConstraintPoint,
+) {
+    let p = &mut w.points[k];
+    p.ra_x.set_lane(l, cp.ra.x);
+    p.ra_y.set_lane(l, cp.ra.y);
+    p.rb_x.set_lane(l, cp.rb.x);
+    p.rb_y.set_lane(l, cp.rb.y);
+    p.base_separation.set_lane(l, cp.base_separation);
+    p.normal_mass.set_lane(l, cp.normal_mass);
+    p.tangent_mass.set_lane(l, cp.tangent_mass);
+    p.normal_impulse.set_lane(l, cp.normal_impulse);
+    p.tangent_impulse.set_lane(l, cp.tangent_impulse);
+    p.total_normal_impulse.set_lane(l, cp.total_normal_impulse);
+    e.normal_velocity[k].set_lane(l, cp.normal_velocity);
+}
+
+/// Prepares the constraint of `contact` straight into lane `l` of `(w,
+/// e)`, every field of the lane (a missing second point as zeros): what
+/// [`contact_solver::prepare`] would build for it, with the same formulas
+/// ([`contact_solver::prepare_point`], [`contact_solver::rolling_mass`]),
+/// written as [`set_lane`] would write that constraint, without building
+/// it. `mass`: the bodies' solver indices and inverse masses;
+/// `static_soft`: whether the constraint takes the step's second softness
+/// ([`StepSoftness`]); `push_out`: its push-out bound (m/s); `bodies`: the
+/// solver records by solver index; `warm`: the warm-start scale. Returns
+/// whether the constraint is rare ([`is_rare`]).
+#[inline(always)]
+pub(crate) fn prepare_lane(
+    (w, e): (&mut WideConstraint, &mut WideExtra),
+    l: usize,
+    contact: &Contact,
+    mass: &PairMass,
+    (static_soft, push_out): (bool, f64),
+    bodies: &[SolverBody],
+    warm: f64,
+) -> bool {
+    let flag = if static_soft { STATIC_SOFT } else { 0 };
+    let (ia, ib) = (mass.inv_inertia_a, mass.inv_inertia_b);
+    set_head(
+        (w, e),
+        l,
+        &LaneHead {
+            a: lane_index(mass.a, mass.inv_mass_a, ia) | flag,
+            b: lane_index(mass.b, mass.inv_mass_b, ib),
+            normal: contact.normal,
+            friction: contact.friction,
+            push_out,
+            centre_depth: contact.centre_depth,
+            restitution: contact.restitution,
+            tangent_speed: contact.tangent_speed,
+            rolling_resistance: contact.rolling_resistance,
+            rolling_mass: contact_solver::rolling_mass(contact.rolling_resistance, ia, ib),
+            rolling_impulse: warm * contact.rolling_impulse,
+        },
+    );
+    let pair = (&bodies[mass.a], &bodies[mass.b]);
+    for k in 0..2 {
+        let cp = if k < contact.count {
+            contact_solver::prepare_point(&contact.points[k], contact.normal, mass, pair, warm)
+        } else {
+            ConstraintPoint::default()
+        };
+        set_point((w, e), l, k, &cp);
+    }
+    is_rare(contact.tangent_speed, contact.rolling_resistance)
 }
 
 /// Writes constraint `c` into lane `l` of `(w, e)`, every field of the lane
 /// (a missing second point as zeros); `softness`: the step's two, one of
-/// which is `c`'s.
+/// which is `c`'s. The step writes its lanes with [`prepare_lane`]; this
+/// is the reference it is tested against.
 ///
 /// # Panics
 /// If `c`'s softness is neither of `softness` (prepare gives every
 /// constraint one of the two).
-#[inline(always)]
+#[cfg(test)]
 pub(crate) fn set_lane(
     (w, e): (&mut WideConstraint, &mut WideExtra),
     l: usize,
@@ -189,37 +304,30 @@ pub(crate) fn set_lane(
         assert!(c.softness == softness[0], "a softness of the step");
         0
     };
-    w.a[l] = lane_index(c.a, c.inv_mass_a, c.inv_inertia_a) | static_soft;
-    w.b[l] = lane_index(c.b, c.inv_mass_b, c.inv_inertia_b);
-    w.normal_x.set_lane(l, c.normal.x);
-    w.normal_y.set_lane(l, c.normal.y);
-    w.friction.set_lane(l, c.friction);
-    w.min_bias.set_lane(l, -c.push_out);
-    w.centre_depth_a.set_lane(l, c.centre_depth[0]);
-    w.centre_depth_b.set_lane(l, c.centre_depth[1]);
-    e.restitution.set_lane(l, c.restitution);
-    e.tangent_speed.set_lane(l, c.tangent_speed);
-    e.rolling_resistance.set_lane(l, c.rolling_resistance);
-    e.rolling_mass.set_lane(l, c.rolling_mass);
-    e.rolling_impulse.set_lane(l, c.rolling_impulse);
+    set_head(
+        (w, e),
+        l,
+        &LaneHead {
+            a: lane_index(c.a, c.inv_mass_a, c.inv_inertia_a) | static_soft,
+            b: lane_index(c.b, c.inv_mass_b, c.inv_inertia_b),
+            normal: c.normal,
+            friction: c.friction,
+            push_out: c.push_out,
+            centre_depth: c.centre_depth,
+            restitution: c.restitution,
+            tangent_speed: c.tangent_speed,
+            rolling_resistance: c.rolling_resistance,
+            rolling_mass: c.rolling_mass,
+            rolling_impulse: c.rolling_impulse,
+        },
+    );
     for k in 0..2 {
         let cp = if k < c.count {
             c.points[k]
         } else {
             ConstraintPoint::default()
         };
-        let p = &mut w.points[k];
-        p.ra_x.set_lane(l, cp.ra.x);
-        p.ra_y.set_lane(l, cp.ra.y);
-        p.rb_x.set_lane(l, cp.rb.x);
-        p.rb_y.set_lane(l, cp.rb.y);
-        p.base_separation.set_lane(l, cp.base_separation);
-        p.normal_mass.set_lane(l, cp.normal_mass);
-        p.tangent_mass.set_lane(l, cp.tangent_mass);
-        p.normal_impulse.set_lane(l, cp.normal_impulse);
-        p.tangent_impulse.set_lane(l, cp.tangent_impulse);
-        p.total_normal_impulse.set_lane(l, cp.total_normal_impulse);
-        e.normal_velocity[k].set_lane(l, cp.normal_velocity);
+        set_point((w, e), l, k, &cp);
     }
 }
 
@@ -227,28 +335,26 @@ pub(crate) fn set_lane(
 /// zero masses and zero points, so it gives zero impulses (whichever
 /// softness it takes).
 pub(crate) fn set_padding_lane((w, e): (&mut WideConstraint, &mut WideExtra), l: usize) {
-    let padding = ContactConstraint {
-        a: 0,
-        b: 0,
-        contact: 0,
-        normal: nalgebra::Vector2::zeros(),
-        friction: 0.0,
-        restitution: 0.0,
-        inv_mass_a: 0.0,
-        inv_inertia_a: 0.0,
-        inv_mass_b: 0.0,
-        inv_inertia_b: 0.0,
-        softness: super::Softness::RIGID,
-        push_out: 0.0,
-        tangent_speed: 0.0,
-        rolling_resistance: 0.0,
-        rolling_mass: 0.0,
-        rolling_impulse: 0.0,
-        centre_depth: [0.0; 2],
-        count: 0,
-        points: [ConstraintPoint::default(); 2],
-    };
-    set_lane((w, e), l, &padding, &[super::Softness::RIGID; 2]);
+    set_head(
+        (w, e),
+        l,
+        &LaneHead {
+            a: lane_index(0, 0.0, 0.0),
+            b: lane_index(0, 0.0, 0.0),
+            normal: Vector2::zeros(),
+            friction: 0.0,
+            push_out: 0.0,
+            centre_depth: [0.0; 2],
+            restitution: 0.0,
+            tangent_speed: 0.0,
+            rolling_resistance: 0.0,
+            rolling_mass: 0.0,
+            rolling_impulse: 0.0,
+        },
+    );
+    for k in 0..2 {
+        set_point((w, e), l, k, &ConstraintPoint::default());
+    }
 }
 
 /// The velocities of the bodies of a group of lanes (what the passes
@@ -349,7 +455,7 @@ struct Motion<L> {
     ny: L,
     /// What the circles' turns take off the separation, the sum of
     /// k_B (1 − cos Δθ_B) and k_A (1 − cos Δθ_A): 0 for other shapes
-    /// ([`ContactConstraint::centre_depth`]).
+    /// ([`contact_solver::ContactConstraint::centre_depth`]).
     unturned: L,
 }
 
@@ -944,6 +1050,109 @@ mod tests {
         ]
     }
 
+    /// A record's fields as text: `{:?}` of an f64 is the shortest text
+    /// that reads back to its bits (−0 included), so equal texts are equal
+    /// bits, which `==` on f64 is not.
+    fn bits_of((w, e): (&WideConstraint, &WideExtra)) -> String {
+        format!("{w:?} {e:?}")
+    }
+
+    #[test]
+    fn a_lane_prepared_from_its_contact_holds_the_scalar_constraints_bits() {
+        // Contacts between the scene's bodies (with the static dummy, with a
+        // kinematic body, between two moving ones), of one and two points,
+        // with and without warm starting, tangent speeds (−0 among them),
+        // rolling resistance and circles; each prepared straight into a lane
+        // and, as the reference, built as a scalar constraint and copied
+        // into the same lane of another record.
+        let (bodies, masses, _) = scene();
+        let softness = step_softness();
+        let mut n = Numbers(11);
+        let mut set = super::super::contacts::ContactSet::default();
+        let mut rare_lanes = 0;
+        for k in 0..48 {
+            let (a, b) = match k % 4 {
+                0 => (0, 1 + k % 12),
+                _ => (1 + k % 12, 1 + (k + 1 + k / 12) % 12),
+            };
+            set.create(
+                (2 * k, 2 * k + 1),
+                (a, b),
+                super::super::contacts::tests::material(),
+                false,
+            );
+            let mut c = set.contacts.pop().unwrap();
+            let angle = 3.0 * n.next();
+            c.normal = Vector2::new(angle.sin(), angle.cos());
+            c.count = 1 + k % 2;
+            for p in &mut c.points {
+                p.anchor_a = Vector2::new(0.5 * n.next(), 0.5 * n.next());
+                p.anchor_b = Vector2::new(0.5 * n.next(), 0.5 * n.next());
+                p.separation = 0.02 * n.next();
+                p.normal_impulse = n.next().abs();
+                p.tangent_impulse = 0.1 * n.next();
+            }
+            c.friction = 0.6 + 0.1 * n.next();
+            c.restitution = if k % 3 == 0 { 0.5 } else { 0.0 };
+            c.tangent_speed = [0.0, 0.3, -0.0, 0.0, -0.2][k % 5];
+            c.rolling_resistance = if k % 7 == 1 { 0.05 } else { 0.0 };
+            c.rolling_impulse = 0.01 * n.next();
+            c.centre_depth = [[0.0; 2], [0.0, 0.3], [0.2, 0.4]][k % 3];
+            // Every fifth pair of moving bodies with a kinematic B (zero
+            // inverse masses, FIXED).
+            let kinematic = a != 0 && k % 5 == 2;
+            let [mb, ib] = if kinematic { [0.0; 2] } else { masses[b] };
+            let mass = PairMass {
+                a,
+                b,
+                inv_mass_a: masses[a][0],
+                inv_inertia_a: masses[a][1],
+                inv_mass_b: mb,
+                inv_inertia_b: ib,
+            };
+            let static_soft = a == 0;
+            let push_out = if k % 4 == 1 { 0.75 } else { 3.0 };
+            let warm = if k % 6 == 5 { 0.0 } else { 1.0 };
+            let lane = k % LANES;
+            let scalar = contact_solver::prepare(
+                &c,
+                k,
+                mass,
+                (softness[usize::from(static_soft)], push_out),
+                &bodies,
+                warm,
+            );
+            let mut expected = (WideConstraint::default(), WideExtra::default());
+            set_lane((&mut expected.0, &mut expected.1), lane, &scalar, &softness);
+            let mut direct = (WideConstraint::default(), WideExtra::default());
+            let rare = prepare_lane(
+                (&mut direct.0, &mut direct.1),
+                lane,
+                &c,
+                &mass,
+                (static_soft, push_out),
+                &bodies,
+                warm,
+            );
+            assert_eq!(
+                bits_of((&direct.0, &direct.1)),
+                bits_of((&expected.0, &expected.1)),
+                "contact {k}"
+            );
+            assert_eq!(
+                rare,
+                is_rare(scalar.tangent_speed, scalar.rolling_resistance),
+                "contact {k}"
+            );
+            rare_lanes += usize::from(rare);
+            // The lane is not left as it was (the comparison is not of two
+            // default records).
+            assert_ne!(direct.0, WideConstraint::default());
+        }
+        // Some lanes rare, some not; −0 is not rare.
+        assert!(rare_lanes > 0 && rare_lanes < 48, "{rare_lanes}");
+    }
+
     #[test]
     fn a_colour_solved_in_lanes_gives_the_bits_of_the_scalar_solver() {
         // With tangent speeds and rolling resistance (the passes read the
@@ -964,7 +1173,12 @@ mod tests {
                 (c.tangent_speed, c.rolling_resistance, c.rolling_impulse) = (0.0, 0.0, 0.0);
             }
         }
-        assert_eq!(constraints.iter().any(is_rare), rare);
+        assert_eq!(
+            constraints
+                .iter()
+                .any(|c| is_rare(c.tangent_speed, c.rolling_resistance)),
+            rare
+        );
         let softness = step_softness();
         let mut colouring = Colouring::default();
         colouring.clear(13);
