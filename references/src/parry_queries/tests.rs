@@ -7,8 +7,8 @@
 use super::exact::{Hull, Rng, overlap_along, signed_distance_to_polygon, world_vertices};
 use super::*;
 use engine::validation::collision::{
-    Motion, ToiOptions, collide, distance_polygon_polygon, proximity, separation_polygon_polygon,
-    toi_bisection, toi_conservative_advancement,
+    Motion, ToiOptions, collide, proximity, separation_polygon_polygon, toi_bisection,
+    toi_conservative_advancement,
 };
 use engine::{Circle, ConvexPolygon};
 
@@ -42,7 +42,7 @@ fn compare_polygon_pair(
     stats.vertex_counts[a.vertices().len()] += 1;
     stats.vertex_counts[b.vertices().len()] += 1;
 
-    let exact = distance_polygon_polygon(a, pa, b, pb);
+    let exact = proximity(&sa, pa, &sb, pb);
     let sat = separation_polygon_polygon(a, pa, b, pb);
     let engine_manifold = collide(&sa, pa, &sb, pb, 0.0);
     let engine_verdict = engine_manifold.is_some();
@@ -129,7 +129,8 @@ fn engine_detection_agrees_with_parry_near_touching() {
     for i in 0..2000 {
         let (a, b) = (rng.polygon(Hull::AsDrawn), rng.polygon(Hull::AsDrawn));
         let (pa, pb) = (rng.pose(0.5), rng.pose(2.0));
-        let p = distance_polygon_polygon(&a, &pa, &b, &pb);
+        let (sa, sb) = (Shape::Polygon(a.clone()), Shape::Polygon(b.clone()));
+        let p = proximity(&sa, &pa, &sb, &pb);
         // Target signed distance ±10^u m, u ∈ [−8, −3].
         let target = 10f64.powf(rng.range(-8.0, -3.0)) * if i % 2 == 0 { 1.0 } else { -1.0 };
         let shift = (target - p.distance) * p.normal;
