@@ -100,8 +100,8 @@ fn part_pose(pose: &Isometry2<f64>, part: &crate::shape::CompoundPart) -> Isomet
 /// The exact signed distance of two shapes (m): the gap when apart, 0 when
 /// touching, −(penetration depth) when overlapping, with its normal from A
 /// to B and witness points. Every pair of convex shapes is one question
-/// about their [`ConvexProxy`]s (core and radius), answered through their
-/// Minkowski difference ([`separation`], exact up to rounding); a
+/// about their convex proxies (core and radius), answered through their
+/// Minkowski difference (`minkowski::separation`, exact up to rounding); a
 /// compound's nearest (or deepest) part speaks for it; a chain (one-sided,
 /// bounding no region, refused by the exact model) is infinitely far, with
 /// a placeholder normal (+x) and the poses' origins as witnesses; a
