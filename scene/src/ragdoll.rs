@@ -205,12 +205,7 @@ fn bone_shape(b: &Bone, k: f64) -> engine::Result<Shape> {
 
 /// The centroid of a shape in its own frame (m).
 fn centroid(shape: &Shape) -> Vector2<f64> {
-    match shape {
-        Shape::Polygon(p) => p.centroid(),
-        Shape::Compound(c) => c.centroid(),
-        Shape::Circle(_) | Shape::Chain(_) => Vector2::zeros(),
-        Shape::Rounded(r) => r.centroid(),
-    }
+    shape.frame_centroid().unwrap_or_else(Vector2::zeros)
 }
 
 /// What a ragdoll generator asks for, checked by the caller except the

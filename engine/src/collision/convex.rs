@@ -34,10 +34,25 @@ impl ConvexProxy {
     /// # Panics
     /// On a compound or a chain (take their pieces with [`piece_proxy`]).
     pub(crate) fn of(shape: &Shape, pose: &Isometry2<f64>) -> Self {
-        let (vertices, radius) = shape
-            .convex_core_at(pose)
-            .expect("a compound is queried part by part, a chain segment by segment");
-        Self { vertices, radius }
+        Self::convex(shape, pose)
+            .expect("a compound is queried part by part, a chain segment by segment")
+    }
+
+    /// The proxy of `shape` placed at `pose` when it is convex; `None` for
+    /// a compound or a chain.
+    pub(crate) fn convex(shape: &Shape, pose: &Isometry2<f64>) -> Option<Self> {
+        let (vertices, radius) = shape.convex_core_at(pose)?;
+        Some(Self { vertices, radius })
+    }
+
+    /// Whether every core coordinate and the radius are finite (what the
+    /// queries of [`super::minkowski`] assume).
+    pub(crate) fn is_finite(&self) -> bool {
+        self.radius.is_finite()
+            && self
+                .vertices
+                .iter()
+                .all(|v| v.x.is_finite() && v.y.is_finite())
     }
 
     /// The tightest axis-aligned box around the proxy (m).

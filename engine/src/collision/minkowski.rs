@@ -25,6 +25,7 @@
 //! operations for the engine's polygons.
 
 use super::convex::ConvexProxy;
+use super::manifold::Proximity;
 use super::ray::{ProxyRayHit, ray_cast};
 use crate::shape::cross;
 use nalgebra::Vector2;
@@ -234,7 +235,11 @@ pub(crate) fn separation(a: &ConvexProxy, b: &ConvexProxy) -> Separation {
         } else if d > 0.0 {
             -closest.point / d
         } else {
-            Vector2::y() // touching cores at a vertex: any direction
+            // Cores meeting at a point (concentric circles): any direction
+            // is one; −y, so that the normal from A to B is +y, the
+            // direction the contact manifolds push concentric circles
+            // apart (`circle_circle.rs`).
+            -Vector2::y()
         };
         (d, normal)
     };
@@ -244,6 +249,19 @@ pub(crate) fn separation(a: &ConvexProxy, b: &ConvexProxy) -> Separation {
         normal,
         point_a: core_a - a.radius * normal,
         point_b: core_b + b.radius * normal,
+    }
+}
+
+/// The same answer in the narrow phase's terms: the normal from A to B
+/// (the opposite of [`Separation::normal`]), the rest unchanged.
+impl From<Separation> for Proximity {
+    fn from(s: Separation) -> Self {
+        Proximity {
+            distance: s.distance,
+            normal: -s.normal,
+            point_a: s.point_a,
+            point_b: s.point_b,
+        }
     }
 }
 

@@ -26,7 +26,10 @@
 //!    polygons ([`polygon_polygon`]; boxes take the same path, the seed's
 //!    OBB test being that test restricted to two boxes' four normals), and
 //!    exact tests for circles ([`polygon_circle`], [`circle_circle`]). A touching pair gives a contact [`Manifold`]: one
-//!    normal and up to two points with their depths ([`manifold`]).
+//!    normal and up to two points with their depths ([`manifold`]). The
+//!    signed distance of any two convex shapes ([`proximity`]) is written
+//!    once, on their convex proxies (a core and a radius, `convex.rs`),
+//!    through their Minkowski difference (`minkowski.rs`).
 //! 3. **Time of impact** ([`time_of_impact`], seed §7.2, Fig. 7.7–7.8): when
 //!    a pair interpenetrates at the end of a step, the first time in the step
 //!    at which its separation is within a tolerance ε, by the seed's
@@ -68,18 +71,14 @@ pub(crate) mod test_rng;
 
 pub use aabb::Aabb;
 pub use broad_phase::{SweepAndPrune, brute_force_pairs};
-pub use circle_circle::{
-    collide_circle_circle, collide_circle_circle_with_margin, distance_circle_circle,
-};
+pub use circle_circle::{collide_circle_circle, collide_circle_circle_with_margin};
 pub use dynamic_tree::{DynamicTree, ProxyId};
 pub use manifold::{Contact, Manifold, ManifoldPoint, Proximity};
 pub use narrow_phase::{collide, inner_radius, proximity};
-pub use polygon_circle::{
-    collide_polygon_circle, collide_polygon_circle_with_margin, distance_polygon_circle,
-};
+pub use polygon_circle::{collide_polygon_circle, collide_polygon_circle_with_margin};
 pub use polygon_polygon::{
     SeparatingAxis, collide_polygon_polygon, collide_polygon_polygon_with_margin,
-    distance_polygon_polygon, separation_polygon_polygon,
+    separation_polygon_polygon,
 };
 pub use time_of_impact::{
     Impact, Motion, ToiError, ToiOptions, toi_bisection, toi_chain_segment,

@@ -7,31 +7,33 @@
 //!   ([`super::collide`]);
 //! - `features`: the same manifold with the features the exact model's
 //!   persistent contacts follow (`features.rs`), optionally clipped on a
-//!   given reference face;
-//! - `proximity`: the exact signed distance ([`super::proximity`]).
+//!   given reference face.
+//!
+//! The signed distance is not here: it is written once for every pair of
+//! convex shapes, on their convex proxies ([`super::proximity`]).
 //!
 //! Kinds, in table order: polygon, circle, rounded (segment, capsule,
 //! rounded polygon), chain. A compound is not a kind here: the narrow
 //! phase splits it into its parts before asking the table. A chain is
 //! one-sided and collided by the soft step only: its row reports no
-//! contact and an infinite distance.
+//! contact.
 //!
 //! Adding a shape kind is one row and one column here, and its pair
 //! functions in their own file (as `rounded_pair.rs` for the rounded
 //! kinds). A pair whose first shape is the later kind in table order is
 //! the mirrored pair with its result flipped.
 
-use super::circle_circle::{collide_circle_circle_with_margin, distance_circle_circle};
+use super::circle_circle::collide_circle_circle_with_margin;
 use super::features::{
     ContactFeatures, circle_circle_contact, flipped, polygon_circle_contact,
     polygon_polygon_features,
 };
-use super::manifold::{Manifold, Proximity};
-use super::polygon_circle::{collide_polygon_circle_with_margin, distance_polygon_circle};
-use super::polygon_polygon::{Face, collide_polygon_polygon_with_margin, distance_polygon_polygon};
-use super::rounded_pair::{Core, core_circle, core_circle_proximity, core_pair, core_proximity};
+use super::manifold::Manifold;
+use super::polygon_circle::collide_polygon_circle_with_margin;
+use super::polygon_polygon::{Face, collide_polygon_polygon_with_margin};
+use super::rounded_pair::{Core, core_circle, core_pair};
 use crate::shape::{Circle, Shape};
-use nalgebra::{Isometry2, Vector2};
+use nalgebra::Isometry2;
 
 /// The contact manifold of a pair within a margin (m), `None` when apart.
 pub(crate) type ManifoldFn =
@@ -48,9 +50,6 @@ pub(crate) type FeaturesFn = fn(
     Option<Face>,
 ) -> Option<(Manifold, ContactFeatures)>;
 
-/// The exact signed distance of a pair.
-pub(crate) type ProximityFn = fn(&Shape, &Isometry2<f64>, &Shape, &Isometry2<f64>) -> Proximity;
-
 /// The functions of one pair of shape kinds.
 #[derive(Clone, Copy)]
 pub(crate) struct PairFunctions {
@@ -58,8 +57,6 @@ pub(crate) struct PairFunctions {
     pub manifold: ManifoldFn,
     /// The manifold and its features.
     pub features: FeaturesFn,
-    /// The signed distance.
-    pub proximity: ProximityFn,
 }
 
 /// The table's index of a shape's kind; `None` for a compound.
@@ -92,12 +89,6 @@ const POLYGON_POLYGON: PairFunctions = PairFunctions {
         };
         polygon_polygon_features(a, pa, b, pb, margin, face)
     },
-    proximity: |a, pa, b, pb| {
-        let (Shape::Polygon(a), Shape::Polygon(b)) = (a, b) else {
-            unreachable!("the table's polygon–polygon cell")
-        };
-        distance_polygon_polygon(a, pa, b, pb)
-    },
 };
 
 const POLYGON_CIRCLE: PairFunctions = PairFunctions {
@@ -113,12 +104,6 @@ const POLYGON_CIRCLE: PairFunctions = PairFunctions {
         };
         polygon_circle_contact(a, pa, b, pb, margin)
     },
-    proximity: |a, pa, b, pb| {
-        let (Shape::Polygon(a), Shape::Circle(b)) = (a, b) else {
-            unreachable!("the table's polygon–circle cell")
-        };
-        distance_polygon_circle(a, pa, b, pb)
-    },
 };
 
 const CIRCLE_CIRCLE: PairFunctions = PairFunctions {
@@ -133,12 +118,6 @@ const CIRCLE_CIRCLE: PairFunctions = PairFunctions {
             unreachable!("the table's circle–circle cell")
         };
         circle_circle_contact(a, pa, b, pb, margin)
-    },
-    proximity: |a, pa, b, pb| {
-        let (Shape::Circle(a), Shape::Circle(b)) = (a, b) else {
-            unreachable!("the table's circle–circle cell")
-        };
-        distance_circle_circle(a, pa, b, pb)
     },
 };
 
@@ -172,7 +151,6 @@ const CORE_CORE: PairFunctions = PairFunctions {
         core_pair(core_of(a), pa, core_of(b), pb, margin, None).map(|(m, _)| m)
     },
     features: |a, pa, b, pb, margin, face| core_pair(core_of(a), pa, core_of(b), pb, margin, face),
-    proximity: |a, pa, b, pb| core_proximity(core_of(a), pa, core_of(b), pb),
 };
 
 /// A rounded shape against a circle.
@@ -183,22 +161,14 @@ const ROUNDED_CIRCLE: PairFunctions = PairFunctions {
     features: |a, pa, b, pb, margin, _| {
         core_circle(core_of(a), pa, circle_of(b).radius, pb, margin)
     },
-    proximity: |a, pa, b, pb| core_circle_proximity(core_of(a), pa, circle_of(b).radius, pb),
 };
 
 /// A chain against anything: the exact model refuses chains (the soft
 /// step collides their segments, `chain_segment.rs`); a chain bounds no
-/// region (it is one-sided), so it is reported infinitely far, with a
-/// placeholder normal.
+/// region (it is one-sided), so it reports no contact.
 const CHAIN: PairFunctions = PairFunctions {
     manifold: |_, _, _, _, _| None,
     features: |_, _, _, _, _, _| None,
-    proximity: |_, pa, _, pb| Proximity {
-        distance: f64::INFINITY,
-        normal: Vector2::x(),
-        point_a: pa.translation.vector,
-        point_b: pb.translation.vector,
-    },
 };
 
 /// The pair `(b, a)` of a cell, flipped: circle against polygon, circle
@@ -213,7 +183,6 @@ macro_rules! mirrored {
                 let face = face.map(|(reference_is_a, edge)| (!reference_is_a, edge));
                 ($cell.features)(b, pb, a, pa, margin, face).map(|(m, f)| (m.flipped(), flipped(f)))
             },
-            proximity: |a, pa, b, pb| ($cell.proximity)(b, pb, a, pa).flipped(),
         }
     };
 }

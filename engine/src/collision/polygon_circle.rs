@@ -3,7 +3,7 @@
 //! own closed form). `polygon_circle_local` works in the polygon's frame
 //! and is Box2D v3's `b2CollidePolygonAndCircle`; the soft step turns its
 //! result into a speculative point (`soft_step/manifold.rs`), the exact
-//! model into a world [`Proximity`] and the feature it persists on.
+//! model into its one-point manifold and the feature it persists on.
 //!
 //! With circle centre c and radius r (m), and for each edge i (vertices
 //! v_i, v_{i+1}, outward unit normal n_i) the separation
@@ -24,34 +24,6 @@ use nalgebra::{Isometry2, Point2, Vector2};
 pub(crate) fn edge_normal(p: Vector2<f64>, q: Vector2<f64>) -> Vector2<f64> {
     let e = q - p;
     Vector2::new(e.y, -e.x) / e.norm()
-}
-
-/// The closest point to `c` on the segment `[p, q]`.
-pub(crate) fn closest_on_segment(
-    c: Vector2<f64>,
-    p: Vector2<f64>,
-    q: Vector2<f64>,
-) -> Vector2<f64> {
-    closest_on_segment_at(c, p, q).0
-}
-
-/// The closest point to `c` on the segment `[p, q]`, and the unclamped
-/// parameter `t` of the foot of `c` on its line (`p + t (q − p)`).
-fn closest_on_segment_at(c: Vector2<f64>, p: Vector2<f64>, q: Vector2<f64>) -> (Vector2<f64>, f64) {
-    let e = q - p;
-    let t = (c - p).dot(&e) / e.norm_squared();
-    (p + t.clamp(0.0, 1.0) * e, t)
-}
-
-/// Exact signed distance (m) from a convex polygon (A) to a circle (B), with
-/// the normal from the polygon to the circle and witness points.
-pub fn distance_polygon_circle(
-    polygon: &ConvexPolygon,
-    pose_a: &Isometry2<f64>,
-    circle: &Circle,
-    pose_b: &Isometry2<f64>,
-) -> Proximity {
-    closest_polygon_circle(polygon, pose_a, circle, pose_b).0
 }
 
 /// The polygon's feature nearest a circle's centre.
@@ -139,8 +111,13 @@ pub(crate) fn polygon_circle_local(
     Some((contact, feature))
 }
 
-/// [`distance_polygon_circle`] and the polygon's feature it is attained at:
-/// `polygon_circle_local` in the polygon's frame, turned to the world.
+/// The exact model's polygon–circle contact, before its margin: the signed
+/// distance, normal and witness points of `polygon_circle_local` in the
+/// polygon's frame, turned to the world, and the polygon's feature they
+/// are attained at (which the persistent contact follows). The manifold
+/// is made of these (`collide_polygon_circle_with_margin`, and
+/// `features.rs` with the feature); the distance of two shapes in general
+/// is [`super::proximity`].
 pub(crate) fn closest_polygon_circle(
     polygon: &ConvexPolygon,
     pose_a: &Isometry2<f64>,
@@ -179,7 +156,7 @@ pub fn collide_polygon_circle_with_margin(
     pose_b: &Isometry2<f64>,
     margin: f64,
 ) -> Option<Manifold> {
-    let p = distance_polygon_circle(polygon, pose_a, circle, pose_b);
+    let (p, _) = closest_polygon_circle(polygon, pose_a, circle, pose_b);
     (p.distance <= margin).then(|| p.one_point_manifold())
 }
 
@@ -253,7 +230,7 @@ mod tests {
     fn apart_circle_has_an_exact_distance_to_the_corner() {
         let c = Circle::new(0.25).unwrap();
         assert!(collide_polygon_circle(&unit_box(), &at(0.0, 0.0), &c, &at(1.5, 1.5)).is_none());
-        let p = distance_polygon_circle(&unit_box(), &at(0.0, 0.0), &c, &at(1.5, 1.5));
+        let (p, _) = closest_polygon_circle(&unit_box(), &at(0.0, 0.0), &c, &at(1.5, 1.5));
         assert!((p.distance - (SQRT_2 - 0.25)).abs() < 1e-15);
         assert!((p.point_a - Vector2::new(0.5, 0.5)).norm() < 1e-15);
         assert!((p.point_b - p.point_a - p.distance * p.normal).norm() < 1e-15);

@@ -36,8 +36,8 @@
 //! clipped points within the margin (the deepest incident vertex when none
 //! is), mapped back to the world frame.
 
-use super::manifold::{Manifold, ManifoldPoint, Proximity};
-use super::polygon_circle::{closest_on_segment, edge_normal};
+use super::manifold::{Manifold, ManifoldPoint};
+use super::polygon_circle::edge_normal;
 pub(crate) use super::polygon_polygon_local::IncidentPoint;
 use super::polygon_polygon_local::{Faces, Placed, RoundPolygon, Scratch, separating_axes};
 use crate::shape::ConvexPolygon;
@@ -120,7 +120,7 @@ fn reference_normal(placed: &Placed, faces: Faces) -> (Vector2<f64>, Vector2<f64
 
 /// Signed separation of two convex polygons along their best SAT axis:
 /// positive when apart (a lower bound of the distance, see
-/// [`distance_polygon_polygon`] for the exact one), −(penetration depth)
+/// [`super::proximity`] for the exact one), −(penetration depth)
 /// when overlapping; the axis points from A to B.
 pub fn separation_polygon_polygon(
     a: &ConvexPolygon,
@@ -328,95 +328,12 @@ pub fn collide_polygon_polygon(
     collide_polygon_polygon_with_margin(a, pose_a, b, pose_b, 0.0)
 }
 
-/// Exact signed distance between two convex polygons (m), for validation
-/// and time of impact.
-///
-/// When apart, the closest pair of points always involves a vertex of one
-/// polygon, so the distance is the smallest vertex–edge distance over the
-/// vertices of each against the edges of the other (O(n·m)). When they
-/// overlap it is the SAT separation, −(penetration depth), with the
-/// deepest incident vertex and its projection on the reference face's line
-/// as witnesses.
-pub fn distance_polygon_polygon(
-    a: &ConvexPolygon,
-    pose_a: &Isometry2<f64>,
-    b: &ConvexPolygon,
-    pose_b: &Isometry2<f64>,
-) -> Proximity {
-    let mut pair = Pair::of(a, b);
-    let nan = Vector2::new(f64::NAN, f64::NAN);
-    let Some(placed) = pair.place(a, pose_a, b, pose_b, f64::INFINITY) else {
-        return Proximity {
-            distance: f64::NAN,
-            normal: nan,
-            point_a: nan,
-            point_b: nan,
-        };
-    };
-    let to_world = |p: Vector2<f64>| {
-        pose_a
-            .transform_point(&Point2::from(p + placed.origin))
-            .coords
-    };
-    let separation = placed.core_separation();
-    if separation <= 0.0 {
-        let faces = placed.faces();
-        let (n, normal) = reference_normal(&placed, faces);
-        let incident = if faces.flip {
-            placed.a_vertices
-        } else {
-            placed.b_vertices
-        };
-        let mut deepest = 0;
-        for (k, v) in incident.iter().enumerate() {
-            if n.dot(v) < n.dot(&incident[deepest]) {
-                deepest = k;
-            }
-        }
-        let deep = incident[deepest];
-        let on_face = deep - separation * n;
-        let (point_a, point_b) = if faces.flip {
-            (deep, on_face)
-        } else {
-            (on_face, deep)
-        };
-        return Proximity {
-            distance: separation,
-            normal: pose_a.rotation * normal,
-            point_a: to_world(point_a),
-            point_b: to_world(point_b),
-        };
-    }
-    // Apart: closest vertex–edge pair, in both directions.
-    let mut best = (f64::INFINITY, Vector2::zeros(), Vector2::zeros());
-    let mut scan = |from: &[Vector2<f64>], to: &[Vector2<f64>], from_is_a: bool| {
-        let m = to.len();
-        for w in from {
-            for i in 0..m {
-                let q = closest_on_segment(*w, to[i], to[(i + 1) % m]);
-                let d2 = (w - q).norm_squared();
-                if d2 < best.0 {
-                    best = if from_is_a { (d2, *w, q) } else { (d2, q, *w) };
-                }
-            }
-        }
-    };
-    scan(placed.a_vertices, placed.b_vertices, true);
-    scan(placed.b_vertices, placed.a_vertices, false);
-    let (d2, on_a, on_b) = best;
-    let distance = d2.sqrt();
-    Proximity {
-        distance,
-        normal: pose_a.rotation * ((on_b - on_a) / distance),
-        point_a: to_world(on_a),
-        point_b: to_world(on_b),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::collision::proximity;
     use crate::collision::test_rng::Rng;
+    use crate::shape::Shape;
     use std::f64::consts::{FRAC_PI_4, PI, SQRT_2};
 
     fn unit_box() -> ConvexPolygon {
@@ -518,7 +435,8 @@ mod tests {
         assert!(collide_polygon_polygon(&a, &pa, &b, &pb).is_none());
         let s = separation_polygon_polygon(&a, &pa, &b, &pb);
         assert!((s.separation - 0.5).abs() < 1e-15);
-        let d = distance_polygon_polygon(&a, &pa, &b, &pb);
+        let (sa, sb) = (Shape::Polygon(a.clone()), Shape::Polygon(b.clone()));
+        let d = proximity(&sa, &pa, &sb, &pb);
         assert!((d.distance - 0.5 * SQRT_2).abs() < 1e-15);
         assert!((d.point_a - Vector2::new(0.5, 0.5)).norm() < 1e-15);
         assert!((d.point_b - Vector2::new(1.0, 1.0)).norm() < 1e-15);
@@ -548,8 +466,9 @@ mod tests {
             let ab = separation_polygon_polygon(&a, &pa, &b, &pb);
             let ba = separation_polygon_polygon(&b, &pb, &a, &pa);
             assert!((ab.separation - ba.separation).abs() < 1e-12);
-            let dab = distance_polygon_polygon(&a, &pa, &b, &pb);
-            let dba = distance_polygon_polygon(&b, &pb, &a, &pa);
+            let (sa, sb) = (Shape::Polygon(a.clone()), Shape::Polygon(b.clone()));
+            let dab = proximity(&sa, &pa, &sb, &pb);
+            let dba = proximity(&sb, &pb, &sa, &pa);
             assert!((dab.distance - dba.distance).abs() < 1e-12);
             match (
                 collide_polygon_polygon(&a, &pa, &b, &pb),

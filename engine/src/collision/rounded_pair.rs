@@ -1,4 +1,4 @@
-//! The exact model's contacts and distances of a rounded shape (segment,
+//! The exact model's contacts of a rounded shape (segment,
 //! capsule, rounded polygon: [`crate::shape::RoundedConvex`]) against a
 //! circle, a polygon or another rounded shape, built on the geometry
 //! written once for both contact models: `polygon_polygon_local.rs` (cores
@@ -19,8 +19,8 @@
 //!   points, each with its separation between the rounded surfaces;
 //! - when the cores are apart the best axis is only a lower bound of their
 //!   distance, so the nearest points of the cores are found exactly (each
-//!   vertex of one against each edge of the other, O(n·m), as
-//!   `distance_polygon_polygon` does). A vertex nearest the interior of an
+//!   vertex of one against each edge of the other, O(n·m)), to choose the
+//!   features the contact is built on. A vertex nearest the interior of an
 //!   edge makes that edge the reference face (its normal is then the
 //!   exact direction), clipped as above: a capsule lying on a box keeps
 //!   two points. A vertex nearest a vertex (a capsule's cap against a box
@@ -152,65 +152,6 @@ fn place<'s>(
         radius: b.radius,
     };
     separating_axes(&ra, &rb, xf, Vector2::zeros(), beyond, scratch)
-}
-
-/// The exact signed distance of cores `a` at `pose_a` and `b` at `pose_b`
-/// less both radii, with its normal from A to B and witness points on both
-/// rounded surfaces (world, m).
-pub(crate) fn core_proximity(
-    a: Core,
-    pose_a: &Isometry2<f64>,
-    b: Core,
-    pose_b: &Isometry2<f64>,
-) -> Proximity {
-    let (na, nb) = (normals_of(a.vertices), normals_of(b.vertices));
-    let mut scratch = Scratch::default();
-    let xf = pose_a.inverse() * pose_b;
-    let nan = Vector2::new(f64::NAN, f64::NAN);
-    let Some(placed) = place(a, &na, b, &nb, &xf, f64::INFINITY, &mut scratch) else {
-        // Only a non-finite pose leaves no axis.
-        return Proximity {
-            distance: f64::NAN,
-            normal: nan,
-            point_a: nan,
-            point_b: nan,
-        };
-    };
-    let to_world = |p: Vector2<f64>| pose_a.transform_point(&Point2::from(p)).coords;
-    let (ra, rb) = (a.radius, b.radius);
-    let separation = placed.core_separation();
-    let (on_a, on_b, normal, core_distance) = if separation <= 0.0 {
-        // Overlapping cores: the exact depth along the best axis, the
-        // deepest incident vertex and its foot on the reference line.
-        let faces = placed.faces();
-        let (n, incident) = if faces.flip {
-            (placed.b_normals[faces.edge_b], placed.a_vertices)
-        } else {
-            (placed.a_normals[faces.edge_a], placed.b_vertices)
-        };
-        let deep = incident
-            .iter()
-            .copied()
-            .min_by(|p, q| n.dot(p).total_cmp(&n.dot(q)))
-            .expect("a core has vertices");
-        let foot = deep - separation * n;
-        if faces.flip {
-            (deep, foot, -n, separation)
-        } else {
-            (foot, deep, n, separation)
-        }
-    } else {
-        let (on_a, on_b, _) = nearest(&placed);
-        let gap = (on_b - on_a).norm();
-        (on_a, on_b, (on_b - on_a) / gap, gap)
-    };
-    let distance = core_distance - ra - rb;
-    Proximity {
-        distance,
-        normal: pose_a.rotation * normal,
-        point_a: to_world(on_a + ra * normal),
-        point_b: to_world(on_b - rb * normal),
-    }
 }
 
 /// The contact of cores `a` at `pose_a` and `b` at `pose_b` when their
@@ -380,7 +321,9 @@ fn clip_on(
 }
 
 /// A core (A) against a circle of `circle_radius` (m) at `pose_b`: the
-/// exact proximity and the core's feature nearest the centre.
+/// signed distance, normal and witnesses the contact is made of, and the
+/// core's feature nearest the centre (which the persistent contact
+/// follows).
 fn core_circle_closest(
     core: Core,
     pose_a: &Isometry2<f64>,
@@ -410,17 +353,6 @@ fn core_circle_closest(
     )
 }
 
-/// The exact signed distance of a core (A) and a circle of
-/// `circle_radius` (m) centred at `pose_b`'s position.
-pub(crate) fn core_circle_proximity(
-    core: Core,
-    pose_a: &Isometry2<f64>,
-    circle_radius: f64,
-    pose_b: &Isometry2<f64>,
-) -> Proximity {
-    core_circle_closest(core, pose_a, circle_radius, pose_b).0
-}
-
 /// The contact of a core (A) and a circle (B) within `margin` (m): one
 /// point midway between the surfaces, and its features.
 pub(crate) fn core_circle(
@@ -442,6 +374,7 @@ pub(crate) fn core_circle(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::collision::proximity;
     use crate::shape::Shape;
     use std::f64::consts::FRAC_PI_2;
 
@@ -473,7 +406,11 @@ mod tests {
             radius: cr,
         };
         let origin = at(0.0, 0.0, 0.0);
-        let p = core_proximity(ground, &origin, pill, &at(1.0, 1.0, 0.0));
+        let (ground_shape, pill_shape) = (
+            Shape::segment(Vector2::new(-5.0, 0.0), Vector2::new(5.0, 0.0)).unwrap(),
+            Shape::capsule(2.0, 0.25).unwrap(),
+        );
+        let p = proximity(&ground_shape, &origin, &pill_shape, &at(1.0, 1.0, 0.0));
         assert!((p.distance - 0.75).abs() < 1e-15, "{p:?}");
         assert!((p.normal - Vector2::y()).norm() < 1e-15, "{p:?}");
         let (m, _) = core_pair(ground, &origin, pill, &at(1.0, 0.15, 0.0), 0.0, None).unwrap();
@@ -482,7 +419,12 @@ mod tests {
             assert!((q.depth - 0.1).abs() < 1e-15, "{m:?}");
             assert!((q.point.y + 0.05).abs() < 1e-15, "{m:?}");
         }
-        let p = core_proximity(ground, &origin, pill, &at(0.0, 0.4, FRAC_PI_2));
+        let p = proximity(
+            &ground_shape,
+            &origin,
+            &pill_shape,
+            &at(0.0, 0.4, FRAC_PI_2),
+        );
         assert!((p.distance + 0.6 + 0.25).abs() < 1e-12, "{p:?}");
         assert!((p.point_b - p.point_a - p.distance * p.normal).norm() < 1e-12);
     }
@@ -527,10 +469,10 @@ mod tests {
         assert_eq!(m.points().len(), 1);
         assert!((m.points()[0].depth - 0.1).abs() < 1e-15, "{m:?}");
         assert!(matches!(f, ContactFeatures::Round { id, .. } if id.is_vertex_pair()));
-        let p = core_proximity(
-            boxed,
+        let p = proximity(
+            &Shape::rectangle(1.0, 1.0).unwrap(),
             &at(0.0, 0.0, 0.0),
-            pill,
+            &Shape::capsule(1.0, 0.3).unwrap(),
             &at(centre.x, centre.y, angle),
         );
         assert!(

@@ -12,7 +12,7 @@
 const REST_STEP: usize = 276;
 /// `World::state_hash` of the world at rest: FNV-1a of the x, y and angle
 /// bits of every body in id order, the ground (body 0) included.
-const HINGES_HASH: u64 = 0x7112_5ec3_6656_36f4;
+const HINGES_HASH: u64 = 0xe339_d38e_a838_9b4d;
 
 /// Where to update the constants, for the failure messages.
 const UPDATE: &str = "if the soft step's results changed on purpose (a new solve order, a new \

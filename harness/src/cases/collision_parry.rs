@@ -17,7 +17,7 @@
 use super::{Case, CaseReport, Headline, Snapshots};
 use crate::row::{RowKind, RowSink};
 use anyhow::Result;
-use engine::validation::collision::{collide, distance_polygon_polygon, separation_polygon_polygon};
+use engine::validation::collision::{collide, proximity, separation_polygon_polygon};
 use engine::{ConvexPolygon, Shape};
 use nalgebra::Isometry2;
 use references::parry_queries::exact::{
@@ -97,7 +97,7 @@ fn compare(
     let (sa, sb) = (Shape::Polygon(a.clone()), Shape::Polygon(b.clone()));
     s.pairs += 1;
     let t0 = Instant::now();
-    let exact = distance_polygon_polygon(a, pa, b, pb);
+    let exact = proximity(&sa, pa, &sb, pb);
     let sat = separation_polygon_polygon(a, pa, b, pb);
     let manifold = collide(&sa, pa, &sb, pb, 0.0);
     let t1 = Instant::now();
@@ -239,7 +239,8 @@ pub fn agreement(pairs: usize, near_pairs: usize) -> (Agreement, Agreement) {
             rng.polygon(Hull::EveryPointAVertex),
         );
         let (pa, pb) = (rng.pose(0.5), rng.pose(2.0));
-        let p = distance_polygon_polygon(&a, &pa, &b, &pb);
+        let (sa, sb) = (Shape::Polygon(a.clone()), Shape::Polygon(b.clone()));
+        let p = proximity(&sa, &pa, &sb, &pb);
         let target = 10f64.powf(rng.range(-8.0, -3.0)) * if i % 2 == 0 { 1.0 } else { -1.0 };
         let shift = (target - p.distance) * p.normal;
         let pb = Isometry2::from_parts((pb.translation.vector + shift).into(), pb.rotation);

@@ -7,8 +7,8 @@
 use super::exact::{Hull, Rng, overlap_along, signed_distance_to_polygon, world_vertices};
 use super::*;
 use engine::validation::collision::{
-    Motion, ToiOptions, collide, distance_polygon_polygon, proximity, separation_polygon_polygon,
-    toi_bisection, toi_conservative_advancement,
+    Motion, ToiOptions, collide, proximity, separation_polygon_polygon, toi_bisection,
+    toi_conservative_advancement,
 };
 use engine::{Circle, ConvexPolygon};
 
@@ -18,6 +18,11 @@ struct Agreement {
     overlapping: usize,
     near_touching: usize,
     verdict_disagreements: usize,
+    /// Of those, where an exact check proves the engine right: a vertex
+    /// of one polygon inside the other proves an overlap, a positive
+    /// separation along an edge normal (the SAT's, far above its rounding)
+    /// proves a gap.
+    verdict_engine_right: usize,
     max_depth_diff: f64,
     max_normal_diff: f64,
     max_distance_diff: f64,
@@ -42,7 +47,7 @@ fn compare_polygon_pair(
     stats.vertex_counts[a.vertices().len()] += 1;
     stats.vertex_counts[b.vertices().len()] += 1;
 
-    let exact = distance_polygon_polygon(a, pa, b, pb);
+    let exact = proximity(&sa, pa, &sb, pb);
     let sat = separation_polygon_polygon(a, pa, b, pb);
     let engine_manifold = collide(&sa, pa, &sb, pb, 0.0);
     let engine_verdict = engine_manifold.is_some();
@@ -77,6 +82,12 @@ fn compare_polygon_pair(
             a.vertices(),
             b.vertices(),
         );
+        let engine_right = if engine_verdict {
+            deepest_a.min(deepest_b) < 0.0
+        } else {
+            sat.separation > 0.0
+        };
+        stats.verdict_engine_right += usize::from(engine_right);
         return;
     }
     if !engine_verdict {
@@ -129,7 +140,8 @@ fn engine_detection_agrees_with_parry_near_touching() {
     for i in 0..2000 {
         let (a, b) = (rng.polygon(Hull::AsDrawn), rng.polygon(Hull::AsDrawn));
         let (pa, pb) = (rng.pose(0.5), rng.pose(2.0));
-        let p = distance_polygon_polygon(&a, &pa, &b, &pb);
+        let (sa, sb) = (Shape::Polygon(a.clone()), Shape::Polygon(b.clone()));
+        let p = proximity(&sa, &pa, &sb, &pb);
         // Target signed distance ±10^u m, u ∈ [−8, −3].
         let target = 10f64.powf(rng.range(-8.0, -3.0)) * if i % 2 == 0 { 1.0 } else { -1.0 };
         let shift = (target - p.distance) * p.normal;
@@ -137,7 +149,10 @@ fn engine_detection_agrees_with_parry_near_touching() {
         compare_polygon_pair(&a, &pa, &b, &pb, &mut stats);
     }
     println!("near-touching polygon pairs vs parry: {stats:?}");
-    assert_eq!(stats.verdict_disagreements, 0);
+    // Within 1e-8 m of touching parry's intersection test may err (its
+    // GJK tolerance); every disagreement must be one the exact check
+    // proves the engine right on.
+    assert_eq!(stats.verdict_disagreements, stats.verdict_engine_right);
     assert_eq!(stats.engine_worse, 0);
     assert!(stats.max_depth_diff <= 1e-9 && stats.max_normal_diff <= 1e-9);
     assert!(stats.max_distance_diff <= 1e-9);

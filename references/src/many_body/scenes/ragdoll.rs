@@ -237,12 +237,7 @@ pub fn ragdoll(
         } else {
             Shape::Polygon(leg)
         };
-        let centroid = match &shape {
-            Shape::Compound(c) => c.centroid(),
-            Shape::Polygon(p) => p.centroid(),
-            Shape::Circle(_) | Shape::Chain(_) => Vector2::zeros(),
-            Shape::Rounded(r) => r.centroid(),
-        };
+        let centroid = shape.frame_centroid().unwrap_or_else(Vector2::zeros);
         let origin = [px, py + bone.y * s];
         let mut body = SceneBody::dynamic(
             shape.centered(),
