@@ -99,6 +99,14 @@ pub(crate) fn placed_bounds(
     (min, max)
 }
 
+/// The index of the first of `points` with a non-finite coordinate, if
+/// any: the check every outline's constructor makes first.
+pub(crate) fn first_non_finite(points: &[Vector2<f64>]) -> Option<usize> {
+    points
+        .iter()
+        .position(|v| !(v.x.is_finite() && v.y.is_finite()))
+}
+
 /// `points` (m, the shape's frame) placed at `pose` (m, world frame).
 pub(crate) fn placed<'a>(
     points: &'a [Vector2<f64>],

@@ -74,7 +74,7 @@ pub use broad_phase::{SweepAndPrune, brute_force_pairs};
 pub use circle_circle::{collide_circle_circle, collide_circle_circle_with_margin};
 pub use dynamic_tree::{DynamicTree, ProxyId};
 pub use manifold::{Contact, Manifold, ManifoldPoint, Proximity};
-pub use narrow_phase::{collide, inner_radius, proximity};
+pub use narrow_phase::{collide, proximity};
 pub use polygon_circle::{collide_polygon_circle, collide_polygon_circle_with_margin};
 pub use polygon_polygon::{
     SeparatingAxis, collide_polygon_polygon, collide_polygon_polygon_with_margin,

@@ -148,21 +148,6 @@ pub fn proximity(
     separation(&pa, &pb).into()
 }
 
-/// The radius (m) of the largest circle about the body origin (the centre
-/// of mass) inside the shape ([`Shape::inner_radius`]): half the thinnest
-/// the shape can be across its centre.
-pub fn inner_radius(shape: &Shape) -> f64 {
-    shape.inner_radius()
-}
-
-/// The largest distance (m) from the body origin (the centre of rotation)
-/// to a point of the shape whose position changes when the body turns
-/// ([`Shape::rotation_radius`]). Bounds the speed of a boundary point:
-/// `|ω| · rotation_radius`.
-pub fn rotation_radius(shape: &Shape) -> f64 {
-    shape.rotation_radius()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -300,9 +285,9 @@ mod tests {
     #[test]
     fn rotation_radius_of_a_unit_box_is_its_half_diagonal() {
         let square = Shape::rectangle(1.0, 1.0).unwrap();
-        assert!((rotation_radius(&square) - 0.5f64.hypot(0.5)).abs() < 1e-16);
+        assert!((square.rotation_radius() - 0.5f64.hypot(0.5)).abs() < 1e-16);
         assert_eq!(
-            rotation_radius(&Shape::Circle(Circle::new(2.0).unwrap())),
+            Shape::Circle(Circle::new(2.0).unwrap()).rotation_radius(),
             0.0
         );
     }

@@ -21,7 +21,7 @@
 //! - [`toi_conservative_advancement`] (Mirtich 1996): from the current
 //!   distance d and normal n, no point can close the gap faster than
 //!   `|v_rel·n| + |ω_a| r_a + |ω_b| r_b` (r the shape's
-//!   [`rotation_radius`]), so the pair cannot touch before `t + d/bound`;
+//!   [`Shape::rotation_radius`]), so the pair cannot touch before `t + d/bound`;
 //!   advance to it and repeat until d ≤ ε. It never steps past the first
 //!   contact and does not tunnel, and returns a time at which the pair is
 //!   apart by at most ε.
@@ -30,7 +30,7 @@
 //! a margin of ε so that a pair stopped just short of contact has one.
 
 use super::manifold::{Manifold, Proximity};
-use super::narrow_phase::{collide, proximity, rotation_radius};
+use super::narrow_phase::{collide, proximity};
 use crate::shape::{ChainSegment, Shape, cross};
 use nalgebra::{Isometry2, Point2, Translation2, UnitComplex, Vector2};
 use thiserror::Error;
@@ -294,8 +294,8 @@ pub fn toi_conservative_advancement(
         b,
         motion_b,
     };
-    let angular = motion_a.angular_velocity.abs() * rotation_radius(a)
-        + motion_b.angular_velocity.abs() * rotation_radius(b);
+    let angular = motion_a.angular_velocity.abs() * a.rotation_radius()
+        + motion_b.angular_velocity.abs() * b.rotation_radius();
     let relative = motion_b.linear_velocity - motion_a.linear_velocity;
     let mut t = 0.0;
     let mut p = probe.proximity(t);

@@ -52,7 +52,6 @@ use super::joints::ExactJoints;
 use super::ode::{Layout, WorldOde};
 use crate::body::{Body, BodyState};
 use crate::collision::features::ContactFeatures;
-use crate::collision::narrow_phase::rotation_radius;
 use crate::collision::narrow_phase::{collide_on_face, equally_deep};
 use crate::collision::polygon_polygon::Face;
 use crate::collision::{Aabb, Manifold, SweepAndPrune};
@@ -197,7 +196,7 @@ impl ContactPipeline {
                     .max(states[i].angular_velocity.abs());
                 // The shape sweeps between its two boxes, off the chord by
                 // at most r·|ω|max·h (rotation) and |Δv| h / 8 (curvature).
-                let off = rotation_radius(shape) * spin * h
+                let off = shape.rotation_radius() * spin * h
                     + (states[i].velocity - s0.velocity).norm() * h / 8.0;
                 bx = bx.merged(&Aabb::of_shape(shape, &pose(s0))).loosened(off);
             }

@@ -11,7 +11,6 @@
 use super::ode::WorldOde;
 use super::pipeline::{ContactPipeline, PROJECTION_SLOP, joint_set};
 use crate::body::{Body, BodyState};
-use crate::collision::narrow_phase::{inner_radius, rotation_radius};
 use crate::collision::proximity;
 use crate::contact::ToiMethod;
 use crate::contact::resting::{FrictionMode, RestingPair, pose};
@@ -104,7 +103,7 @@ impl ContactPipeline {
                 };
                 // The bound on the speed at which the pair's points approach
                 // (m/s) at `st`, and its larger value at both ends of the step.
-                let (ra, rb) = (rotation_radius(sa), rotation_radius(sb));
+                let (ra, rb) = (sa.rotation_radius(), sb.rotation_radius());
                 let speed_bound = move |st: &[BodyState]| {
                     (st[b].velocity - st[a].velocity).norm()
                         + st[a].angular_velocity.abs() * ra
@@ -120,7 +119,7 @@ impl ContactPipeline {
                 // shallower than that are left to the seed's search, as the
                 // bound, loose for a turning body near a contact, would make
                 // conservative advancement creep.
-                let deep = 0.25 * inner_radius(sa).min(inner_radius(sb));
+                let deep = 0.25 * sa.inner_radius().min(sb.inner_radius());
                 let may_touch_inside = method == ToiMethod::Swept
                     && separated
                     && !sinks

@@ -66,10 +66,7 @@ impl Chain {
                 reason: "a chain needs at least 4 points",
             });
         }
-        if let Some(i) = points
-            .iter()
-            .position(|v| !(v.x.is_finite() && v.y.is_finite()))
-        {
+        if let Some(i) = super::first_non_finite(&points) {
             return Err(EngineError::InvalidChain {
                 point: i,
                 reason: "non-finite coordinate",

@@ -172,10 +172,7 @@ pub fn check_outline(vertices: &[Vector2<f64>]) -> Result<Vec<Vector2<f64>>, Out
     if n < 3 {
         return Err(OutlineError::TooFewVertices { count: n });
     }
-    if let Some(vertex) = vertices
-        .iter()
-        .position(|v| !(v.x.is_finite() && v.y.is_finite()))
-    {
+    if let Some(vertex) = super::first_non_finite(vertices) {
         return Err(OutlineError::NonFinite { vertex });
     }
     if let Some((first, second)) = first_repeat(vertices) {

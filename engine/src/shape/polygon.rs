@@ -25,10 +25,7 @@ impl ConvexPolygon {
                 reason: "a polygon needs at least 3 vertices",
             });
         }
-        if let Some(i) = vertices
-            .iter()
-            .position(|v| !(v.x.is_finite() && v.y.is_finite()))
-        {
+        if let Some(i) = super::first_non_finite(&vertices) {
             return Err(EngineError::InvalidPolygon {
                 vertex: i,
                 reason: "non-finite coordinate",
@@ -104,10 +101,7 @@ impl ConvexPolygon {
     /// collinear points dropped.
     pub fn convex_hull(points: &[Vector2<f64>]) -> Result<Self> {
         let mut pts: Vec<Vector2<f64>> = points.to_vec();
-        if let Some(i) = pts
-            .iter()
-            .position(|v| !(v.x.is_finite() && v.y.is_finite()))
-        {
+        if let Some(i) = super::first_non_finite(&pts) {
             return Err(EngineError::InvalidPolygon {
                 vertex: i,
                 reason: "non-finite coordinate",

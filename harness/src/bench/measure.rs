@@ -636,8 +636,8 @@ pub fn measure(
     for (row, contender) in rows.iter_mut().zip(&contenders.list) {
         let at = |t: usize| comparisons.iter().find(|c| c.threads == t);
         row.stages = match contender {
-            Contender::Ours(t) => at(*t).map(StageComparison::ours_map),
-            Contender::Box2d(t) => at(*t).map(StageComparison::box2d_map),
+            Contender::Ours(t) => at(*t).map(|c| c.map(|s| s.ours_ms)),
+            Contender::Box2d(t) => at(*t).map(|c| c.map(|s| s.box2d_ms)),
             _ => None,
         };
     }

@@ -236,19 +236,12 @@ impl StageComparison {
         Self { threads, stages }
     }
 
-    /// This engine's stages as a map (ms per step), for its JSON row.
-    pub fn ours_map(&self) -> BTreeMap<String, f64> {
+    /// One engine's stages as a map (ms per step), for its JSON row:
+    /// `time` picks this engine's ([`StageTime::ours_ms`]) or Box2D's.
+    pub fn map(&self, time: fn(&StageTime) -> f64) -> BTreeMap<String, f64> {
         self.stages
             .iter()
-            .map(|s| (s.stage.to_string(), s.ours_ms))
-            .collect()
-    }
-
-    /// Box2D's stages as a map (ms per step), for its JSON row.
-    pub fn box2d_map(&self) -> BTreeMap<String, f64> {
-        self.stages
-            .iter()
-            .map(|s| (s.stage.to_string(), s.box2d_ms))
+            .map(|s| (s.stage.to_string(), time(s)))
             .collect()
     }
 }

@@ -33,15 +33,9 @@ impl BodyLook {
 }
 
 /// The largest distance from the centre of mass to the outline of `shape`
-/// (m).
+/// (m): [`Shape::max_extent`].
 pub fn shape_radius(shape: &Shape) -> f64 {
-    match shape {
-        Shape::Circle(c) => c.radius,
-        Shape::Polygon(p) => p.vertices().iter().map(|v| v.norm()).fold(0.0, f64::max),
-        Shape::Compound(_) | Shape::Chain(_) | Shape::Rounded(_) => {
-            engine::validation::collision::narrow_phase::rotation_radius(shape)
-        }
-    }
+    shape.max_extent()
 }
 
 /// The smallest width of `shape` (m): a circle's diameter, a polygon's

@@ -42,7 +42,7 @@ fn inscribed(shape: &Shape) -> f64 {
                 .fold(f64::INFINITY, f64::min)
         }
         Shape::Compound(_) | Shape::Chain(_) => 0.0,
-        Shape::Rounded(_) => engine::validation::collision::narrow_phase::inner_radius(shape),
+        Shape::Rounded(_) => shape.inner_radius(),
     }
 }
 
