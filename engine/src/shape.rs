@@ -411,4 +411,25 @@ mod tests {
         let inertia = 0.3 * shape.inertia_per_unit_mass();
         assert!((inertia - 5e-4).abs() < 1e-18, "{inertia}");
     }
+
+    #[test]
+    fn inner_radius_is_the_largest_circle_about_the_origin_inside() {
+        // A 4 m × 1 m box about its centre: half its short side; each edge's
+        // distance is one product and one division of exact halves, so the
+        // tolerance is a few ulps of 0.5.
+        let rectangle = Shape::rectangle(4.0, 1.0).unwrap();
+        assert!((rectangle.inner_radius() - 0.5).abs() < 1e-15);
+        assert_eq!(Shape::Circle(Circle::new(0.3).unwrap()).inner_radius(), 0.3);
+        // A compound: a 1 m square part 0.2 m from the origin holds a circle
+        // of 0.5 − 0.2 = 0.3 m about the origin; a part whose own circle
+        // does not reach the origin adds nothing.
+        let square = Shape::rectangle(1.0, 1.0).unwrap();
+        let compound = Compound::new(vec![
+            CompoundPart::new(Vector2::new(0.2, 0.0), 0.0, square.clone()),
+            CompoundPart::new(Vector2::new(3.0, 0.0), 0.0, square),
+        ])
+        .unwrap();
+        let r = Shape::Compound(compound).inner_radius();
+        assert!((r - 0.3).abs() < 1e-15, "{r}");
+    }
 }

@@ -26,26 +26,6 @@ fn overlaps(a: Boxed, b: Boxed) -> bool {
     a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3
 }
 
-/// The radius (m) of the largest circle about the centre of mass inside
-/// the shape: where a name fits whatever the body's angle.
-fn inscribed(shape: &Shape) -> f64 {
-    match shape {
-        Shape::Circle(c) => c.radius,
-        Shape::Polygon(p) => {
-            let v = p.vertices();
-            (0..v.len())
-                .map(|i| {
-                    let (a, b) = (v[i], v[(i + 1) % v.len()]);
-                    let edge = b - a;
-                    (edge.x * a.y - edge.y * a.x).abs() / edge.norm()
-                })
-                .fold(f64::INFINITY, f64::min)
-        }
-        Shape::Compound(_) | Shape::Chain(_) => 0.0,
-        Shape::Rounded(_) => shape.inner_radius(),
-    }
-}
-
 /// The pixel box of body `look` at `state` (its outline's bounding box at
 /// its angle; its rotation radius for a compound), cut to the plot.
 pub(crate) fn body_box(look: &BodyLook, state: &BodyState, view: &View) -> Boxed {
@@ -119,7 +99,7 @@ pub(crate) fn draw<DB: DrawingBackend>(
         let inner = look
             .shape
             .as_ref()
-            .map_or(0.0, |s| inscribed(s) * view.scale());
+            .map_or(0.0, |s| s.inner_radius() * view.scale());
         let half_diagonal = 0.5 * f64::from(w).hypot(f64::from(h));
         // A rotating body carries a mark from its centre along its x axis:
         // the name goes on the other side of the centre.
@@ -176,18 +156,4 @@ pub(crate) fn draw<DB: DrawingBackend>(
 
 fn contains(outer: Boxed, inner: Boxed) -> bool {
     inner.0 >= outer.0 && inner.1 >= outer.1 && inner.2 <= outer.2 && inner.3 <= outer.3
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use engine::{Circle, ConvexPolygon};
-
-    #[test]
-    fn the_inscribed_circle_of_a_box_is_half_its_short_side() {
-        let b = ConvexPolygon::rectangle(4.0, 1.0).unwrap();
-        assert!((inscribed(&Shape::Polygon(b)) - 0.5).abs() < 1e-12);
-        let c = Circle::new(0.3).unwrap();
-        assert_eq!(inscribed(&Shape::Circle(c)), 0.3);
-    }
 }
