@@ -2,7 +2,10 @@
 //! protocol): for each repeat, each engine builds the scene afresh, takes
 //! step 0 untimed, then the timed steps (Box2D's own count for the scene
 //! in `harness bench`); the time per step is the minimum, the median and
-//! the maximum over the repeats. The engines are this engine, rapier2d and
+//! the maximum over the repeats. Each repeat starts one engine further
+//! along the list (repeat r runs them from the (r mod n)-th on), so no
+//! engine always follows the same other one or runs first in a fresh
+//! process state. The engines are this engine, rapier2d and
 //! the Box2D linked here, in this process, and the other Box2D builds
 //! asked for, each run as a child process ([`super::child`]) in its turn.
 //! Each row carries the engine's build: precision, the SIMD path it takes
@@ -492,7 +495,9 @@ pub fn measure(
     let mut last: Vec<Option<Run>> = (0..n).map(|_| None).collect();
     let mut builds: Vec<Option<Build>> = (0..n).map(|_| None).collect();
     for repeat in 0..settings.repeats.max(1) {
-        for (e, contender) in contenders.list.iter().enumerate() {
+        // Rotated each repeat (the module documentation).
+        for e in (0..n).map(|k| (k + repeat) % n) {
+            let contender = &contenders.list[e];
             let (run, built) =
                 run_once(contender, &bench, file, scene, &neutral, steps, repeat == 0)
                     .with_context(|| format!("{} on {}", contender.label(), bench.id))?;

@@ -170,7 +170,7 @@ pub fn write(
          built-in scheduler, boxdd's `worker_count`) again on that many threads. For each of {} repeats, each engine builds the \
          scene afresh, takes step 0 untimed, then the timed steps: {steps}; the engines run \
          alternately (the Box2D builds other than the harness's as child processes, in their \
-         turn). ms per step: the minimum over the repeats, with the median and the maximum. The \
+         turn), each repeat starting one engine further along the list. ms per step: the minimum over the repeats, with the median and the maximum. The \
          ratio is the engine's minimum over this engine's at the same thread count. CPU/wall: the \
          process's CPU time (every thread, `getrusage`) over the wall time of the timed steps, \
          in the fastest repeat (1: one busy thread; 2: two). The machine may be shared: compare \
