@@ -199,10 +199,6 @@ pub struct SoftStep {
     /// order).
     #[cfg_attr(feature = "serde", serde(skip))]
     constrained: Vec<usize>,
-    /// Per lane of the records, the constraint (position in `constrained`)
-    /// it holds, `u32::MAX` for padding (the parallel prepare's).
-    #[cfg_attr(feature = "serde", serde(skip))]
-    lane_source: Vec<u32>,
     /// Per world body, the push-out speed (m/s) its contacts with other
     /// dynamic bodies ask for this step (prepare's sum, for sharing the
     /// push-out speed among them).
@@ -271,7 +267,6 @@ impl SoftStep {
             constraints: Vec::new(),
             colouring: Colouring::default(),
             constrained: Vec::new(),
-            lane_source: Vec::new(),
             push_demand: Vec::new(),
             islands: islands::Islands::default(),
             joints: joints::JointSet::default(),

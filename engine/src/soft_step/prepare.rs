@@ -14,9 +14,18 @@
 //! to the overflow. Box2D's `b2PrepareContactsTask` writes its lanes from
 //! the contact the same way; building a whole scalar constraint first and
 //! copying it lane by lane cost a fifth of the stage (docs/soft_step.md,
-//! "Then prepare writes each lane straight from its contact"). The records
-//! of the last step are overwritten field by field, so nothing is zeroed
-//! or allocated per step. Store walks the same list in the same order.
+//! "Then prepare writes each lane straight from its contact"). On the
+//! pool's threads the second loop is the same walk in contact order on
+//! every thread, each preparing only the lanes of its own share of the
+//! records (a colour's positions grow with the contact order, so a share
+//! takes a run of each colour's constraints): the contacts are read in
+//! memory order there too, and no map from lanes to constraints is built
+//! serially first. What a constraint reads of its bodies comes from one
+//! compact record per body ([`BodyMass`]), whose lane word
+//! ([`wide_solver::lane_index`]) is made once per body and step. The
+//! records of the last step are overwritten field by field, so nothing is
+//! zeroed or allocated per step. Store walks the same list in the same
+//! order.
 //!
 //! **Shared push-out.** The push-out speed bounds the bias of each
 //! contact, so a body overlapping k others deeply could be pushed at k
@@ -42,7 +51,6 @@ use super::bodies::{BodyMass, SolverBody, solver_body, solver_index};
 use super::colouring::Slot;
 use super::contact_solver::{self, ContactConstraint, PairMass};
 use super::contacts::Contact;
-use super::lanes::LANES;
 use super::pool::{Pool, SharedSlice, Worker};
 use super::wide_solver::{self, StepSoftness, WideConstraint, WideExtra};
 use super::{SoftStep, Softness};
@@ -55,7 +63,15 @@ impl SoftStep {
     #[inline(never)]
     pub(super) fn load_bodies(&mut self, core: &WorldCore) {
         self.masses.clear();
-        self.masses.extend(self.sims.iter().map(BodyMass::of));
+        self.masses
+            .extend(self.sims.iter().enumerate().map(|(id, sim)| {
+                let lane = wide_solver::lane_index(
+                    solver_index(id, sim.kind),
+                    sim.inv_mass,
+                    sim.inv_inertia,
+                );
+                BodyMass::of(sim, lane)
+            }));
         // By solver index: the static dummy, then the bodies (a static
         // body's entry is never gathered: its lanes use the dummy).
         self.lane_masses.clear();
@@ -92,6 +108,9 @@ impl SoftStep {
         self.push_demand.clear();
         self.push_demand.resize(self.sims.len(), 0.0);
         let mut points = 0;
+        // Indexed through a slice taken once (through `self` the compiler
+        // reloads its length after every write of the loop).
+        let push_demand = &mut self.push_demand[..];
         for (index, c) in self.contacts.contacts.iter().enumerate() {
             if c.count == 0 || c.sensor {
                 continue;
@@ -115,8 +134,8 @@ impl SoftStep {
                     // heavy one (pushed by many light ones, it hardly
                     // moves).
                     let part = 2.0 * demand / (sa.inv_mass + sb.inv_mass);
-                    self.push_demand[c.body_a] += part * sa.inv_mass;
-                    self.push_demand[c.body_b] += part * sb.inv_mass;
+                    push_demand[c.body_a] += part * sa.inv_mass;
+                    push_demand[c.body_b] += part * sb.inv_mass;
                 }
             }
         }
@@ -141,18 +160,17 @@ impl SoftStep {
             warm,
         };
         if let Some(pool) = pool {
-            // On the threads: each its share of the records, every lane
-            // from the contact the colouring put there (the same
-            // constraints, in another order: the same bits).
-            self.lane_source.clear();
-            self.lane_source.resize(records * LANES, u32::MAX);
-            for i in 0..touching {
-                if let Slot::Lane { record, lane } = self.colouring.slot(i) {
-                    self.lane_source[record * LANES + lane] = i as u32;
-                }
-            }
-            let (constrained, colouring, source) =
-                (&self.constrained, &self.colouring, &self.lane_source);
+            // On the threads: each its share of the records. Each thread
+            // walks the constraints in contact order, as one thread does,
+            // and prepares those whose lane is in its records, so the
+            // contacts are read in memory order; in colour (record) order
+            // they were read a colour at a time, a sweep through the
+            // contacts per colour, each lane from a contact far from the
+            // last. Within a colour the positions grow with the contact
+            // order, so a share of records takes a run of each colour's
+            // constraints. The same constraints in another order: the same
+            // bits.
+            let (constrained, colouring) = (&self.constrained, &self.colouring);
             // Thread 0 looks for the overflow's constraints only if there
             // are any (a scan of every constraint, alone on its thread).
             let overflows = self.colouring.overflow() > 0;
@@ -170,18 +188,22 @@ impl SoftStep {
                         }
                     }
                 }
+                let mine = w.share(wide.len());
                 let mut mine_rare = false;
-                for record in w.share(wide.len()) {
-                    // SAFETY: each thread its own records.
-                    let (r, e) = unsafe { (wide.get_mut(record), extra.get_mut(record)) };
-                    for lane in 0..LANES {
-                        match source[record * LANES + lane] {
-                            u32::MAX => wide_solver::set_padding_lane((r, e), lane),
-                            i => {
-                                let index = constrained[i as usize];
-                                mine_rare |= inputs.prepare_lane(index, (r, e), lane);
-                            }
-                        }
+                for (i, &index) in constrained.iter().enumerate() {
+                    if let Slot::Lane { record, lane } = colouring.slot(i)
+                        && mine.contains(&record)
+                    {
+                        // SAFETY: each thread its own records.
+                        let lane_records = unsafe { (wide.get_mut(record), extra.get_mut(record)) };
+                        mine_rare |= inputs.prepare_lane(index, lane_records, lane);
+                    }
+                }
+                for (record, lane) in colouring.padding() {
+                    if mine.contains(&record) {
+                        // SAFETY: as above.
+                        let lane_records = unsafe { (wide.get_mut(record), extra.get_mut(record)) };
+                        wide_solver::set_padding_lane(lane_records, lane);
                     }
                 }
                 if mine_rare {
@@ -261,17 +283,17 @@ struct Inputs<'a> {
 
 impl Inputs<'_> {
     /// Contact `index`, its bodies' solver indices and inverse masses,
-    /// whether it takes the step's second softness (with a static body)
+    /// their lane words ([`BodyMass::lane`]), whether it takes the step's second softness (with a static body)
     /// and its push-out bound (m/s): the settings' push-out speed, scaled
     /// down when a dynamic body's demand exceeds it (the module
     /// documentation).
     #[inline(always)]
-    fn pair(&self, index: usize) -> (&Contact, PairMass, bool, f64) {
+    fn pair(&self, index: usize) -> (&Contact, PairMass, (u32, u32), bool, f64) {
         let c = &self.contacts[index];
         let (sa, sb) = (&self.masses[c.body_a], &self.masses[c.body_b]);
         let mass = PairMass {
-            a: solver_index(c.body_a, sa.kind),
-            b: solver_index(c.body_b, sb.kind),
+            a: (sa.lane & wide_solver::INDEX) as usize,
+            b: (sb.lane & wide_solver::INDEX) as usize,
             inv_mass_a: sa.inv_mass,
             inv_inertia_a: sa.inv_inertia,
             inv_mass_b: sb.inv_mass,
@@ -291,12 +313,12 @@ impl Inputs<'_> {
             let static_soft = sa.kind == BodyKind::Static || sb.kind == BodyKind::Static;
             (static_soft, push_out)
         };
-        (c, mass, static_soft, bound)
+        (c, mass, (sa.lane, sb.lane), static_soft, bound)
     }
 
     /// The scalar constraint of contact `index` (for the overflow).
     fn constraint(&self, index: usize) -> ContactConstraint {
-        let (c, mass, static_soft, bound) = self.pair(index);
+        let (c, mass, _, static_soft, bound) = self.pair(index);
         let softness = self.softness[usize::from(static_soft)];
         contact_solver::prepare(c, index, mass, (softness, bound), self.bodies, self.warm)
     }
@@ -312,12 +334,12 @@ impl Inputs<'_> {
         records: (&mut WideConstraint, &mut WideExtra),
         l: usize,
     ) -> bool {
-        let (c, mass, static_soft, bound) = self.pair(index);
+        let (c, mass, words, static_soft, bound) = self.pair(index);
         wide_solver::prepare_lane(
             records,
             l,
             c,
-            &mass,
+            (&mass, words),
             (static_soft, bound),
             self.bodies,
             self.warm,
