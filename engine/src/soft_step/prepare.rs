@@ -48,7 +48,7 @@
 //! validation scenes).
 
 use super::bodies::{BodyMass, SolverBody, solver_body, solver_index};
-use super::colouring::Slot;
+use super::colouring::{Colouring, Slot};
 use super::contact_solver::{self, ContactConstraint, PairMass};
 use super::contacts::Contact;
 use super::pool::{Pool, SharedSlice, Worker};
@@ -62,14 +62,19 @@ impl SoftStep {
     /// the motion since the step began.
     #[inline(never)]
     pub(super) fn load_bodies(&mut self, core: &WorldCore) {
+        // Every solver index (at most the body count) fits below the lane
+        // words' flags: checked once here rather than per body.
+        assert!(
+            self.sims.len() <= wide_solver::INDEX as usize,
+            "fewer than 2³⁰ bodies"
+        );
         self.masses.clear();
         self.masses
             .extend(self.sims.iter().enumerate().map(|(id, sim)| {
-                let lane = wide_solver::lane_index(
-                    solver_index(id, sim.kind),
-                    sim.inv_mass,
-                    sim.inv_inertia,
-                );
+                // `wide_solver::lane_index` of the body's solver index, less
+                // its check of the index.
+                let index = solver_index(id, sim.kind) as u32;
+                let lane = index | wide_solver::fixed_flag(sim.inv_mass, sim.inv_inertia);
                 BodyMass::of(sim, lane)
             }));
         // By solver index: the static dummy, then the bodies (a static
@@ -107,38 +112,54 @@ impl SoftStep {
         self.constrained.clear();
         self.push_demand.clear();
         self.push_demand.resize(self.sims.len(), 0.0);
-        let mut points = 0;
-        // Indexed through a slice taken once (through `self` the compiler
-        // reloads its length after every write of the loop).
-        let push_demand = &mut self.push_demand[..];
-        for (index, c) in self.contacts.contacts.iter().enumerate() {
-            if c.count == 0 || c.sensor {
-                continue;
-            }
-            let (sa, sb) = (&self.masses[c.body_a], &self.masses[c.body_b]);
-            if !sa.moving && !sb.moving {
-                continue;
-            }
-            let dynamic = |id: BodyId, s: &BodyMass| (s.kind == BodyKind::Dynamic).then_some(id);
-            self.colouring
-                .add(dynamic(c.body_a, sa), dynamic(c.body_b, sb));
-            self.constrained.push(index);
-            points += c.count;
-            if both_dynamic(sa, sb) {
-                let demand = demand_of(c, rate, push_out);
-                if demand > 0.0 {
-                    // Each body's part of the relative push, twice its
-                    // share of the pair's inverse mass: 1 for equal masses
-                    // (each moves at half the relative speed), near 2 for
-                    // a light body against a heavy one, near 0 for the
-                    // heavy one (pushed by many light ones, it hardly
-                    // moves).
-                    let part = 2.0 * demand / (sa.inv_mass + sb.inv_mass);
-                    push_demand[c.body_a] += part * sa.inv_mass;
-                    push_demand[c.body_b] += part * sb.inv_mass;
+        let (contacts, masses) = (&self.contacts.contacts[..], &self.masses[..]);
+        let points = if let Some(pool) = pool.filter(|p| p.threads() > 1) {
+            // On two threads at once, each a walk of every contact in
+            // contact order: thread 0 colours the constraints, thread 1
+            // sums the push demands (each body's sum in contact order, as
+            // one thread adds them: the same bits); the colouring, serial,
+            // no longer carries the demands' share.
+            let colouring = SharedSlice::new(std::slice::from_mut(&mut self.colouring));
+            let constrained = SharedSlice::new(std::slice::from_mut(&mut self.constrained));
+            let demand = SharedSlice::new(&mut self.push_demand[..]);
+            let points = std::sync::atomic::AtomicUsize::new(0);
+            pool.run(&|w: &Worker<'_>| match w.index {
+                0 => {
+                    // SAFETY: only thread 0 touches the colouring and the
+                    // list; only thread 1 the demands.
+                    let (colouring, constrained) =
+                        unsafe { (colouring.get_mut(0), constrained.get_mut(0)) };
+                    let mine = colour(contacts, masses, colouring, constrained);
+                    points.store(mine, std::sync::atomic::Ordering::Relaxed);
+                }
+                1 => {
+                    // SAFETY: as above.
+                    let push_demand = unsafe { demand.slice(0..demand.len()) };
+                    for c in contacts {
+                        if let Some((sa, sb)) = solved(c, masses) {
+                            add_demand(push_demand, c, (sa, sb), (rate, push_out));
+                        }
+                    }
+                }
+                _ => {}
+            });
+            points.into_inner()
+        } else {
+            // One loop: the colouring and the demands of each contact.
+            let mut points = 0;
+            // Indexed through a slice taken once (through `self` the
+            // compiler reloads its length after every write of the loop).
+            let push_demand = &mut self.push_demand[..];
+            for (index, c) in contacts.iter().enumerate() {
+                if let Some((sa, sb)) = solved(c, masses) {
+                    colour_one(&mut self.colouring, c, (sa, sb));
+                    self.constrained.push(index);
+                    points += c.count;
+                    add_demand(push_demand, c, (sa, sb), (rate, push_out));
                 }
             }
-        }
+            points
+        };
         let touching = self.constrained.len();
         let records = self.colouring.finish();
         // The records of the last step are overwritten lane by lane, every
@@ -344,6 +365,70 @@ impl Inputs<'_> {
             self.bodies,
             self.warm,
         )
+    }
+}
+
+/// The bodies of contact `c` when it gets a constraint this step (it
+/// touches, is no sensor's, and a body moves), from `masses`.
+#[inline(always)]
+fn solved<'a>(c: &Contact, masses: &'a [BodyMass]) -> Option<(&'a BodyMass, &'a BodyMass)> {
+    if c.count == 0 || c.sensor {
+        return None;
+    }
+    let (sa, sb) = (&masses[c.body_a], &masses[c.body_b]);
+    (sa.moving || sb.moving).then_some((sa, sb))
+}
+
+/// Gives contact `c`, between bodies `(sa, sb)`, its colour.
+#[inline(always)]
+fn colour_one(colouring: &mut Colouring, c: &Contact, (sa, sb): (&BodyMass, &BodyMass)) {
+    let dynamic = |id: BodyId, s: &BodyMass| (s.kind == BodyKind::Dynamic).then_some(id);
+    colouring.add(dynamic(c.body_a, sa), dynamic(c.body_b, sb));
+}
+
+/// Colours every contact of `contacts` that gets a constraint and lists
+/// it in `constrained`, in contact order; returns their points.
+#[inline(never)]
+fn colour(
+    contacts: &[Contact],
+    masses: &[BodyMass],
+    colouring: &mut Colouring,
+    constrained: &mut Vec<usize>,
+) -> usize {
+    let mut points = 0;
+    for (index, c) in contacts.iter().enumerate() {
+        if let Some((sa, sb)) = solved(c, masses) {
+            colour_one(colouring, c, (sa, sb));
+            constrained.push(index);
+            points += c.count;
+        }
+    }
+    points
+}
+
+/// Adds the push demand of contact `c` between bodies `(sa, sb)` to its
+/// bodies' sums in `push_demand` when both are dynamic (the module
+/// documentation); `rate`: the bias rate (1/s), `push_out`: the push-out
+/// speed (m/s).
+#[inline(always)]
+fn add_demand(
+    push_demand: &mut [f64],
+    c: &Contact,
+    (sa, sb): (&BodyMass, &BodyMass),
+    (rate, push_out): (f64, f64),
+) {
+    if both_dynamic(sa, sb) {
+        let demand = demand_of(c, rate, push_out);
+        if demand > 0.0 {
+            // Each body's part of the relative push, twice its share of
+            // the pair's inverse mass: 1 for equal masses (each moves at
+            // half the relative speed), near 2 for a light body against a
+            // heavy one, near 0 for the heavy one (pushed by many light
+            // ones, it hardly moves).
+            let part = 2.0 * demand / (sa.inv_mass + sb.inv_mass);
+            push_demand[c.body_a] += part * sa.inv_mass;
+            push_demand[c.body_b] += part * sb.inv_mass;
+        }
     }
 }
 

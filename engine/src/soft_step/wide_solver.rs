@@ -85,11 +85,14 @@ pub(crate) fn lane_index(i: usize, inv_mass: f64, inv_inertia: f64) -> u32 {
         .ok()
         .filter(|&i| i <= INDEX)
         .expect("fewer than 2³⁰ bodies");
-    if inv_mass == 0.0 && inv_inertia == 0.0 {
-        index | FIXED
-    } else {
-        index
-    }
+    index | fixed_flag(inv_mass, inv_inertia)
+}
+
+/// [`FIXED`] for a body of inverse mass `inv_mass` and inverse inertia
+/// `inv_inertia` when both are zero, else 0 (without a branch).
+#[inline(always)]
+pub(crate) fn fixed_flag(inv_mass: f64, inv_inertia: f64) -> u32 {
+    u32::from(inv_mass == 0.0 && inv_inertia == 0.0) * FIXED
 }
 
 /// The two softnesses of a step's contacts: prepare gives each constraint
