@@ -45,7 +45,7 @@
 //!
 //! With [`SoftStepSettings::threads`] above one, the manifolds of collide
 //! (`collide.rs`), prepare (the contacts' and the revolute joints'
-//! lanes), the substeps' integration and passes (each colour's records,
+//! lanes; the contacts' colouring beside their push demands), the substeps' integration and passes (each colour's records,
 //! the contacts' and the joints', split among the threads), restitution,
 //! the store and the per-body part of continuous (`finalize.rs`) run on a
 //! pool of threads (`pool.rs`, `parallel.rs`), with the serial stages'

@@ -4,7 +4,10 @@
 //!
 //! Prepare runs two loops over the contacts, both in contact (memory)
 //! order: the first picks the touching contacts with an awake body and
-//! colours them ([`super::colouring`]); once every colour's size is known
+//! colours them ([`super::colouring`]) and sums the push demands (below;
+//! on the pool's threads the two are split, thread 0 colouring while
+//! thread 1 sums the demands, each body's sum in the same contact order);
+//! once every colour's size is known
 //! the records are laid out colour after colour, and the second loop
 //! prepares each constraint straight into its lane of its colour's record
 //! ([`super::wide_solver::prepare_lane`]: each field computed from the
@@ -304,10 +307,10 @@ struct Inputs<'a> {
 
 impl Inputs<'_> {
     /// Contact `index`, its bodies' solver indices and inverse masses,
-    /// their lane words ([`BodyMass::lane`]), whether it takes the step's second softness (with a static body)
-    /// and its push-out bound (m/s): the settings' push-out speed, scaled
-    /// down when a dynamic body's demand exceeds it (the module
-    /// documentation).
+    /// their lane words ([`BodyMass::lane`]), whether it takes the step's
+    /// second softness (with a static body) and its push-out bound (m/s):
+    /// the settings' push-out speed, scaled down when a dynamic body's
+    /// demand exceeds it (the module documentation).
     #[inline(always)]
     fn pair(&self, index: usize) -> (&Contact, PairMass, (u32, u32), bool, f64) {
         let c = &self.contacts[index];
