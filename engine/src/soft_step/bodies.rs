@@ -133,16 +133,22 @@ pub(crate) struct BodyMass {
     pub kind: BodyKind,
     /// Whether the solver moves it ([`BodySim::moving`]).
     pub moving: bool,
+    /// Its word in a wide record's lane ([`super::wide_solver::lane_index`]
+    /// of its solver index): computed once per body and step rather than
+    /// twice per constraint; its solver index is `lane &`
+    /// [`super::wide_solver::INDEX`].
+    pub lane: u32,
 }
 
 impl BodyMass {
-    /// The prepare stage's view of `sim`.
-    pub(crate) fn of(sim: &BodySim) -> Self {
+    /// The prepare stage's view of `sim`, whose lane word is `lane`.
+    pub(crate) fn of(sim: &BodySim, lane: u32) -> Self {
         BodyMass {
             inv_mass: sim.inv_mass,
             inv_inertia: sim.inv_inertia,
             kind: sim.kind,
             moving: sim.moving(),
+            lane,
         }
     }
 }

@@ -45,7 +45,7 @@
 //!
 //! With [`SoftStepSettings::threads`] above one, the manifolds of collide
 //! (`collide.rs`), prepare (the contacts' and the revolute joints'
-//! lanes), the substeps' integration and passes (each colour's records,
+//! lanes; the contacts' colouring beside their push demands), the substeps' integration and passes (each colour's records,
 //! the contacts' and the joints', split among the threads), restitution,
 //! the store and the per-body part of continuous (`finalize.rs`) run on a
 //! pool of threads (`pool.rs`, `parallel.rs`), with the serial stages'
@@ -199,10 +199,6 @@ pub struct SoftStep {
     /// order).
     #[cfg_attr(feature = "serde", serde(skip))]
     constrained: Vec<usize>,
-    /// Per lane of the records, the constraint (position in `constrained`)
-    /// it holds, `u32::MAX` for padding (the parallel prepare's).
-    #[cfg_attr(feature = "serde", serde(skip))]
-    lane_source: Vec<u32>,
     /// Per world body, the push-out speed (m/s) its contacts with other
     /// dynamic bodies ask for this step (prepare's sum, for sharing the
     /// push-out speed among them).
@@ -271,7 +267,6 @@ impl SoftStep {
             constraints: Vec::new(),
             colouring: Colouring::default(),
             constrained: Vec::new(),
-            lane_source: Vec::new(),
             push_demand: Vec::new(),
             islands: islands::Islands::default(),
             joints: joints::JointSet::default(),

@@ -4,7 +4,10 @@
 //!
 //! Prepare runs two loops over the contacts, both in contact (memory)
 //! order: the first picks the touching contacts with an awake body and
-//! colours them ([`super::colouring`]); once every colour's size is known
+//! colours them ([`super::colouring`]) and sums the push demands (below;
+//! on the pool's threads the two are split, thread 0 colouring while
+//! thread 1 sums the demands, each body's sum in the same contact order);
+//! once every colour's size is known
 //! the records are laid out colour after colour, and the second loop
 //! prepares each constraint straight into its lane of its colour's record
 //! ([`super::wide_solver::prepare_lane`]: each field computed from the
@@ -14,9 +17,18 @@
 //! to the overflow. Box2D's `b2PrepareContactsTask` writes its lanes from
 //! the contact the same way; building a whole scalar constraint first and
 //! copying it lane by lane cost a fifth of the stage (docs/soft_step.md,
-//! "Then prepare writes each lane straight from its contact"). The records
-//! of the last step are overwritten field by field, so nothing is zeroed
-//! or allocated per step. Store walks the same list in the same order.
+//! "Then prepare writes each lane straight from its contact"). On the
+//! pool's threads the second loop is the same walk in contact order on
+//! every thread, each preparing only the lanes of its own share of the
+//! records (a colour's positions grow with the contact order, so a share
+//! takes a run of each colour's constraints): the contacts are read in
+//! memory order there too, and no map from lanes to constraints is built
+//! serially first. What a constraint reads of its bodies comes from one
+//! compact record per body ([`BodyMass`]), whose lane word
+//! ([`wide_solver::lane_index`]) is made once per body and step. The
+//! records of the last step are overwritten field by field, so nothing is
+//! zeroed or allocated per step. Store walks the same list in the same
+//! order.
 //!
 //! **Shared push-out.** The push-out speed bounds the bias of each
 //! contact, so a body overlapping k others deeply could be pushed at k
@@ -39,10 +51,9 @@
 //! validation scenes).
 
 use super::bodies::{BodyMass, SolverBody, solver_body, solver_index};
-use super::colouring::Slot;
+use super::colouring::{Colouring, Slot};
 use super::contact_solver::{self, ContactConstraint, PairMass};
 use super::contacts::Contact;
-use super::lanes::LANES;
 use super::pool::{Pool, SharedSlice, Worker};
 use super::wide_solver::{self, StepSoftness, WideConstraint, WideExtra};
 use super::{SoftStep, Softness};
@@ -54,8 +65,21 @@ impl SoftStep {
     /// the motion since the step began.
     #[inline(never)]
     pub(super) fn load_bodies(&mut self, core: &WorldCore) {
+        // Every solver index (at most the body count) fits below the lane
+        // words' flags: checked once here rather than per body.
+        assert!(
+            self.sims.len() <= wide_solver::INDEX as usize,
+            "fewer than 2³⁰ bodies"
+        );
         self.masses.clear();
-        self.masses.extend(self.sims.iter().map(BodyMass::of));
+        self.masses
+            .extend(self.sims.iter().enumerate().map(|(id, sim)| {
+                // `wide_solver::lane_index` of the body's solver index, less
+                // its check of the index.
+                let index = solver_index(id, sim.kind) as u32;
+                let lane = index | wide_solver::fixed_flag(sim.inv_mass, sim.inv_inertia);
+                BodyMass::of(sim, lane)
+            }));
         // By solver index: the static dummy, then the bodies (a static
         // body's entry is never gathered: its lanes use the dummy).
         self.lane_masses.clear();
@@ -91,35 +115,54 @@ impl SoftStep {
         self.constrained.clear();
         self.push_demand.clear();
         self.push_demand.resize(self.sims.len(), 0.0);
-        let mut points = 0;
-        for (index, c) in self.contacts.contacts.iter().enumerate() {
-            if c.count == 0 || c.sensor {
-                continue;
-            }
-            let (sa, sb) = (&self.masses[c.body_a], &self.masses[c.body_b]);
-            if !sa.moving && !sb.moving {
-                continue;
-            }
-            let dynamic = |id: BodyId, s: &BodyMass| (s.kind == BodyKind::Dynamic).then_some(id);
-            self.colouring
-                .add(dynamic(c.body_a, sa), dynamic(c.body_b, sb));
-            self.constrained.push(index);
-            points += c.count;
-            if both_dynamic(sa, sb) {
-                let demand = demand_of(c, rate, push_out);
-                if demand > 0.0 {
-                    // Each body's part of the relative push, twice its
-                    // share of the pair's inverse mass: 1 for equal masses
-                    // (each moves at half the relative speed), near 2 for
-                    // a light body against a heavy one, near 0 for the
-                    // heavy one (pushed by many light ones, it hardly
-                    // moves).
-                    let part = 2.0 * demand / (sa.inv_mass + sb.inv_mass);
-                    self.push_demand[c.body_a] += part * sa.inv_mass;
-                    self.push_demand[c.body_b] += part * sb.inv_mass;
+        let (contacts, masses) = (&self.contacts.contacts[..], &self.masses[..]);
+        let points = if let Some(pool) = pool.filter(|p| p.threads() > 1) {
+            // On two threads at once, each a walk of every contact in
+            // contact order: thread 0 colours the constraints, thread 1
+            // sums the push demands (each body's sum in contact order, as
+            // one thread adds them: the same bits); the colouring, serial,
+            // no longer carries the demands' share.
+            let colouring = SharedSlice::new(std::slice::from_mut(&mut self.colouring));
+            let constrained = SharedSlice::new(std::slice::from_mut(&mut self.constrained));
+            let demand = SharedSlice::new(&mut self.push_demand[..]);
+            let points = std::sync::atomic::AtomicUsize::new(0);
+            pool.run(&|w: &Worker<'_>| match w.index {
+                0 => {
+                    // SAFETY: only thread 0 touches the colouring and the
+                    // list; only thread 1 the demands.
+                    let (colouring, constrained) =
+                        unsafe { (colouring.get_mut(0), constrained.get_mut(0)) };
+                    let mine = colour(contacts, masses, colouring, constrained);
+                    points.store(mine, std::sync::atomic::Ordering::Relaxed);
+                }
+                1 => {
+                    // SAFETY: as above.
+                    let push_demand = unsafe { demand.slice(0..demand.len()) };
+                    for c in contacts {
+                        if let Some((sa, sb)) = solved(c, masses) {
+                            add_demand(push_demand, c, (sa, sb), (rate, push_out));
+                        }
+                    }
+                }
+                _ => {}
+            });
+            points.into_inner()
+        } else {
+            // One loop: the colouring and the demands of each contact.
+            let mut points = 0;
+            // Indexed through a slice taken once (through `self` the
+            // compiler reloads its length after every write of the loop).
+            let push_demand = &mut self.push_demand[..];
+            for (index, c) in contacts.iter().enumerate() {
+                if let Some((sa, sb)) = solved(c, masses) {
+                    colour_one(&mut self.colouring, c, (sa, sb));
+                    self.constrained.push(index);
+                    points += c.count;
+                    add_demand(push_demand, c, (sa, sb), (rate, push_out));
                 }
             }
-        }
+            points
+        };
         let touching = self.constrained.len();
         let records = self.colouring.finish();
         // The records of the last step are overwritten lane by lane, every
@@ -141,18 +184,17 @@ impl SoftStep {
             warm,
         };
         if let Some(pool) = pool {
-            // On the threads: each its share of the records, every lane
-            // from the contact the colouring put there (the same
-            // constraints, in another order: the same bits).
-            self.lane_source.clear();
-            self.lane_source.resize(records * LANES, u32::MAX);
-            for i in 0..touching {
-                if let Slot::Lane { record, lane } = self.colouring.slot(i) {
-                    self.lane_source[record * LANES + lane] = i as u32;
-                }
-            }
-            let (constrained, colouring, source) =
-                (&self.constrained, &self.colouring, &self.lane_source);
+            // On the threads: each its share of the records. Each thread
+            // walks the constraints in contact order, as one thread does,
+            // and prepares those whose lane is in its records, so the
+            // contacts are read in memory order; in colour (record) order
+            // they were read a colour at a time, a sweep through the
+            // contacts per colour, each lane from a contact far from the
+            // last. Within a colour the positions grow with the contact
+            // order, so a share of records takes a run of each colour's
+            // constraints. The same constraints in another order: the same
+            // bits.
+            let (constrained, colouring) = (&self.constrained, &self.colouring);
             // Thread 0 looks for the overflow's constraints only if there
             // are any (a scan of every constraint, alone on its thread).
             let overflows = self.colouring.overflow() > 0;
@@ -170,18 +212,22 @@ impl SoftStep {
                         }
                     }
                 }
+                let mine = w.share(wide.len());
                 let mut mine_rare = false;
-                for record in w.share(wide.len()) {
-                    // SAFETY: each thread its own records.
-                    let (r, e) = unsafe { (wide.get_mut(record), extra.get_mut(record)) };
-                    for lane in 0..LANES {
-                        match source[record * LANES + lane] {
-                            u32::MAX => wide_solver::set_padding_lane((r, e), lane),
-                            i => {
-                                let index = constrained[i as usize];
-                                mine_rare |= inputs.prepare_lane(index, (r, e), lane);
-                            }
-                        }
+                for (i, &index) in constrained.iter().enumerate() {
+                    if let Slot::Lane { record, lane } = colouring.slot(i)
+                        && mine.contains(&record)
+                    {
+                        // SAFETY: each thread its own records.
+                        let lane_records = unsafe { (wide.get_mut(record), extra.get_mut(record)) };
+                        mine_rare |= inputs.prepare_lane(index, lane_records, lane);
+                    }
+                }
+                for (record, lane) in colouring.padding() {
+                    if mine.contains(&record) {
+                        // SAFETY: as above.
+                        let lane_records = unsafe { (wide.get_mut(record), extra.get_mut(record)) };
+                        wide_solver::set_padding_lane(lane_records, lane);
                     }
                 }
                 if mine_rare {
@@ -261,17 +307,17 @@ struct Inputs<'a> {
 
 impl Inputs<'_> {
     /// Contact `index`, its bodies' solver indices and inverse masses,
-    /// whether it takes the step's second softness (with a static body)
-    /// and its push-out bound (m/s): the settings' push-out speed, scaled
-    /// down when a dynamic body's demand exceeds it (the module
-    /// documentation).
+    /// their lane words ([`BodyMass::lane`]), whether it takes the step's
+    /// second softness (with a static body) and its push-out bound (m/s):
+    /// the settings' push-out speed, scaled down when a dynamic body's
+    /// demand exceeds it (the module documentation).
     #[inline(always)]
-    fn pair(&self, index: usize) -> (&Contact, PairMass, bool, f64) {
+    fn pair(&self, index: usize) -> (&Contact, PairMass, (u32, u32), bool, f64) {
         let c = &self.contacts[index];
         let (sa, sb) = (&self.masses[c.body_a], &self.masses[c.body_b]);
         let mass = PairMass {
-            a: solver_index(c.body_a, sa.kind),
-            b: solver_index(c.body_b, sb.kind),
+            a: (sa.lane & wide_solver::INDEX) as usize,
+            b: (sb.lane & wide_solver::INDEX) as usize,
             inv_mass_a: sa.inv_mass,
             inv_inertia_a: sa.inv_inertia,
             inv_mass_b: sb.inv_mass,
@@ -291,12 +337,12 @@ impl Inputs<'_> {
             let static_soft = sa.kind == BodyKind::Static || sb.kind == BodyKind::Static;
             (static_soft, push_out)
         };
-        (c, mass, static_soft, bound)
+        (c, mass, (sa.lane, sb.lane), static_soft, bound)
     }
 
     /// The scalar constraint of contact `index` (for the overflow).
     fn constraint(&self, index: usize) -> ContactConstraint {
-        let (c, mass, static_soft, bound) = self.pair(index);
+        let (c, mass, _, static_soft, bound) = self.pair(index);
         let softness = self.softness[usize::from(static_soft)];
         contact_solver::prepare(c, index, mass, (softness, bound), self.bodies, self.warm)
     }
@@ -312,16 +358,80 @@ impl Inputs<'_> {
         records: (&mut WideConstraint, &mut WideExtra),
         l: usize,
     ) -> bool {
-        let (c, mass, static_soft, bound) = self.pair(index);
+        let (c, mass, words, static_soft, bound) = self.pair(index);
         wide_solver::prepare_lane(
             records,
             l,
             c,
-            &mass,
+            (&mass, words),
             (static_soft, bound),
             self.bodies,
             self.warm,
         )
+    }
+}
+
+/// The bodies of contact `c` when it gets a constraint this step (it
+/// touches, is no sensor's, and a body moves), from `masses`.
+#[inline(always)]
+fn solved<'a>(c: &Contact, masses: &'a [BodyMass]) -> Option<(&'a BodyMass, &'a BodyMass)> {
+    if c.count == 0 || c.sensor {
+        return None;
+    }
+    let (sa, sb) = (&masses[c.body_a], &masses[c.body_b]);
+    (sa.moving || sb.moving).then_some((sa, sb))
+}
+
+/// Gives contact `c`, between bodies `(sa, sb)`, its colour.
+#[inline(always)]
+fn colour_one(colouring: &mut Colouring, c: &Contact, (sa, sb): (&BodyMass, &BodyMass)) {
+    let dynamic = |id: BodyId, s: &BodyMass| (s.kind == BodyKind::Dynamic).then_some(id);
+    colouring.add(dynamic(c.body_a, sa), dynamic(c.body_b, sb));
+}
+
+/// Colours every contact of `contacts` that gets a constraint and lists
+/// it in `constrained`, in contact order; returns their points.
+#[inline(never)]
+fn colour(
+    contacts: &[Contact],
+    masses: &[BodyMass],
+    colouring: &mut Colouring,
+    constrained: &mut Vec<usize>,
+) -> usize {
+    let mut points = 0;
+    for (index, c) in contacts.iter().enumerate() {
+        if let Some((sa, sb)) = solved(c, masses) {
+            colour_one(colouring, c, (sa, sb));
+            constrained.push(index);
+            points += c.count;
+        }
+    }
+    points
+}
+
+/// Adds the push demand of contact `c` between bodies `(sa, sb)` to its
+/// bodies' sums in `push_demand` when both are dynamic (the module
+/// documentation); `rate`: the bias rate (1/s), `push_out`: the push-out
+/// speed (m/s).
+#[inline(always)]
+fn add_demand(
+    push_demand: &mut [f64],
+    c: &Contact,
+    (sa, sb): (&BodyMass, &BodyMass),
+    (rate, push_out): (f64, f64),
+) {
+    if both_dynamic(sa, sb) {
+        let demand = demand_of(c, rate, push_out);
+        if demand > 0.0 {
+            // Each body's part of the relative push, twice its share of
+            // the pair's inverse mass: 1 for equal masses (each moves at
+            // half the relative speed), near 2 for a light body against a
+            // heavy one, near 0 for the heavy one (pushed by many light
+            // ones, it hardly moves).
+            let part = 2.0 * demand / (sa.inv_mass + sb.inv_mass);
+            push_demand[c.body_a] += part * sa.inv_mass;
+            push_demand[c.body_b] += part * sb.inv_mass;
+        }
     }
 }
 

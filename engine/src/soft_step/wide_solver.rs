@@ -85,11 +85,14 @@ pub(crate) fn lane_index(i: usize, inv_mass: f64, inv_inertia: f64) -> u32 {
         .ok()
         .filter(|&i| i <= INDEX)
         .expect("fewer than 2³⁰ bodies");
-    if inv_mass == 0.0 && inv_inertia == 0.0 {
-        index | FIXED
-    } else {
-        index
-    }
+    index | fixed_flag(inv_mass, inv_inertia)
+}
+
+/// [`FIXED`] for a body of inverse mass `inv_mass` and inverse inertia
+/// `inv_inertia` when both are zero, else 0 (without a branch).
+#[inline(always)]
+pub(crate) fn fixed_flag(inv_mass: f64, inv_inertia: f64) -> u32 {
+    u32::from(inv_mass == 0.0 && inv_inertia == 0.0) * FIXED
 }
 
 /// The two softnesses of a step's contacts: prepare gives each constraint
@@ -237,7 +240,8 @@ fn set_point(
 /// [`contact_solver::prepare`] would build for it, with the same formulas
 /// ([`contact_solver::prepare_point`], [`contact_solver::rolling_mass`]),
 /// written as [`set_lane`] would write that constraint, without building
-/// it. `mass`: the bodies' solver indices and inverse masses;
+/// it. `mass`: the bodies' solver indices and inverse masses, and their
+/// lane words ([`lane_index`] of those, computed once per body and step);
 /// `static_soft`: whether the constraint takes the step's second softness
 /// ([`StepSoftness`]); `push_out`: its push-out bound (m/s); `bodies`: the
 /// solver records by solver index; `warm`: the warm-start scale. Returns
@@ -247,7 +251,7 @@ pub(crate) fn prepare_lane(
     (w, e): (&mut WideConstraint, &mut WideExtra),
     l: usize,
     contact: &Contact,
-    mass: &PairMass,
+    (mass, (word_a, word_b)): (&PairMass, (u32, u32)),
     (static_soft, push_out): (bool, f64),
     bodies: &[SolverBody],
     warm: f64,
@@ -258,8 +262,8 @@ pub(crate) fn prepare_lane(
         (w, e),
         l,
         &LaneHead {
-            a: lane_index(mass.a, mass.inv_mass_a, ia) | flag,
-            b: lane_index(mass.b, mass.inv_mass_b, ib),
+            a: word_a | flag,
+            b: word_b,
             normal: contact.normal,
             friction: contact.friction,
             push_out,
@@ -1125,11 +1129,15 @@ mod tests {
             let mut expected = (WideConstraint::default(), WideExtra::default());
             set_lane((&mut expected.0, &mut expected.1), lane, &scalar, &softness);
             let mut direct = (WideConstraint::default(), WideExtra::default());
+            let words = (
+                lane_index(a, mass.inv_mass_a, mass.inv_inertia_a),
+                lane_index(b, mass.inv_mass_b, mass.inv_inertia_b),
+            );
             let rare = prepare_lane(
                 (&mut direct.0, &mut direct.1),
                 lane,
                 &c,
-                &mass,
+                (&mass, words),
                 (static_soft, push_out),
                 &bodies,
                 warm,
