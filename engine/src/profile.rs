@@ -158,4 +158,74 @@ impl StepProfile {
     pub fn total_seconds(&self) -> f64 {
         self.phases().iter().map(|(_, d)| d.as_secs_f64()).sum()
     }
+
+    /// What was added since `earlier` (an earlier reading of the same
+    /// profile): every phase's time and every counter, each this reading's
+    /// less `earlier`'s, at least zero (a profile reset in between reads
+    /// as nothing added, not as a negative time).
+    pub fn since(&self, earlier: &StepProfile) -> StepProfile {
+        let t = |a: Duration, b: Duration| a.saturating_sub(b);
+        let n = |a: u64, b: u64| a.saturating_sub(b);
+        let e = earlier;
+        StepProfile {
+            integrate: t(self.integrate, e.integrate),
+            broad_phase: t(self.broad_phase, e.broad_phase),
+            narrow_phase: t(self.narrow_phase, e.narrow_phase),
+            toi: t(self.toi, e.toi),
+            respond: t(self.respond, e.respond),
+            pairs: t(self.pairs, e.pairs),
+            collide: t(self.collide, e.collide),
+            prepare: t(self.prepare, e.prepare),
+            warm_start: t(self.warm_start, e.warm_start),
+            solve: t(self.solve, e.solve),
+            relax: t(self.relax, e.relax),
+            restitution: t(self.restitution, e.restitution),
+            store: t(self.store, e.store),
+            continuous: t(self.continuous, e.continuous),
+            sleep: t(self.sleep, e.sleep),
+            steps: n(self.steps, e.steps),
+            candidate_pairs: n(self.candidate_pairs, e.candidate_pairs),
+            toi_searches: n(self.toi_searches, e.toi_searches),
+            toi_evaluations: n(self.toi_evaluations, e.toi_evaluations),
+            events: n(self.events, e.events),
+            contacts: n(self.contacts, e.contacts),
+            touching: n(self.touching, e.touching),
+            points: n(self.points, e.points),
+            recycled: n(self.recycled, e.recycled),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn since_is_each_field_less_the_earlier_reading_never_below_zero() {
+        let ms = Duration::from_millis;
+        let earlier = StepProfile {
+            solve: ms(3),
+            sleep: ms(9),
+            steps: 2,
+            points: 10,
+            recycled: 7,
+            ..StepProfile::default()
+        };
+        let now = StepProfile {
+            solve: ms(5),
+            sleep: ms(4),
+            prepare: ms(1),
+            steps: 5,
+            points: 16,
+            recycled: 3,
+            ..StepProfile::default()
+        };
+        let d = now.since(&earlier);
+        // By hand: 5 − 3 ms, 1 − 0 ms, 5 − 2 steps, 16 − 10 points; the
+        // sleep time and the recycled count went down (a reset): zero.
+        assert_eq!((d.solve, d.prepare, d.sleep), (ms(2), ms(1), ms(0)));
+        assert_eq!((d.steps, d.points, d.recycled), (3, 6, 0));
+        assert_eq!(now.since(&StepProfile::default()), now);
+        assert_eq!(now.since(&now), StepProfile::default());
+    }
 }

@@ -89,6 +89,45 @@ fn a_bench_row_carries_the_build_and_the_spread() {
         assert!(md.contains("stage by stage, one thread each"), "{md}");
         assert!(md.contains("stage by stage, 2 threads each"), "{md}");
     }
+    // The quality probe: this engine's one-thread row carries it exactly
+    // when one of its figures is worse than rapier2d's or Box2D's (one
+    // thread) by more than 1 % and 1e-6, one probed miss per such figure,
+    // each said in the target tables.
+    let figure = |row: &serde_json::Value, field: &str| row[field].as_f64();
+    let mut missed = Vec::new();
+    for reference in &rows[1..engines] {
+        for (field, name) in [
+            ("top_sink", "top sink (m)"),
+            ("top_drift", "top drift (m)"),
+            ("fastest_at_end", "fastest at the end (m/s)"),
+            ("deepest_overlap", "deepest overlap (m)"),
+        ] {
+            let (Some(a), Some(b)) = (figure(&rows[0], field), figure(reference, field)) else {
+                continue;
+            };
+            if !(a <= b * 1.01 || a <= b + 1e-6) {
+                missed.push((name, reference["engine"].as_str().unwrap()));
+            }
+        }
+    }
+    let probe = &rows[0]["quality_probe"];
+    if missed.is_empty() {
+        assert!(probe.is_null(), "{}", rows[0]);
+    } else {
+        let misses = probe["misses"].as_array().expect("probed misses");
+        assert_eq!(misses.len(), missed.len(), "{probe}");
+        for (m, (name, engine)) in misses.iter().zip(&missed) {
+            assert_eq!(
+                (m["figure"].as_str(), m["reference"].as_str()),
+                (Some(*name), Some(*engine))
+            );
+            assert!(m["shifted"].as_f64().unwrap().is_finite(), "{m}");
+            assert!(!m["tried"].as_array().unwrap().is_empty(), "{m}");
+        }
+        assert!(md.contains("Rounding alone moves the figure by"), "{md}");
+    }
+    // The rest of the rows never carry it.
+    assert!(rows[1..].iter().all(|r| r.get("quality_probe").is_none()));
 }
 
 #[test]

@@ -26,17 +26,22 @@
 //! the scene's joints ([`ManyBodyScene::joint_states`]), also the same for
 //! every engine. After the repeats, separate profiled runs of this engine
 //! and of the linked Box2D (at one thread, and at the larger count) say
-//! where each one's step goes, stage by stage ([`super::stages`]).
+//! where each one's step goes, stage by stage ([`super::stages`]); and,
+//! where this engine misses a quality target, the probes of what would
+//! close it ([`super::quality_probe`]).
 
 use super::child::{self, ChildBuild};
 use super::convert::many_body_scene;
+use super::figures::Figures;
 use super::ours::SoftStepEngine;
+use super::quality_probe::{self, QualityProbe};
 use super::scenes::BenchScene;
 use super::stages::{self, StageComparison};
+use super::targets::{QualityTarget, box2d_quality, rapier_quality};
 use anyhow::{Context, Result, bail};
 use references::box2d_world::Box2dWorld;
 use references::box2d_world::build::Box2dBuild;
-use references::many_body::{BodySample, JointState, ManyBodyEngine, ManyBodyScene};
+use references::many_body::{BodySample, ManyBodyEngine, ManyBodyScene};
 use references::rapier_many::RapierManyWorld;
 use scene::Scene;
 use serde::Serialize;
@@ -75,6 +80,9 @@ pub struct BenchSettings {
     /// Threads of the multi-threaded rows (this engine, rapier2d, Box2D
     /// again at this count); 1: the one-thread rows only.
     pub threads: usize,
+    /// Whether a scene where this engine misses a quality target is run
+    /// again to say what would close it ([`super::quality_probe`]).
+    pub quality_probes: bool,
 }
 
 impl BenchSettings {
@@ -89,9 +97,10 @@ impl BenchSettings {
         box2d_double: false,
         memory: false,
         threads: 1,
+        quality_probes: false,
     };
     /// `harness bench`: Box2D's step counts, 10 repeats, the peak memory of
-    /// the large scenes.
+    /// the large scenes, the quality probes.
     pub const BENCH: BenchSettings = BenchSettings {
         steps: Steps::Box2d,
         repeats: 10,
@@ -100,6 +109,7 @@ impl BenchSettings {
         box2d_double: false,
         memory: true,
         threads: 2,
+        quality_probes: true,
     };
     /// `harness bench --full`: as [`Self::BENCH`] at the full sizes.
     pub const FULL: BenchSettings = BenchSettings {
@@ -179,6 +189,12 @@ pub struct BenchRow {
     /// when both were profiled at the row's thread count; absent otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stages: Option<BTreeMap<String, f64>>,
+    /// What would close each quality target this engine missed on the
+    /// scene ([`super::quality_probe`]): on this engine's one-thread row,
+    /// when the run probes ([`BenchSettings::quality_probes`]) and a
+    /// quality target was missed; absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub quality_probe: Option<QualityProbe>,
 }
 
 /// The measurements of one scene.
@@ -203,16 +219,19 @@ pub struct SceneResult {
 }
 
 /// What the run of one engine leaves.
-struct Run {
-    per_step: Duration,
+pub(super) struct Run {
+    /// Wall time per timed step.
+    pub(super) per_step: Duration,
     /// CPU time over wall time of the timed steps (0: not measured).
     cpu_over_wall: f64,
-    samples: Vec<BodySample>,
+    /// The bodies' final states.
+    pub(super) samples: Vec<BodySample>,
     touching: usize,
     points: usize,
 }
 
-fn run_engine(engine: &mut dyn ManyBodyEngine, steps: usize) -> Result<Run> {
+/// Step 0 of `engine` untimed, then `steps` timed steps.
+pub(super) fn run_engine(engine: &mut dyn ManyBodyEngine, steps: usize) -> Result<Run> {
     engine.step()?;
     let cpu = cpu_time()?;
     let started = Instant::now();
@@ -539,28 +558,7 @@ pub fn measure(
         configurations.push((built.name.clone(), built.configuration.clone()));
         let min = times[e].iter().copied().fold(f64::INFINITY, f64::min);
         let max = times[e].iter().copied().fold(0.0, f64::max);
-        let (sink, drift) = match top {
-            Some(i) => {
-                let start = neutral.bodies[i].position;
-                let end = run.samples[i].position;
-                (Some(start[1] - end[1]), Some((end[0] - start[0]).abs()))
-            }
-            None => (None, None),
-        };
-        let fastest = neutral
-            .bodies
-            .iter()
-            .zip(&run.samples)
-            .filter(|(b, _)| b.kind == references::many_body::BodyKind::Dynamic)
-            .map(|(_, s)| s.speed())
-            .fold(0.0, f64::max);
-        let overlap = neutral
-            .deepest_overlap(&run.samples)
-            .map_or(0.0, |o| o.depth);
-        let joints = neutral.joint_states(&run.samples);
-        let largest = |f: fn(&JointState) -> f64| {
-            (!joints.is_empty()).then(|| joints.iter().map(f).fold(0.0, f64::max))
-        };
+        let figures = Figures::of(&neutral, top, &run.samples);
         rows.push(BenchRow {
             scene: bench.id.to_string(),
             engine: built.name,
@@ -579,14 +577,15 @@ pub fn measure(
             cpu_over_wall: cpu[e].1,
             touching_pairs: run.touching,
             points: run.points,
-            top_sink: sink,
-            top_drift: drift,
-            fastest_at_end: fastest,
-            deepest_overlap: overlap,
+            top_sink: figures.top_sink,
+            top_drift: figures.top_drift,
+            fastest_at_end: figures.fastest_at_end,
+            deepest_overlap: figures.deepest_overlap,
             joints: neutral.joints.len(),
-            joint_separation_max: largest(|j| j.separation),
-            joint_limit_excess_max: largest(|j| j.limit_violation),
+            joint_separation_max: figures.joint_separation_max,
+            joint_limit_excess_max: figures.joint_limit_excess_max,
             stages: None,
+            quality_probe: None,
         });
     }
     // Separate profiled runs: where this engine's time goes, and, with the
@@ -645,6 +644,26 @@ pub fn measure(
             Contender::Box2d(t) => at(*t).map(|c| c.map(|s| s.box2d_ms)),
             _ => None,
         };
+    }
+    if settings.quality_probes {
+        let misses: Vec<QualityTarget> = rapier_quality(bench.id, &rows)
+            .into_iter()
+            .chain(box2d_quality(&rows))
+            .filter(|q| !q.met())
+            .collect();
+        let started = Instant::now();
+        let probe = quality_probe::probe(scene, &neutral, top, steps, &rows, &misses)
+            .with_context(|| format!("the quality probe of {}", bench.id))?;
+        if probe.is_some() {
+            eprintln!(
+                "bench {}: quality probe {:.1} s",
+                bench.id,
+                started.elapsed().as_secs_f64()
+            );
+        }
+        if let Some(ours) = rows.first_mut() {
+            ours.quality_probe = probe;
+        }
     }
     Ok(SceneResult {
         scene: bench,

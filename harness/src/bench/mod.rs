@@ -4,7 +4,8 @@
 //! (Box2D's protocol and step counts, [`measure`]), Box2D built as it
 //! ships (-O3, NDEBUG, AVX2) and, when asked, its SSE2 and double builds
 //! as child processes ([`child`]), with the quality figures read the same
-//! way from every engine; the peak memory of the large scenes
+//! way from every engine ([`figures`]), and for each quality target this
+//! engine misses what would close it ([`quality_probe`]); the peak memory of the large scenes
 //! ([`memory`]); the contact work-precision study ([`contact_precision`]);
 //! `reports/benchmarks.md`, `benchmarks.json` and the charts ([`report`],
 //! `crate::plots::bench`).
@@ -12,10 +13,12 @@
 pub mod child;
 pub mod contact_precision;
 pub mod convert;
+pub mod figures;
 pub mod measure;
 pub mod memory;
 pub mod neutral_joints;
 pub mod ours;
+pub mod quality_probe;
 pub mod queries;
 pub mod report;
 pub mod scenes;
@@ -148,6 +151,16 @@ fn print_scene(result: &SceneResult) {
             .collect::<Vec<_>>()
             .join(", ")
     );
+    if let Some(p) = result.rows.first().and_then(|r| r.quality_probe.as_ref()) {
+        for m in &p.misses {
+            println!(
+                "  {} against {}: {}",
+                m.figure,
+                short(&m.reference),
+                m.describe(p.shift_m)
+            );
+        }
+    }
 }
 
 /// Everything a benchmark measured, for its report ([`write`]).

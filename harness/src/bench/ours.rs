@@ -109,13 +109,7 @@ impl ManyBodyEngine for SoftStepEngine {
         self.world
             .step(self.dt)
             .map_err(|e| self.failed(e.to_string()))?;
-        let after = self.world.profile();
-        self.last = StepProfile {
-            contacts: after.contacts - before.contacts,
-            touching: after.touching - before.touching,
-            points: after.points - before.points,
-            ..StepProfile::default()
-        };
+        self.last = self.world.profile().since(&before);
         self.steps += 1;
         Ok(())
     }

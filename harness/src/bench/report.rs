@@ -3,14 +3,14 @@
 //! ratio to this engine, contact counts and quality figures; the machine,
 //! the commit, each engine's build (precision, SIMD path taken on this
 //! CPU, threads, compiler flags) and settings; the targets with their
-//! measured figures, and for a missed speed target against Box2D what
-//! would close it; per scene, this engine and Box2D stage by stage
+//! measured figures, and for a missed speed target against Box2D and a
+//! missed quality target what would close it; per scene, this engine and Box2D stage by stage
 //! ([`super::stages`]); the peak memory of the large scenes; the charts.
 
 use super::contact_precision::CaseResult;
 use super::measure::{BenchSettings, SceneResult, Steps};
 use super::memory::PeakMemory;
-use super::stages::{OUTSIDE, PROFILED_REPEATS, STAGES, StageComparison};
+use super::stages::{BOUNDARIES, OUTSIDE, PROFILED_REPEATS, STAGES, StageComparison};
 use super::targets::{Target, box2d_targets, scaling_slope, targets};
 use anyhow::Result;
 use std::fmt::Write as _;
@@ -224,6 +224,13 @@ pub fn write(
     }
     writeln!(md, "## Targets\n")?;
     let t = targets(results);
+    if t.iter().any(|t| !t.met) {
+        writeln!(
+            md,
+            "{}\n",
+            super::quality_probe::explained(settings.quality_probes).trim()
+        )?;
+    }
     md.push_str(&verdict_table(&t));
     let lead = box2d_targets(results);
     if !lead.is_empty() {
@@ -234,9 +241,10 @@ pub fn write(
              Targets: this engine at most 0.9× the ms per step of Box2D built as it ships (f32, \
              AVX2, -O3, NDEBUG) on every scene, one thread each, the same substeps; and every \
              quality figure at least as good as Box2D's (no worse by more than 1 % or 1e-6 in \
-             the figure's unit). Met: {met} of {}.{}\n",
+             the figure's unit). Met: {met} of {}.{}{}\n",
             lead.len(),
-            CLOSING
+            CLOSING,
+            super::quality_probe::explained(settings.quality_probes)
         )?;
         md.push_str(&verdict_table(&lead));
     }
@@ -293,19 +301,12 @@ pub fn write(
          engine's phase timers and Box2D's own (`b2Profile`, which holds the last step and is read \
          after each one) summed over the steps and divided by them, mapped onto common stages: \
          {}. Box2D's `step`, `solve` and `constraints` hold the others and are not counted \
-         again; its `split_islands` runs inside `solver_setup` with one worker and only with \
-         sleeping on. \"{OUTSIDE}\" is the profiled run's wall time per step less its stages \
+         again. \"{OUTSIDE}\" is the profiled run's wall time per step less its stages \
          (the call into the engine, the timers' own cost, work no timer covers), so each column \
-         adds up to that wall time. Where the boundaries differ: with one worker Box2D's \
-         `pairs` includes the rebuild of its dynamic tree (as ours does), with more that \
-         rebuild runs alongside and is waited for in `refit`; ours `prepare` also loads the \
-         bodies and prepares the joints; ours `store` also writes the states back to the world, \
-         which Box2D does in `transforms`. On several threads this engine times its substeps as \
-         one stage and stores the contact impulses with restitution, so that table merges \
-         integrate, warm_start, solve and relax into substeps, and restitution with store, for \
-         both engines.\n",
+         adds up to that wall time. Where the boundaries differ: {}\n",
             settings.repeats.clamp(1, PROFILED_REPEATS),
-            correspondence()
+            correspondence(),
+            BOUNDARIES.join(" ")
         )?;
     }
     for r in results {

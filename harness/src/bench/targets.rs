@@ -4,7 +4,9 @@
 //! reported as met or not met with the measured figure; they are not rows
 //! of `summary.json`, so noise never fails the main command.
 
+use super::figures::{DEEPEST_OVERLAP, FASTEST_AT_END, Figures, TOP_DRIFT, TOP_SINK};
 use super::measure::{BenchRow, SceneResult};
+use super::quality_probe::QualityProbe;
 use serde::Serialize;
 
 /// A target and its verdict.
@@ -16,8 +18,10 @@ pub struct Target {
     pub measured: String,
     /// Whether it holds.
     pub met: bool,
-    /// For a missed speed target against Box2D: what would close it, from
-    /// the measured figures ([`super::stages::Gap::describe`]).
+    /// For a missed target: what would close it, from the measured
+    /// figures: for a speed target against Box2D the stages
+    /// ([`super::stages::Gap::describe`]), for a quality target the probes
+    /// ([`QualityProbe::describe`]).
     pub to_close: Option<String>,
 }
 
@@ -34,7 +38,12 @@ fn row<'a>(results: &'a [SceneResult], id: &str, index: usize) -> Option<&'a Ben
 
 /// Box2D's f32 AVX2 row of a scene (its release build), if measured.
 pub fn box2d_avx2(result: &SceneResult) -> Option<&BenchRow> {
-    result.rows.iter().find(|b| {
+    box2d_avx2_of(&result.rows)
+}
+
+/// Box2D's f32 AVX2 row among a scene's `rows`, if measured.
+fn box2d_avx2_of(rows: &[BenchRow]) -> Option<&BenchRow> {
+    rows.iter().find(|b| {
         b.engine.starts_with("Box2D") && b.precision == "f32" && b.engine.contains(" AVX2 ")
     })
 }
@@ -42,28 +51,104 @@ pub fn box2d_avx2(result: &SceneResult) -> Option<&BenchRow> {
 /// A quality figure counts as at least as good as the reference's when it
 /// is no worse by more than the last digit a report shows (1 %) or by
 /// more than 1 µm / 1 µm/s / 1 µrad in absolute terms.
-fn at_least_as_good(a: f64, b: f64) -> bool {
+pub fn at_least_as_good(a: f64, b: f64) -> bool {
     a <= b * 1.01 || a <= b + 1e-6
 }
 
-/// The quality figures of a row, named (those it has).
-fn figures(b: &BenchRow) -> Vec<(&'static str, f64)> {
-    let mut out = Vec::new();
-    if let Some(x) = b.top_sink {
-        out.push(("top sink (m)", x));
+/// A quality target: this engine's figure at least as good as a
+/// reference engine's on a scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct QualityTarget {
+    /// The figure's name ([`super::figures`]).
+    pub figure: &'static str,
+    /// The reference engine's name (its row's).
+    pub reference: String,
+    /// This engine's figure.
+    pub ours: f64,
+    /// The reference's figure.
+    pub theirs: f64,
+}
+
+impl QualityTarget {
+    /// Whether it holds ([`at_least_as_good`]).
+    pub fn met(&self) -> bool {
+        at_least_as_good(self.ours, self.theirs)
     }
-    if let Some(x) = b.top_drift {
-        out.push(("top drift (m)", x));
+
+    /// Its row in a target table, with what would close it from `probe`
+    /// when missed.
+    fn target(&self, id: &str, against: &str, probe: Option<&QualityProbe>) -> Target {
+        let met = self.met();
+        Target {
+            target: format!("{id}: {} at least as good as {against}'s", self.figure),
+            measured: format!("{:.3e} against {:.3e}", self.ours, self.theirs),
+            met,
+            to_close: if met {
+                None
+            } else {
+                probe.and_then(|p| p.describe(self.figure, &self.reference))
+            },
+        }
     }
-    out.push(("fastest at the end (m/s)", b.fastest_at_end));
-    out.push(("deepest overlap (m)", b.deepest_overlap));
-    if let Some(x) = b.joint_separation_max {
-        out.push(("largest joint separation (m)", x));
+}
+
+/// The scenes whose quality figures are set against rapier2d's (the
+/// many-body benchmark issue's pyramid series and stack).
+pub const RAPIER_QUALITY_SCENES: [&str; 6] = [
+    "pyramid_10",
+    "pyramid_20",
+    "pyramid_40",
+    "pyramid_70",
+    "large_pyramid",
+    "stack",
+];
+
+/// The quality targets against rapier2d on scene `id` of `rows` (this
+/// engine's and rapier2d's one-thread rows first): the top body's sink and
+/// drift, the fastest body and the deepest overlap, on the scenes of
+/// [`RAPIER_QUALITY_SCENES`].
+pub fn rapier_quality(id: &str, rows: &[BenchRow]) -> Vec<QualityTarget> {
+    let (Some(ours), Some(rapier)) = (rows.first(), rows.get(1)) else {
+        return Vec::new();
+    };
+    if !RAPIER_QUALITY_SCENES.contains(&id) {
+        return Vec::new();
     }
-    if let Some(x) = b.joint_limit_excess_max {
-        out.push(("largest limit excess (rad)", x));
-    }
-    out
+    let theirs = Figures::of_row(rapier);
+    Figures::of_row(ours)
+        .named()
+        .into_iter()
+        .filter(|(name, _)| [TOP_SINK, TOP_DRIFT, FASTEST_AT_END, DEEPEST_OVERLAP].contains(name))
+        .filter_map(|(figure, a)| {
+            theirs.get(figure).map(|b| QualityTarget {
+                figure,
+                reference: rapier.engine.clone(),
+                ours: a,
+                theirs: b,
+            })
+        })
+        .collect()
+}
+
+/// The quality targets against Box2D's release build (f32 AVX2) in
+/// `rows`: every figure both rows have.
+pub fn box2d_quality(rows: &[BenchRow]) -> Vec<QualityTarget> {
+    let (Some(ours), Some(b2)) = (rows.first(), box2d_avx2_of(rows)) else {
+        return Vec::new();
+    };
+    let theirs = Figures::of_row(b2);
+    Figures::of_row(ours)
+        .named()
+        .into_iter()
+        .filter_map(|(figure, a)| {
+            theirs.get(figure).map(|b| QualityTarget {
+                figure,
+                reference: b2.engine.clone(),
+                ours: a,
+                theirs: b,
+            })
+        })
+        .collect()
 }
 
 /// The single-thread lead over Box2D's release build: on every scene, at
@@ -88,16 +173,9 @@ pub fn box2d_targets(results: &[SceneResult]) -> Vec<Target> {
             met: ratio <= 0.9,
             to_close: to_close(r, ours.ms_per_step_min, b2, 0.9, ratio <= 0.9),
         });
-        let theirs = figures(b2);
-        for (name, a) in figures(ours) {
-            if let Some(&(_, b)) = theirs.iter().find(|(n, _)| *n == name) {
-                out.push(Target {
-                    target: format!("{}: {name} at least as good as Box2D's", r.scene.id),
-                    measured: format!("{a:.3e} against {b:.3e}"),
-                    met: at_least_as_good(a, b),
-                    to_close: None,
-                });
-            }
+        let probe = ours.quality_probe.as_ref();
+        for q in box2d_quality(&r.rows) {
+            out.push(q.target(r.scene.id, "Box2D", probe));
         }
     }
     out
@@ -192,41 +270,10 @@ pub fn targets(results: &[SceneResult]) -> Vec<Target> {
             to_close: None,
         });
     }
-    for id in [
-        "pyramid_10",
-        "pyramid_20",
-        "pyramid_40",
-        "pyramid_70",
-        "large_pyramid",
-        "stack",
-    ] {
-        let (Some(ours), Some(rapier)) = (row(results, id, 0), row(results, id, 1)) else {
-            continue;
-        };
-        let figures = [
-            ("top sink (m)", ours.top_sink, rapier.top_sink),
-            ("top drift (m)", ours.top_drift, rapier.top_drift),
-            (
-                "fastest at the end (m/s)",
-                Some(ours.fastest_at_end),
-                Some(rapier.fastest_at_end),
-            ),
-            (
-                "deepest overlap (m)",
-                Some(ours.deepest_overlap),
-                Some(rapier.deepest_overlap),
-            ),
-        ];
-        for (name, a, b) in figures {
-            if let (Some(a), Some(b)) = (a, b) {
-                let met = at_least_as_good(a, b);
-                out.push(Target {
-                    target: format!("{id}: {name} at least as good as rapier2d's"),
-                    measured: format!("{a:.3e} against {b:.3e}"),
-                    met,
-                    to_close: None,
-                });
-            }
+    for r in results {
+        let probe = r.rows.first().and_then(|b| b.quality_probe.as_ref());
+        for q in rapier_quality(r.scene.id, &r.rows) {
+            out.push(q.target(r.scene.id, "rapier2d", probe));
         }
     }
     out

@@ -60,22 +60,20 @@ pub fn means(
     let per = steps.max(1) as f64;
     status.step_ms = (steps > 0).then(|| 1e3 * stepping.as_secs_f64() / per);
     status.phases.clear();
+    let added = now.since(then);
     if timings && steps > 0 {
-        for ((name, b), (_, a)) in now.phases().into_iter().zip(then.phases()) {
-            let ms = 1e3 * b.saturating_sub(a).as_secs_f64() / per;
+        for (name, d) in added.phases() {
+            let ms = 1e3 * d.as_secs_f64() / per;
             if ms > 0.0 {
                 status.phases.push((name, ms));
             }
         }
     }
-    let per_step = |b: u64, a: u64| b.saturating_sub(a) as f64 / per;
+    let per_step = |n: u64| n as f64 / per;
     status.counters = vec![
-        (
-            "candidate pairs",
-            per_step(now.candidate_pairs, then.candidate_pairs),
-        ),
-        ("contacts", per_step(now.contacts, then.contacts)),
-        ("touching", per_step(now.touching, then.touching)),
-        ("points", per_step(now.points, then.points)),
+        ("candidate pairs", per_step(added.candidate_pairs)),
+        ("contacts", per_step(added.contacts)),
+        ("touching", per_step(added.touching)),
+        ("points", per_step(added.points)),
     ];
 }
