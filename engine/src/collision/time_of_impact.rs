@@ -31,6 +31,7 @@
 
 use super::manifold::{Manifold, Proximity};
 use super::narrow_phase::{collide, proximity};
+use super::surely_within::surely_within;
 use crate::shape::{ChainSegment, Shape, cross};
 use nalgebra::{Isometry2, Point2, Translation2, UnitComplex, Vector2};
 use thiserror::Error;
@@ -292,6 +293,7 @@ pub fn toi_conservative_advancement(
         b,
         motion_b,
     };
+    validate([motion_a, motion_b], h, options)?;
     let touch = advance(&probe, h, options)?;
     Ok(touch.map(|(time, p, iterations)| probe.impact(time, &p, options.tolerance, iterations)))
 }
@@ -299,7 +301,10 @@ pub fn toi_conservative_advancement(
 /// The time of [`toi_conservative_advancement`]'s impact (s), the same
 /// bits, without its manifold: what the soft step's continuous sweeps
 /// read (they discard the manifold, whose clipping costs as much as the
-/// distance it follows).
+/// distance it follows). A pair certainly within ε at the start
+/// (`surely_within`: a core vertex of one within ε, less a rounding
+/// slack, of the other) is at t = 0 without its exact distance, which
+/// would be within ε too.
 pub(crate) fn toi_time_conservative_advancement(
     a: &Shape,
     motion_a: &Motion,
@@ -308,6 +313,11 @@ pub(crate) fn toi_time_conservative_advancement(
     h: f64,
     options: &ToiOptions,
 ) -> Result<Option<f64>, ToiError> {
+    validate([motion_a, motion_b], h, options)?;
+    let (start_a, start_b) = (motion_a.pose_at(0.0), motion_b.pose_at(0.0));
+    if surely_within(a, &start_a, b, &start_b, options.tolerance) {
+        return Ok(Some(0.0));
+    }
     let probe = Probe {
         a,
         motion_a,
@@ -317,17 +327,16 @@ pub(crate) fn toi_time_conservative_advancement(
     Ok(advance(&probe, h, options)?.map(|(time, _, _)| time))
 }
 
-/// Conservative advancement of `probe`'s pair over [0, h]: the time
-/// reached (s), the proximity there and the iterations spent, or `None`
-/// if the pair stays farther apart than ε (see
-/// [`toi_conservative_advancement`]).
+/// Conservative advancement of `probe`'s pair over [0, h] (the inputs
+/// validated): the time reached (s), the proximity there and the
+/// iterations spent, or `None` if the pair stays farther apart than ε
+/// (see [`toi_conservative_advancement`]).
 fn advance(
     probe: &Probe<'_>,
     h: f64,
     options: &ToiOptions,
 ) -> Result<Option<(f64, Proximity, usize)>, ToiError> {
     let (a, motion_a, b, motion_b) = (probe.a, probe.motion_a, probe.b, probe.motion_b);
-    validate([motion_a, motion_b], h, options)?;
     let eps = options.tolerance;
     // A shape that does not turn adds nothing (its radius is not needed:
     // |ω| r = +0 for a finite r ≥ 0, and a + 0 = a).
