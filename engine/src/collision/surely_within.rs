@@ -79,7 +79,7 @@ fn proxies_within(a: &ConvexProxy, b: &ConvexProxy, reach: f64) -> bool {
         .fold(a.radius.max(b.radius), f64::max);
     // The largest distance from a vertex to the other core that passes.
     let limit = reach - slack(scale) + a.radius + b.radius;
-    if !(limit >= 0.0) {
+    if limit.is_nan() || limit < 0.0 {
         return false;
     }
     let limit_squared = limit * limit;
