@@ -72,20 +72,16 @@ impl<'a> FinalizeInputs<'a> {
 
 /// Body `id`'s part of the stage: its sleep timer, and for a body with
 /// colliders its end pose, swept back to the first impact with a static
-/// shape when it moved fast, its rotation set to that pose's, and its
-/// colliders' boxes at that pose grown by the speculative distance (what
-/// the broad phase is given, [`speculative_box`]) into `boxes` (one per
-/// collider, in order). Returns `None` for a body without colliders, else
-/// whether the sweep corrected the pose (then the caller writes it into
-/// the world's state; position in m, angle in rad). Inlined: on one
-/// thread it is the body of the stage's loop.
+/// shape when it moved fast, its rotation set to that pose's. Returns the
+/// end pose, and whether the sweep corrected it (then the caller writes
+/// it into the world's state; position in m, angle in rad). Inlined: on
+/// one thread it is the body of the stage's loop.
 #[inline(always)]
 fn finalize_body(
     id: usize,
     sim: &mut BodySim,
     inputs: &FinalizeInputs<'_>,
-    boxes: &mut [Aabb],
-) -> Option<Option<Impact>> {
+) -> Option<(Isometry2<f64>, Option<Impact>)> {
     let settings = inputs.settings;
     let dt = inputs.dt;
     let r = inputs.solver[id + 1];
@@ -105,72 +101,62 @@ fn finalize_body(
         }
         return None;
     }
-    let speculative = settings.speculative_distance;
     // The end pose's rotation, kept unless an impact moves the body.
-    let rotation = UnitComplex::new(state.angle);
-    let end = Isometry2::from_parts(Translation2::from(state.position), rotation);
-    sim.rotation = rotation;
+    let mut rotation = UnitComplex::new(state.angle);
+    let mut position = state.position;
+    let mut corrected = None;
     // Only static shapes are swept against: none, nothing to do. A fast
     // bullet's sweep waits for the other bodies' end poses (`bullets.rs`).
-    if !(inputs.broad.has_static() && is_fast(settings, sim, &r) && !sim.bullet) {
-        for (c, aabb) in sim.colliders.clone().zip(boxes) {
-            *aabb = speculative_box(&inputs.colliders[c], &end, speculative);
+    if inputs.broad.has_static() && is_fast(settings, sim, &r) && !sim.bullet {
+        let sweep = continuous::Sweep {
+            start: (state.position - r.dp, state.angle - r.dtheta),
+            end: (state.position, state.angle),
+            dt,
+        };
+        let start = Isometry2::new(sweep.start.0, sweep.start.1);
+        let end = Isometry2::from_parts(Translation2::from(sweep.end.0), rotation);
+        let swept = sim
+            .colliders
+            .clone()
+            .map(|c| {
+                let collider = &inputs.colliders[c];
+                collider
+                    .shape
+                    .aabb_at(&collider.pose(&start))
+                    .merged(&collider.shape.aabb_at(&collider.pose(&end)))
+            })
+            .reduce(|a, b| a.merged(&b))
+            .expect("a body with colliders");
+        let (colliders, data) = (inputs.colliders, inputs.shape_data);
+        let own = sim.colliders.clone();
+        let blocks = |other: usize| {
+            let d = &data[other];
+            let stops = !d.sensor
+                && own
+                    .clone()
+                    .any(|c| !data[c].sensor && data[c].filter.should_collide(&d.filter));
+            stops.then_some((colliders[other].body, d.part))
+        };
+        if let Some(toi) = continuous::first_impact(
+            &inputs.bodies[id],
+            &sweep,
+            start,
+            &swept,
+            inputs.broad,
+            inputs.bodies,
+            inputs.states,
+            blocks,
+        ) {
+            let f = toi / dt;
+            position = sweep.start.0 + f * (sweep.end.0 - sweep.start.0);
+            let angle = sweep.start.1 + f * (sweep.end.1 - sweep.start.1);
+            rotation = UnitComplex::new(angle);
+            corrected = Some((position, angle));
         }
-        return Some(None);
     }
-    let sweep = continuous::Sweep {
-        start: (state.position - r.dp, state.angle - r.dtheta),
-        end: (state.position, state.angle),
-        dt,
-    };
-    let start = Isometry2::new(sweep.start.0, sweep.start.1);
-    // The swept box: each collider's boxes at the start and the end pose.
-    // The end box is kept (grown by the speculative distance) for the
-    // broad phase, unless an impact moves the body.
-    let mut swept: Option<Aabb> = None;
-    for (c, aabb) in sim.colliders.clone().zip(boxes.iter_mut()) {
-        let collider = &inputs.colliders[c];
-        let at_end = collider.shape.aabb_at(&collider.pose(&end));
-        let both = collider
-            .shape
-            .aabb_at(&collider.pose(&start))
-            .merged(&at_end);
-        swept = Some(swept.map_or(both, |s| s.merged(&both)));
-        *aabb = at_end.loosened(speculative);
-    }
-    let swept = swept.expect("a body with colliders");
-    let (colliders, data) = (inputs.colliders, inputs.shape_data);
-    let own = sim.colliders.clone();
-    let blocks = |other: usize| {
-        let d = &data[other];
-        let stops = !d.sensor
-            && own
-                .clone()
-                .any(|c| !data[c].sensor && data[c].filter.should_collide(&d.filter));
-        stops.then_some((colliders[other].body, d.part))
-    };
-    let Some(toi) = continuous::first_impact(
-        &inputs.bodies[id],
-        &sweep,
-        start,
-        &swept,
-        inputs.broad,
-        inputs.bodies,
-        inputs.states,
-        blocks,
-    ) else {
-        return Some(None);
-    };
-    let f = toi / dt;
-    let position = sweep.start.0 + f * (sweep.end.0 - sweep.start.0);
-    let angle = sweep.start.1 + f * (sweep.end.1 - sweep.start.1);
-    let rotation = UnitComplex::new(angle);
     sim.rotation = rotation;
     let pose = Isometry2::from_parts(Translation2::from(position), rotation);
-    for (c, aabb) in sim.colliders.clone().zip(boxes) {
-        *aabb = speculative_box(&inputs.colliders[c], &pose, speculative);
-    }
-    Some(Some((position, angle)))
+    Some((pose, corrected))
 }
 
 /// Whether dynamic body `sim`, of solver record `r`, moved fast this step
@@ -204,7 +190,10 @@ impl SoftStep {
     /// parts on its threads first (see the module docs).
     #[inline(never)]
     pub(super) fn finalize_bodies(&mut self, core: &mut WorldCore, dt: f64, pool: Option<&Pool>) {
-        let margin = self.settings.aabb_margin;
+        let (speculative, margin) = (
+            self.settings.speculative_distance,
+            self.settings.aabb_margin,
+        );
         if let Some(pool) = pool {
             self.parallel_finalize(pool, core, dt);
             // The threads' results, in body order: only the bodies they
@@ -233,10 +222,6 @@ impl SoftStep {
         }
         // On one thread: every moving body here, in body order.
         let serial = pool.is_none();
-        if serial {
-            let empty = Aabb::new(Vector2::zeros(), Vector2::zeros());
-            self.collider_boxes.resize(self.colliders.len(), empty);
-        }
         for id in (0..self.sims.len()).filter(|_| serial) {
             if !self.sims[id].moving() {
                 continue;
@@ -251,9 +236,7 @@ impl SoftStep {
                 core,
                 dt,
             );
-            let own = self.sims[id].colliders.clone();
-            let boxes = &mut self.collider_boxes[own.clone()];
-            let Some(impact) = finalize_body(id, &mut self.sims[id], &inputs, boxes) else {
+            let Some((pose, impact)) = finalize_body(id, &mut self.sims[id], &inputs) else {
                 continue;
             };
             if let Some((position, angle)) = impact {
@@ -261,10 +244,10 @@ impl SoftStep {
                 state.position = position;
                 state.angle = angle;
             }
-            for c in own {
-                let aabb = self.collider_boxes[c];
-                self.broad
-                    .update(c, &aabb, self.colliders[c].aabb_margin(margin));
+            for c in self.sims[id].colliders.clone() {
+                let collider = &self.colliders[c];
+                let aabb = speculative_box(collider, &pose, speculative);
+                self.broad.update(c, &aabb, collider.aabb_margin(margin));
             }
         }
         if !self.fast_bullets.is_empty() {
@@ -292,6 +275,7 @@ impl SoftStep {
             core,
             dt,
         );
+        let speculative = self.settings.speculative_distance;
         let sims = SharedSlice::new(&mut self.sims);
         let impacts = SharedSlice::new(&mut self.impacts);
         let boxes = SharedSlice::new(&mut self.collider_boxes);
@@ -309,9 +293,7 @@ impl SoftStep {
                 }
                 let fast_bullet =
                     sim.bullet && is_fast(inputs.settings, sim, &inputs.solver[id + 1]);
-                // SAFETY: as above.
-                let own = unsafe { boxes.slice(sim.colliders.clone()) };
-                let Some(corrected) = finalize_body(id, sim, &inputs, own) else {
+                let Some((pose, corrected)) = finalize_body(id, sim, &inputs) else {
                     if fast_bullet {
                         *impact = None;
                         pending.push(id);
@@ -319,8 +301,11 @@ impl SoftStep {
                     continue;
                 };
                 *impact = corrected;
+                // SAFETY: as above.
+                let own = unsafe { boxes.slice(sim.colliders.clone()) };
                 let mut left_fat = false;
-                for (c, aabb) in sim.colliders.clone().zip(own.iter()) {
+                for (c, aabb) in sim.colliders.clone().zip(own) {
+                    *aabb = speculative_box(&inputs.colliders[c], &pose, speculative);
                     left_fat |= !inputs.broad.fat_contains(c, aabb);
                 }
                 if fast_bullet || corrected.is_some() || left_fat {
