@@ -33,7 +33,10 @@
 //! 3. **Time of impact** ([`time_of_impact`], seed §7.2, Fig. 7.7–7.8): when
 //!    a pair interpenetrates at the end of a step, the first time in the step
 //!    at which its separation is within a tolerance ε, by the seed's
-//!    bisection of the step, or by conservative advancement.
+//!    bisection of the step, or by conservative advancement. The soft
+//!    step's continuous sweeps take the time alone, and leave at t = 0 a
+//!    pair that a cheap bound already puts within ε (`surely_within.rs`: a
+//!    core vertex of one near the other's core).
 //!
 //! The response (impulses with restitution, seed eq. 7.1–7.16, friction,
 //! resting contact) consumes the manifolds; it lives with the world.
@@ -64,6 +67,7 @@ pub(crate) mod polygon_polygon_local;
 pub(crate) mod ray;
 pub(crate) mod rounded_pair;
 pub(crate) mod segment_distance;
+pub(crate) mod surely_within;
 pub mod time_of_impact;
 
 #[cfg(test)]

@@ -31,6 +31,7 @@
 
 use super::manifold::{Manifold, Proximity};
 use super::narrow_phase::{collide, proximity};
+use super::surely_within::surely_within;
 use crate::shape::{ChainSegment, Shape, cross};
 use nalgebra::{Isometry2, Point2, Translation2, UnitComplex, Vector2};
 use thiserror::Error;
@@ -286,22 +287,74 @@ pub fn toi_conservative_advancement(
     h: f64,
     options: &ToiOptions,
 ) -> Result<Option<Impact>, ToiError> {
-    validate([motion_a, motion_b], h, options)?;
-    let eps = options.tolerance;
     let probe = Probe {
         a,
         motion_a,
         b,
         motion_b,
     };
-    let angular = motion_a.angular_velocity.abs() * a.rotation_radius()
-        + motion_b.angular_velocity.abs() * b.rotation_radius();
+    validate([motion_a, motion_b], h, options)?;
+    let touch = advance(&probe, h, options)?;
+    Ok(touch.map(|(time, p, iterations)| probe.impact(time, &p, options.tolerance, iterations)))
+}
+
+/// The time of [`toi_conservative_advancement`]'s impact (s), the same
+/// bits, without its manifold: what the soft step's continuous sweeps
+/// read (they discard the manifold, whose clipping costs as much as the
+/// distance it follows). A pair certainly within ε at the start
+/// (`surely_within`: a core vertex of one within ε, less a rounding
+/// slack, of the other) is at t = 0 without its exact distance, which
+/// would be within ε too.
+pub(crate) fn toi_time_conservative_advancement(
+    a: &Shape,
+    motion_a: &Motion,
+    b: &Shape,
+    motion_b: &Motion,
+    h: f64,
+    options: &ToiOptions,
+) -> Result<Option<f64>, ToiError> {
+    validate([motion_a, motion_b], h, options)?;
+    let (start_a, start_b) = (motion_a.pose_at(0.0), motion_b.pose_at(0.0));
+    if surely_within(a, &start_a, b, &start_b, options.tolerance) {
+        return Ok(Some(0.0));
+    }
+    let probe = Probe {
+        a,
+        motion_a,
+        b,
+        motion_b,
+    };
+    Ok(advance(&probe, h, options)?.map(|(time, _, _)| time))
+}
+
+/// Conservative advancement of `probe`'s pair over [0, h] (the inputs
+/// validated): the time reached (s), the proximity there and the
+/// iterations spent, or `None` if the pair stays farther apart than ε
+/// (see [`toi_conservative_advancement`]).
+fn advance(
+    probe: &Probe<'_>,
+    h: f64,
+    options: &ToiOptions,
+) -> Result<Option<(f64, Proximity, usize)>, ToiError> {
+    let (a, motion_a, b, motion_b) = (probe.a, probe.motion_a, probe.b, probe.motion_b);
+    let eps = options.tolerance;
+    // A shape that does not turn adds nothing (its radius is not needed:
+    // |ω| r = +0 for a finite r ≥ 0, and a + 0 = a).
+    let turning = |m: &Motion, s: &Shape| {
+        let w = m.angular_velocity.abs();
+        if w == 0.0 {
+            0.0
+        } else {
+            w * s.rotation_radius()
+        }
+    };
+    let angular = turning(motion_a, a) + turning(motion_b, b);
     let relative = motion_b.linear_velocity - motion_a.linear_velocity;
     let mut t = 0.0;
     let mut p = probe.proximity(t);
     for iteration in 0..=options.max_iterations {
         if p.distance <= eps {
-            return Ok(Some(probe.impact(t, &p, eps, iteration)));
+            return Ok(Some((t, p, iteration)));
         }
         let bound = relative.dot(&p.normal).abs() + angular;
         if bound.is_nan() || bound <= 0.0 {
@@ -344,6 +397,52 @@ pub fn toi_chain_segment(
     h: f64,
     options: &ToiOptions,
 ) -> Result<Option<Impact>, ToiError> {
+    match crossing_segment(motion_a, segment, chain_pose, h, options)? {
+        Some(line) => toi_conservative_advancement(
+            a,
+            motion_a,
+            &line,
+            &Motion::fixed(*chain_pose),
+            h,
+            options,
+        ),
+        None => Ok(None),
+    }
+}
+
+/// The time of [`toi_chain_segment`]'s impact (s), the same bits, without
+/// its manifold (as [`toi_time_conservative_advancement`]).
+pub(crate) fn toi_time_chain_segment(
+    a: &Shape,
+    motion_a: &Motion,
+    segment: &ChainSegment,
+    chain_pose: &Isometry2<f64>,
+    h: f64,
+    options: &ToiOptions,
+) -> Result<Option<f64>, ToiError> {
+    match crossing_segment(motion_a, segment, chain_pose, h, options)? {
+        Some(line) => toi_time_conservative_advancement(
+            a,
+            motion_a,
+            &line,
+            &Motion::fixed(*chain_pose),
+            h,
+            options,
+        ),
+        None => Ok(None),
+    }
+}
+
+/// The segment as a shape (a core of its two points, radius 0) when the
+/// origin of the body moving with `motion_a` crosses it from its solid side over [0, h] (see
+/// [`toi_chain_segment`]), else `None`.
+fn crossing_segment(
+    motion_a: &Motion,
+    segment: &ChainSegment,
+    chain_pose: &Isometry2<f64>,
+    h: f64,
+    options: &ToiOptions,
+) -> Result<Option<Shape>, ToiError> {
     validate([motion_a, &Motion::fixed(*chain_pose)], h, options)?;
     let p1 = chain_pose * Point2::from(segment.point1);
     let p2 = chain_pose * Point2::from(segment.point2);
@@ -358,7 +457,7 @@ pub fn toi_chain_segment(
     }
     let line = Shape::segment(segment.point1, segment.point2)
         .expect("a chain's consecutive points are at least 5 mm apart (Chain::new)");
-    toi_conservative_advancement(a, motion_a, &line, &Motion::fixed(*chain_pose), h, options)
+    Ok(Some(line))
 }
 
 #[cfg(test)]
@@ -643,5 +742,91 @@ mod tests {
                     .is_none()
             );
         }
+    }
+
+    /// The time-only sweeps give the bits of the full ones' impact times
+    /// (the manifold aside, the same search), and the same misses and
+    /// errors: a spinning capsule and box, a compound, a miss, a pair
+    /// touching at the start, a bad step; a chain from its solid side, from
+    /// below and along it.
+    #[test]
+    fn time_only_sweeps_give_the_full_sweeps_times() {
+        let options = ToiOptions::default();
+        let fixed = Motion::fixed(Isometry2::new(Vector2::new(0.3, -0.1), 0.2));
+        let l_piece = Shape::Compound(
+            crate::shape::Compound::new(vec![
+                crate::shape::CompoundPart::new(Vector2::new(-0.5, 0.0), 0.0, unit_box()),
+                crate::shape::CompoundPart::new(Vector2::new(0.5, 0.5), 0.1, unit_box()),
+            ])
+            .unwrap(),
+        );
+        let shapes = [unit_box(), Shape::capsule(1.0, 0.25).unwrap(), l_piece];
+        let motions = [
+            Motion::new(
+                Isometry2::new(Vector2::new(-3.0, 0.2), 0.4),
+                Vector2::new(2.0, 0.1),
+                1.5,
+            ),
+            Motion::new(
+                Isometry2::translation(-3.0, 0.0),
+                Vector2::new(-1.0, 0.0),
+                0.0,
+            ),
+            Motion::new(
+                Isometry2::translation(0.0, 0.4),
+                Vector2::new(1.0, 0.0),
+                -0.7,
+            ),
+        ];
+        // Hits inside the step, at its start, misses, errors.
+        let mut kinds = [0; 4];
+        for a in &shapes {
+            for b in &shapes {
+                for m in &motions {
+                    for h in [3.0, -1.0] {
+                        let full = toi_conservative_advancement(a, m, b, &fixed, h, &options);
+                        let time = toi_time_conservative_advancement(a, m, b, &fixed, h, &options);
+                        assert_eq!(time, full.map(|hit| hit.map(|i| i.time)));
+                        kinds[match time {
+                            Ok(Some(t)) if t > 0.0 => 0,
+                            Ok(Some(_)) => 1,
+                            Ok(None) => 2,
+                            Err(_) => 3,
+                        }] += 1;
+                    }
+                }
+            }
+        }
+        assert!(kinds.iter().all(|&k| k > 0), "{kinds:?}");
+        let chain = crate::shape::Chain::new(
+            vec![
+                Vector2::new(11.0, 0.0),
+                Vector2::new(10.0, 0.0),
+                Vector2::new(-10.0, 0.0),
+                Vector2::new(-11.0, 0.0),
+            ],
+            false,
+        )
+        .unwrap();
+        let segment = chain.segment(0).unwrap();
+        let ground = Isometry2::new(Vector2::new(0.1, 0.0), 0.05);
+        let mut chain_hits = 0;
+        for velocity in [
+            Vector2::new(0.5, -300.0),
+            Vector2::new(0.0, 300.0),
+            Vector2::<f64>::x(),
+        ] {
+            let y = -velocity.y.signum() * 2.0;
+            let m = Motion::new(Isometry2::new(Vector2::new(1.0, y), 0.3), velocity, 2.0);
+            for shape in &shapes {
+                let full = toi_chain_segment(shape, &m, &segment, &ground, 1.0 / 60.0, &options);
+                let time =
+                    toi_time_chain_segment(shape, &m, &segment, &ground, 1.0 / 60.0, &options);
+                assert_eq!(time, full.map(|hit| hit.map(|i| i.time)));
+                chain_hits += usize::from(matches!(time, Ok(Some(t)) if t > 0.0));
+            }
+        }
+        // Only the fall from the solid side is swept: one hit per shape.
+        assert_eq!(chain_hits, shapes.len());
     }
 }

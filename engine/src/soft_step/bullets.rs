@@ -41,7 +41,8 @@ use super::continuous::Sweep;
 use super::finalize::speculative_box;
 use super::manifold::LINEAR_SLOP;
 use crate::body::BodyId;
-use crate::collision::{Motion, ToiOptions, toi_chain_segment, toi_conservative_advancement};
+use crate::collision::time_of_impact::{toi_time_chain_segment, toi_time_conservative_advancement};
+use crate::collision::{Motion, ToiOptions};
 use crate::shape::Shape;
 use crate::tunables::SWEEP_MAX_ITERATIONS;
 use crate::world_core::WorldCore;
@@ -147,11 +148,11 @@ impl SoftStep {
             let impact = match other_shape {
                 // One collider per solid segment: its part names it.
                 Shape::Chain(chain) => chain.segment(d.part).map_or(Ok(None), |segment| {
-                    toi_chain_segment(shape, &motion, &segment, &pose, limit, &options)
+                    toi_time_chain_segment(shape, &motion, &segment, &pose, limit, &options)
                 }),
                 _ => {
                     let held = Motion::fixed(pose);
-                    toi_conservative_advancement(
+                    toi_time_conservative_advancement(
                         shape,
                         &motion,
                         other_shape,
@@ -161,10 +162,10 @@ impl SoftStep {
                     )
                 }
             };
-            if let Ok(Some(impact)) = impact
-                && impact.time > 0.0
+            if let Ok(Some(time)) = impact
+                && time > 0.0
             {
-                first = Some(impact.time);
+                first = Some(time);
             }
         });
         first

@@ -8,9 +8,11 @@
 //! rounded polygon, a compound part by part), and against a chain segment
 //! by segment, one-sided ([`crate::collision::toi_chain_segment`]: a body
 //! whose centre crossed a segment's line from its solid side in the step).
-//! At the first time of impact the body is put back there, velocities
-//! unchanged: the next step's speculative contact then stops it at the
-//! surface, with its restitution.
+//! Only the time is computed (`toi_time_conservative_advancement` and
+//! `toi_time_chain_segment`, the same search without the contact manifold
+//! the validation's sweeps return). At the first time of impact the body
+//! is put back there, velocities unchanged: the next step's speculative
+//! contact then stops it at the surface, with its restitution.
 //!
 //! Pairs already within the linear slop at the start of the step are left
 //! to the speculative contacts (sweeping them would freeze the body where
@@ -23,7 +25,8 @@
 use super::broad_phase::BroadPhase;
 use super::manifold::LINEAR_SLOP;
 use crate::body::{Body, BodyState};
-use crate::collision::{Aabb, Motion, ToiOptions, toi_chain_segment, toi_conservative_advancement};
+use crate::collision::time_of_impact::{toi_time_chain_segment, toi_time_conservative_advancement};
+use crate::collision::{Aabb, Motion, ToiOptions};
 use crate::shape::Shape;
 use nalgebra::{Isometry2, Vector2};
 
@@ -94,17 +97,24 @@ pub(crate) fn first_impact(
         let impact = match other_shape {
             // One collider per solid segment: the collider's part names it.
             Shape::Chain(chain) => chain.segment(part).map_or(Ok(None), |segment| {
-                toi_chain_segment(shape, &motion, &segment, &pose, limit, &options)
+                toi_time_chain_segment(shape, &motion, &segment, &pose, limit, &options)
             }),
             _ => {
                 let fixed = Motion::fixed(pose);
-                toi_conservative_advancement(shape, &motion, other_shape, &fixed, limit, &options)
+                toi_time_conservative_advancement(
+                    shape,
+                    &motion,
+                    other_shape,
+                    &fixed,
+                    limit,
+                    &options,
+                )
             }
         };
-        if let Ok(Some(impact)) = impact
-            && impact.time > 0.0
+        if let Ok(Some(time)) = impact
+            && time > 0.0
         {
-            first = Some(impact.time);
+            first = Some(time);
         }
     });
     first
