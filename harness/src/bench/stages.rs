@@ -255,10 +255,15 @@ pub struct Gap {
     /// ms per step this engine must lose: its time less the target's
     /// (factor × Box2D's).
     pub needed_ms: f64,
-    /// The stages where this engine's profiled time exceeds Box2D's, by
-    /// how much (ms per step), largest first; those under 0.5 µs (which
-    /// print as zero) left out.
+    /// The stages where this engine's profiled time exceeds the target's
+    /// share (Box2D's, or for a speed-up its one-thread time over the
+    /// factor), by how much (ms per step), largest first; those under
+    /// 0.5 µs (which print as zero) left out.
     pub excess: Vec<(&'static str, f64)>,
+    /// What the excess is measured against, in words.
+    pub against: &'static str,
+    /// What to say when no stage exceeds it.
+    pub none: &'static str,
 }
 
 /// The [`Gap`] of the target "at most `factor` × Box2D's ms per step",
@@ -274,6 +279,43 @@ pub fn gap(ours_ms: f64, box2d_ms: f64, factor: f64, stages: &[StageTime]) -> Ga
     Gap {
         needed_ms: ours_ms - factor * box2d_ms,
         excess,
+        against: "slower stages in the profiled runs",
+        none: "no stage of this engine's profiled run is slower than Box2D's",
+    }
+}
+
+/// The [`Gap`] of the target "on several threads at least `factor` times
+/// faster than on one" for this engine at `one_ms` on one thread and
+/// `many_ms` on several: the ms to lose on several threads, and the
+/// stages of its profiled runs that fall short of the speed-up (the
+/// several-thread time less the one-thread time over `factor`; the
+/// one-thread stages `one` summed into the coarse stages of `many`).
+pub fn speedup_gap(
+    one_ms: f64,
+    many_ms: f64,
+    factor: f64,
+    one: &[StageTime],
+    many: &[StageTime],
+) -> Gap {
+    let mut excess: Vec<(&'static str, f64)> = many
+        .iter()
+        .map(|m| {
+            let alone: f64 = one
+                .iter()
+                .filter(|o| coarse(o.stage) == m.stage)
+                .map(|o| o.ours_ms)
+                .sum();
+            (m.stage, m.ours_ms - alone / factor)
+        })
+        .filter(|(_, d)| *d >= 0.5e-3)
+        .collect();
+    excess.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(b.0)));
+    Gap {
+        needed_ms: many_ms - one_ms / factor,
+        excess,
+        against: "stages short of the speed-up in the profiled runs (their time on several \
+                  threads less their one-thread time over the factor)",
+        none: "every stage of the profiled runs reaches the speed-up",
     }
 }
 
@@ -283,7 +325,7 @@ impl Gap {
     pub fn describe(&self) -> String {
         let mut out = format!("needs −{:.3} ms per step", self.needed_ms);
         if self.excess.is_empty() {
-            out += "; no stage of this engine's profiled run is slower than Box2D's";
+            out += &format!("; {}", self.none);
         } else {
             let stages: Vec<String> = self
                 .excess
@@ -292,7 +334,8 @@ impl Gap {
                 .collect();
             let sum: f64 = self.excess.iter().map(|e| e.1).sum();
             out += &format!(
-                "; slower stages in the profiled runs: {} (sum +{sum:.3} ms)",
+                "; {}: {} (sum +{sum:.3} ms)",
+                self.against,
                 stages.join(", ")
             );
         }
@@ -394,6 +437,45 @@ mod tests {
             even.describe(),
             "needs −0.100 ms per step; no stage of this engine's profiled run is slower \
              than Box2D's"
+        );
+    }
+
+    #[test]
+    fn a_missed_speed_up_names_the_stages_that_fall_short() {
+        // One thread: integrate 0.2 and solve 0.6 (substeps 0.8 together),
+        // prepare 0.5, store 0.1; two threads: substeps 0.5, prepare 0.45,
+        // restitution and store 0.05.
+        let one = [
+            stage("prepare", 0.5, 0.0),
+            stage("integrate", 0.2, 0.0),
+            stage("solve", 0.6, 0.0),
+            stage("store", 0.1, 0.0),
+        ];
+        let many = [
+            stage("prepare", 0.45, 0.0),
+            stage("substeps", 0.5, 0.0),
+            stage("restitution and store", 0.05, 0.0),
+        ];
+        let g = speedup_gap(2.0, 1.25, 2.0, &one, &many);
+        // By hand: 1.25 − 2.0/2 = 0.25 ms to lose; prepare 0.45 − 0.5/2 =
+        // 0.20, substeps 0.5 − 0.8/2 = 0.10; restitution and store
+        // 0.05 − 0.1/2 = 0 (under the cut).
+        assert!((g.needed_ms - 0.25).abs() < 1e-12, "{g:?}");
+        let names: Vec<&str> = g.excess.iter().map(|e| e.0).collect();
+        assert_eq!(names, ["prepare", "substeps"]);
+        for ((_, got), want) in g.excess.iter().zip([0.20, 0.10]) {
+            assert!((got - want).abs() < 1e-12, "{g:?}");
+        }
+        assert!(
+            g.describe().starts_with(
+                "needs −0.250 ms per step; stages short of the speed-up in the profiled runs"
+            ),
+            "{}",
+            g.describe()
+        );
+        assert!(
+            g.describe()
+                .ends_with("prepare +0.200, substeps +0.100 (sum +0.300 ms)")
         );
     }
 
