@@ -397,17 +397,8 @@ pub fn toi_chain_segment(
     h: f64,
     options: &ToiOptions,
 ) -> Result<Option<Impact>, ToiError> {
-    match crossing_segment(motion_a, segment, chain_pose, h, options)? {
-        Some(line) => toi_conservative_advancement(
-            a,
-            motion_a,
-            &line,
-            &Motion::fixed(*chain_pose),
-            h,
-            options,
-        ),
-        None => Ok(None),
-    }
+    let sweep = toi_conservative_advancement;
+    across_segment(a, motion_a, segment, chain_pose, h, options, sweep)
 }
 
 /// The time of [`toi_chain_segment`]'s impact (s), the same bits, without
@@ -420,15 +411,29 @@ pub(crate) fn toi_time_chain_segment(
     h: f64,
     options: &ToiOptions,
 ) -> Result<Option<f64>, ToiError> {
+    let sweep = toi_time_conservative_advancement;
+    across_segment(a, motion_a, segment, chain_pose, h, options, sweep)
+}
+
+/// A conservative-advancement sweep of shape A (moving) against shape B
+/// (moving) over [0, h], with what it gives: the impact or its time.
+type Sweep<T> =
+    fn(&Shape, &Motion, &Shape, &Motion, f64, &ToiOptions) -> Result<Option<T>, ToiError>;
+
+/// A sweep of the conservative advancement (`sweep`: with or without the
+/// manifold) of `a` against the segment held still at `chain_pose`, when
+/// `a`'s origin crosses it from its solid side ([`toi_chain_segment`]).
+fn across_segment<T>(
+    a: &Shape,
+    motion_a: &Motion,
+    segment: &ChainSegment,
+    chain_pose: &Isometry2<f64>,
+    h: f64,
+    options: &ToiOptions,
+    sweep: Sweep<T>,
+) -> Result<Option<T>, ToiError> {
     match crossing_segment(motion_a, segment, chain_pose, h, options)? {
-        Some(line) => toi_time_conservative_advancement(
-            a,
-            motion_a,
-            &line,
-            &Motion::fixed(*chain_pose),
-            h,
-            options,
-        ),
+        Some(line) => sweep(a, motion_a, &line, &Motion::fixed(*chain_pose), h, options),
         None => Ok(None),
     }
 }
